@@ -1,0 +1,48 @@
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scenes/scene.h"
+
+namespace sandphys::samples {
+
+/// Exit code of a run that finished.
+inline constexpr int kExitOk = 0;
+/// Exit code when the simulation or writing its output failed.
+inline constexpr int kExitFailure = 1;
+/// Exit code of a usage error (unknown flag, bad value, unknown scene, unwritable path).
+inline constexpr int kExitUsage = 2;
+
+/// What the command line asked for, validated.
+struct RunOptions {
+  /// Registry name of the scene.
+  std::string sceneName = "cylinder-pile";
+  /// The scene, made from the registry with the command line's parameters applied.
+  std::unique_ptr<scenes::Scene> scene;
+  /// --headless was given (the only mode of this build).
+  bool headless = false;
+  /// Frames to run (the cap with --until-done); >= 0.
+  std::uint64_t frames = 300;
+  /// Duration of one frame, s; > 0.
+  double frameDt = 1.0 / 60.0;
+  /// Stop as soon as the scene reports it is finished.
+  bool untilDone = false;
+  /// No progress line.
+  bool quiet = false;
+  /// Where to write the metrics JSON; empty for none.
+  std::filesystem::path metricsPath;
+  /// Where to export the granules at the end (.csv or .vtk each).
+  std::vector<std::filesystem::path> exportPaths;
+};
+
+/// Parses and validates the command line, and makes the scene. Returns the options to run, or an
+/// exit code when the program should stop: after --help or --list (kExitOk), or after printing a
+/// usage error that names the flag and the value to stderr (kExitUsage). Touches no GPU.
+std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options);
+
+}  // namespace sandphys::samples

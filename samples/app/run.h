@@ -1,0 +1,46 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <sandphys/sandphys.h>
+
+#include "app/cli.h"
+#include "app/progress.h"
+#include "scenes/scene.h"
+
+namespace sandphys::samples {
+
+/// Everything a headless run measured; the metrics JSON is written from it.
+struct RunSummary {
+  std::string scene;                 ///< registry name
+  std::uint64_t frames = 0;          ///< frames run
+  double frameDt = 0.0;              ///< s
+  double setupSeconds = 0.0;         ///< wall time of World creation and Scene::build, s
+  double wallSeconds = 0.0;          ///< wall time of the frame loop (steps + scene logic), s
+  double granuleSteps = 0.0;         ///< sum over substeps of the granules alive
+  double maxOverlap = 0.0;           ///< largest overlap seen in any frame, m
+  double droppedSeconds = 0.0;       ///< frame time dropped by the substep cap, s
+  WorldStats stats{};                ///< World::readStats at the end
+  std::uint32_t granulesLost = 0;    ///< alive granules outside the scene's container at the end
+  float timeStep = 0.0f;             ///< s
+  float particleDiameter = 0.0f;     ///< m
+  std::uint64_t gpuMemoryBytes = 0;  ///< the world's buffers
+  std::string gpu;                   ///< GpuContext::description
+  bool sceneFinished = false;        ///< Scene::finished at the end
+  std::vector<scenes::SceneMetric> sceneMetrics;
+  std::vector<BodyState> bodies;  ///< World::readBodies at the end (for exports)
+};
+
+/// Runs `scene` in a new World on `gpu` for `frames` frames of `frameDt` s (stopping early when
+/// `untilDone` and the scene finishes), showing progress on `progress`. Reads the stats and the
+/// bodies once at the end (sync points); never per frame beyond what the World itself does.
+RunSummary runScene(const GpuContext& gpu, scenes::Scene& scene, std::uint64_t frames,
+                    double frameDt, bool untilDone, ProgressLine& progress);
+
+/// Runs the scene of `options` headless and writes its metrics and exports; returns the exit
+/// code. Throws sandphys::Error and std::runtime_error (I/O) on failure.
+int runHeadless(RunOptions& options);
+
+}  // namespace sandphys::samples

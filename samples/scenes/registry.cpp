@@ -1,0 +1,53 @@
+#include "scenes/registry.h"
+
+#include <array>
+#include <string>
+
+#include "scenes/box_drop.h"
+#include "scenes/cylinder_pile.h"
+
+namespace sandphys::scenes {
+
+namespace {
+
+template <typename SceneType>
+std::unique_ptr<Scene> make() {
+  return std::make_unique<SceneType>();
+}
+
+// An explicit table rather than self-registering statics in each scene file: the scenes live in
+// a static library, and the linker drops object files that nothing references, together with
+// their registration.
+constexpr std::array kScenes{
+    SceneEntry{"Basics", "box-drop", "a block of granules dropped into a smooth box",
+               &make<BoxDrop>},
+    SceneEntry{"Benchmark", "cylinder-pile",
+               "batches of granules poured into a cylinder on a rough floor (Longmore et al. "
+               "2013, section 5)",
+               &make<CylinderPile>},
+};
+
+}  // namespace
+
+std::span<const SceneEntry> sceneRegistry() {
+  return kScenes;
+}
+
+const SceneEntry* findScene(std::string_view name) {
+  for (const SceneEntry& entry : kScenes) {
+    if (entry.name == name) return &entry;
+  }
+  return nullptr;
+}
+
+std::unique_ptr<Scene> createScene(std::string_view name) {
+  if (const SceneEntry* entry = findScene(name)) return entry->create();
+  std::string known;
+  for (const SceneEntry& entry : kScenes) {
+    known += known.empty() ? "" : ", ";
+    known += entry.name;
+  }
+  throw InvalidArgument("unknown scene '" + std::string(name) + "' (known: " + known + ")");
+}
+
+}  // namespace sandphys::scenes

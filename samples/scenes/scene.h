@@ -1,0 +1,110 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include <sandphys/sandphys.h>
+
+namespace sandphys::scenes {
+
+/// Three counts, e.g. granules of a block along x, y and z.
+using Count3 = std::array<std::uint32_t, 3>;
+
+/// One tunable value of a scene, so that the command line (`--param name=value`) and the viewer's
+/// panel can set it without knowing the scene's type. `value` points into the scene that returned
+/// it and lives as long as that scene. A change takes effect at the next Scene::build.
+struct SceneParameter {
+  /// Name on the command line and in the viewer, kebab-case ("batches", "batch", "seed").
+  std::string name;
+  /// One line for --help and tooltips, with the unit.
+  std::string help;
+  /// Where the value lives. Count3 values are set as "X,Y,Z" or "X Y Z".
+  std::variant<std::uint32_t*, std::uint64_t*, float*, Count3*> value;
+  /// Smallest valid value (of each component for Count3).
+  double min = 0.0;
+  /// Largest valid value (of each component for Count3).
+  double max = 1.0e9;
+};
+
+/// A number a scene adds to the run's metrics (written under "scene_metrics" in the JSON).
+struct SceneMetric {
+  /// snake_case key, with the unit as a suffix where it has one ("pile_top_m").
+  std::string name;
+  double value = 0.0;
+};
+
+/// Axis-aligned box around everything a scene puts in the world, m. The viewer frames its camera
+/// on it.
+struct SceneBounds {
+  Vec3 min{};
+  Vec3 max{};
+};
+
+/// A sample scene: world settings, the initial contents and the scene's own logic over time
+/// (dropping the next batch, moving a plunger, ...). Shared by the samples app, the viewer, the
+/// tests and the benchmark, which all drive it the same way:
+///
+///   World world(gpu, scene.settings());
+///   scene.build(world);
+///   while (!done) { StepReport r = world.step(dt); scene.update(world, r, world.simulatedTime());
+///   }
+///
+/// A scene owns its parameters; build() may be called again on a fresh World to restart.
+class Scene {
+ public:
+  virtual ~Scene() = default;
+
+  /// The registry name, e.g. "cylinder-pile".
+  virtual std::string_view name() const = 0;
+
+  /// Settings for the World this scene runs in, with capacities sized for everything the scene
+  /// will ever add (World::reserve is never needed). Throws InvalidArgument when the parameters
+  /// ask for more than a World can hold.
+  virtual WorldSettings settings() const = 0;
+
+  /// Adds colliders, floors and the first granules to `world`, which was created from settings()
+  /// and is otherwise empty; resets the scene's own state (so that the scene can be rebuilt).
+  virtual void build(World& world) = 0;
+
+  /// Scene logic after each World::step: `report` is that step's report and `simTime` the world's
+  /// simulated time in s. May add granules; a read-back here is allowed only rarely (once per
+  /// batch, never per frame). The default does nothing.
+  virtual void update(World& /*world*/, const StepReport& /*report*/, double /*simTime*/) {}
+
+  /// True once the scene has nothing more to do (all batches dropped and settled). Runs may stop
+  /// there; scenes without an end never finish.
+  virtual bool finished() const { return false; }
+
+  /// One short line about the scene's progress for progress lines and the viewer ("batch 2/4").
+  virtual std::string status() const { return {}; }
+
+  /// Whether a granule centre (m) is inside the scene's container; granules outside at the end of
+  /// a run are reported as lost. The default accepts every point.
+  virtual bool contains(const Vec3& /*centre*/) const { return true; }
+
+  /// Scene-specific numbers for the metrics, from the bodies read back at the end of a run.
+  virtual std::vector<SceneMetric> metrics(std::span<const BodyState> /*bodies*/) const {
+    return {};
+  }
+
+  /// The scene's tunable values (see SceneParameter). The default has none.
+  virtual std::vector<SceneParameter> parameters() { return {}; }
+
+  /// Where the scene's contents are, for the viewer's camera.
+  virtual SceneBounds bounds() const = 0;
+};
+
+/// Sets the parameter named `name` of `scene` from text ("12", "0.5", "8,8,4" or "8 8 4").
+/// Throws InvalidArgument naming the parameter, the value and the valid range when the name is
+/// unknown, the text does not parse or the value is out of range.
+void setSceneParameter(Scene& scene, std::string_view name, std::string_view text);
+
+/// The current value of a parameter as text, in the form setSceneParameter accepts.
+std::string formatSceneParameter(const SceneParameter& parameter);
+
+}  // namespace sandphys::scenes

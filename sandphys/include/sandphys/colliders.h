@@ -1,0 +1,63 @@
+#pragma once
+
+#include "sandphys/math.h"
+#include "sandphys/settings.h"
+
+namespace sandphys {
+
+/// A smooth, infinite half-space: solid where dot(normal, x) < offset. normal need not be unit
+/// (it is normalised) but must be non-zero.
+struct Plane {
+  Vec3 normal{0.0f, 1.0f, 0.0f};
+  float offset = 0.0f;  ///< m
+  SurfaceMaterial material{};
+};
+
+/// A smooth oriented box. inside = true: a container whose six walls keep grains in;
+/// inside = false: a solid obstacle that keeps grains out.
+struct Box {
+  Vec3 center{};
+  Vec3 halfExtents{0.5f, 0.5f, 0.5f};  ///< m, each > 0
+  Quat orientation{};
+  bool inside = true;
+  SurfaceMaterial material{};
+};
+
+/// A smooth, thin vertical cylinder wall (axis along y) from base.y to base.y + height; open at
+/// both ends (add a Plane or a rough floor for the bottom).
+struct Cylinder {
+  Vec3 base{};
+  float radius = 1.0f;  ///< m, > 0
+  float height = 1.0f;  ///< m, > 0
+  SurfaceMaterial material{};
+};
+
+/// A smooth, thin cone wall around a vertical axis (the hourglass funnel of the paper's
+/// Fig. 16): radius outletRadius at y = outletCenter.y widening upward at halfAngle from the
+/// axis to height outletCenter.y + height. The outlet is an open hole.
+struct Funnel {
+  Vec3 outletCenter{};
+  float outletRadius = 0.1f;  ///< m, >= 0
+  float halfAngle = 0.785398f;  ///< rad, in (0, π/2)
+  float height = 1.0f;        ///< m, > 0
+  SurfaceMaterial material{};
+};
+
+/// A rough floor: a static body of particles (diameter of the world) on a square lattice of
+/// spacing `spacing` in the plane y = center.y, inside a disc (radius > 0) or a rectangle
+/// (halfExtentX/Z). Rough = the grains touch particles, so they can lock on it.
+struct RoughFloor {
+  Vec3 center{};
+  float radius = 0.0f;       ///< m; > 0 selects a disc
+  float halfExtentX = 0.0f;  ///< m; used when radius == 0
+  float halfExtentZ = 0.0f;  ///< m; used when radius == 0
+  float spacing = 0.0f;      ///< m; 0 means one particle diameter
+};
+
+/// A kill volume: granules whose centre enters this axis-aligned box are removed and counted.
+struct Sink {
+  Vec3 min{};
+  Vec3 max{};
+};
+
+}  // namespace sandphys

@@ -1,0 +1,39 @@
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace sandphys {
+
+/// Every error sandphys throws. The message names the field (or file), the value and the limit,
+/// so that a user can fix the input without reading our source.
+class Error : public std::runtime_error {
+ public:
+  explicit Error(const std::string& message) : std::runtime_error(message) {}
+};
+
+/// A setting or descriptor is out of its valid range (NaN, negative, too large, ...).
+class InvalidArgument : public Error {
+ public:
+  using Error::Error;
+};
+
+/// A fixed capacity (bodies, particles, colliders) would be exceeded.
+class CapacityExceeded : public Error {
+ public:
+  using Error::Error;
+};
+
+/// The OpenGL context is missing, too old, or a GL call or shader failed.
+class GpuError : public Error {
+ public:
+  using Error::Error;
+};
+
+/// A stale or invalid id was passed to the world.
+class InvalidId : public Error {
+ public:
+  using Error::Error;
+};
+
+}  // namespace sandphys

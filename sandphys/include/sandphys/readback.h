@@ -1,0 +1,60 @@
+#pragma once
+
+#include <cstdint>
+
+#include "sandphys/math.h"
+
+namespace sandphys {
+
+/// One body as read back from the GPU (World::readBodies, a sync point).
+struct BodyState {
+  std::uint32_t index = 0;  ///< body slot (BodyId::index)
+  Vec3 position{};          ///< centre of mass, m
+  Quat orientation{};       ///< orientation of the template's original frame
+  Vec3 velocity{};          ///< m/s
+  Vec3 angularVelocity{};   ///< rad/s, world frame
+  bool alive = true;        ///< false once a sink removed it
+  bool granule = true;      ///< a sand granule (not a floor or sampled body)
+};
+
+/// One particle as read back from the GPU (World::readParticles, a sync point).
+struct ParticleState {
+  std::uint32_t body = 0;  ///< owning body slot
+  Vec3 position{};         ///< m
+  Vec3 velocity{};         ///< m/s
+  Vec3 force{};            ///< contact + collider force of the last substep, N (no gravity)
+};
+
+/// One contact as read back from the GPU (World::readContacts, a sync point). Particle-particle
+/// contacts appear once (particleA < particleB); collider contacts have particleB = kNone.
+struct ContactRecord {
+  static constexpr std::uint32_t kNone = 0xffffffffu;
+  std::uint32_t particleA = 0;
+  std::uint32_t particleB = kNone;
+  std::uint32_t bodyA = 0;
+  std::uint32_t bodyB = kNone;
+  std::uint32_t collider = kNone;  ///< collider index for collider contacts
+  Vec3 point{};                    ///< midpoint of the overlap, m
+  Vec3 normal{};                   ///< unit, from B (or the collider) towards A
+  float normalForce = 0.0f;        ///< F_n on A, N (>= 0)
+  Vec3 tangentialForce{};          ///< F_s on A, N
+  float overlap = 0.0f;            ///< ξ, m
+};
+
+/// Totals over the world, reduced on the GPU (World::readStats, a sync point).
+struct WorldStats {
+  std::uint32_t bodies = 0;          ///< body slots in use (alive or not)
+  std::uint32_t particles = 0;       ///< particle slots in use
+  std::uint32_t granulesSpawned = 0;
+  std::uint32_t granulesAlive = 0;
+  std::uint32_t granulesKilled = 0;  ///< removed by sinks
+  std::uint32_t contacts = 0;        ///< particle-particle pairs + collider contacts, last substep
+  double kineticEnergy = 0.0;        ///< translational + rotational of dynamic bodies, J
+  double maxOverlap = 0.0;           ///< largest overlap since the last readStats, m
+  std::uint64_t penetrationClamps = 0;  ///< contacts whose overlap exceeded d/10 (total)
+  std::uint64_t velocityClamps = 0;     ///< bodies slowed to maxSpeed (total)
+  std::uint64_t steps = 0;              ///< substeps run in total
+  double simulatedTime = 0.0;           ///< s
+};
+
+}  // namespace sandphys

@@ -1,0 +1,15 @@
+#pragma once
+
+/// The whole public API of sandphys.
+#include "sandphys/body.h"
+#include "sandphys/colliders.h"
+#include "sandphys/contact_model.h"
+#include "sandphys/error.h"
+#include "sandphys/gpu_context.h"
+#include "sandphys/ids.h"
+#include "sandphys/math.h"
+#include "sandphys/readback.h"
+#include "sandphys/settings.h"
+#include "sandphys/spawn.h"
+#include "sandphys/step_report.h"
+#include "sandphys/world.h"

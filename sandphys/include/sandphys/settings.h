@@ -1,0 +1,70 @@
+#pragma once
+
+#include <cstdint>
+
+#include "sandphys/math.h"
+
+namespace sandphys {
+
+/// Bulk material of the sand grains. Validated when a World is created.
+struct Material {
+  /// Density of the grain material in kg/m³; > 0. Sets particle mass = density · πd³/6.
+  float density = 2600.0f;
+  /// Young's modulus E in Pa; > 0. Sets the Hertz stiffness (and so the time step, t_n ∝ E^-2/5).
+  float youngsModulus = 5.0e6f;
+  /// Poisson's ratio ν; in [0, 0.5). Enters the effective modulus E* = E / (2 (1 - ν²)).
+  float poissonRatio = 0.3f;
+  /// Normal coefficient of restitution of a grain-grain impact; in (0, 1]. Sets the normal damping.
+  float restitution = 0.5f;
+  /// Coulomb friction coefficient μ between grains (eq. 10); >= 0.
+  float friction = 0.5f;
+  /// Tangential damping γs of eq. 10 in N·s/m; >= 0. 0 selects the automatic value
+  /// 0.25 · particle mass / time step (a quarter of the explicit stability limit).
+  float tangentialDamping = 0.0f;
+};
+
+/// Friction and restitution of an implicit collider (its stiffness follows the sand's Material,
+/// with the collider treated as rigid).
+struct SurfaceMaterial {
+  /// Coulomb friction coefficient μ against grains; >= 0.
+  float friction = 0.5f;
+  /// Normal coefficient of restitution of a grain hitting this surface; in (0, 1].
+  float restitution = 0.5f;
+};
+
+/// Everything a World needs at creation. Plain aggregate: designated initialisers work on it.
+struct WorldSettings {
+  /// Diameter d of every particle in m; > 0. Also the grid cell size.
+  float particleDiameter = 0.02f;
+  /// Gravitational acceleration in m/s².
+  Vec3 gravity{0.0f, -9.81f, 0.0f};
+  /// Grain material.
+  Material material{};
+  /// Fixed substep in s. 0 derives it: t_n(maxSpeed) / stepsPerContact (eq. 11, Hertz form).
+  /// A value above t_n / kMinStepsPerContact is refused.
+  float timeStep = 0.0f;
+  /// Substeps per Hertz contact duration when the step is derived; >= kMinStepsPerContact.
+  float stepsPerContact = 20.0f;
+  /// Speed guard in m/s; > 0. Body speeds above it are clamped (and counted); it is also the
+  /// impact speed at which the contact duration t_n that sets the time step is evaluated.
+  float maxSpeed = 10.0f;
+  /// Substeps one call of World::step may run; > 0. Time beyond it is dropped and reported.
+  std::uint32_t maxSubstepsPerFrame = 512;
+  /// Capacity of bodies (granules, sampled bodies, rough floors); fixed at creation, grown only
+  /// by World::reserve. > 0.
+  std::uint32_t maxBodies = 65536;
+  /// Capacity of particles; 0 means 4 · maxBodies (every body a granule).
+  std::uint32_t maxParticles = 0;
+  /// Capacity of implicit colliders and of sinks (each).
+  std::uint32_t maxColliders = 64;
+  /// Reduce and read the small statistics buffer after each World::step (one sync per frame,
+  /// never per substep). Off: StepReport carries only CPU-side numbers; use World::readStats.
+  bool statsEachFrame = true;
+  /// Record GL timer queries per kernel (costs a little; read with World::kernelTimes).
+  bool profileKernels = false;
+};
+
+/// Fewest substeps per contact duration t_n a World accepts; fewer is refused as unstable.
+inline constexpr float kMinStepsPerContact = 8.0f;
+
+}  // namespace sandphys

@@ -1,0 +1,120 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sandphys/body.h"
+#include "sandphys/colliders.h"
+#include "sandphys/contact_model.h"
+#include "sandphys/gpu_context.h"
+#include "sandphys/ids.h"
+#include "sandphys/readback.h"
+#include "sandphys/settings.h"
+#include "sandphys/spawn.h"
+#include "sandphys/step_report.h"
+
+namespace sandphys {
+
+/// A contiguous run of body slots, as returned by World::addGranules.
+struct BodyRange {
+  std::uint32_t first = 0;
+  std::uint32_t count = 0;
+};
+
+/// GPU time of one kernel, summed over the substeps of the last World::step (profileKernels).
+struct KernelTime {
+  std::string name;
+  double milliseconds = 0.0;
+  std::uint32_t dispatches = 0;
+};
+
+/// A simulation of sand granules and particle-sampled bodies, entirely on the GPU.
+///
+/// Capacities are fixed at creation (WorldSettings) and grown only by reserve(); nothing is
+/// allocated inside step(). Setup calls throw sandphys::Error; step() does not throw. Calls that
+/// read GPU memory are marked "sync point": they wait for the GPU and are meant for analysis,
+/// tests and debugging, not for every frame of a game. Two worlds may share one GpuContext.
+class World {
+ public:
+  /// Validates `settings` (throws InvalidArgument naming field, value and limit), compiles the
+  /// kernels (GpuError with file and line on failure) and allocates every buffer.
+  World(const GpuContext& gpu, const WorldSettings& settings);
+  ~World();
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  const WorldSettings& settings() const;
+  /// The resolved contact law (stiffness, damping, time step).
+  const ContactModel& contactModel() const;
+  /// The fixed substep, s.
+  float timeStep() const;
+
+  // --- Scene setup --------------------------------------------------------------------------
+  ColliderId addCollider(const Plane& plane);
+  ColliderId addCollider(const Box& box);
+  ColliderId addCollider(const Cylinder& cylinder);
+  ColliderId addCollider(const Funnel& funnel);
+  /// Moves or reshapes an existing collider (same kind or another). Throws InvalidId.
+  void setCollider(ColliderId id, const Plane& plane);
+  void setCollider(ColliderId id, const Box& box);
+  void setCollider(ColliderId id, const Cylinder& cylinder);
+  void setCollider(ColliderId id, const Funnel& funnel);
+  /// A kill volume; removed granules are counted in WorldStats::granulesKilled.
+  SinkId addSink(const Sink& sink);
+  /// A static particle floor (see RoughFloor); returns its body.
+  BodyId addRoughFloor(const RoughFloor& floor);
+  /// Adds one rigid body built from `shape`; throws CapacityExceeded when bodies or particles run
+  /// out (nothing is added then).
+  BodyId addBody(const ParticleTemplate& shape, const BodyDesc& desc);
+  /// Adds a block of tetrahedral granules; all or nothing (CapacityExceeded names the limit).
+  BodyRange addGranules(const GranuleBlock& block);
+  /// Adds an emitter; it runs inside step().
+  EmitterId addEmitter(const EmitterSettings& emitter);
+  void removeEmitter(EmitterId id);
+  /// Sets the pose and velocities of a body (typically a kinematic one) before the next step.
+  void setBodyState(BodyId id, const BodyDesc& state);
+  /// Grows the capacities to at least these counts (copies the buffers on the GPU). The only call
+  /// that reallocates; never called by step().
+  void reserve(std::uint32_t maxBodies, std::uint32_t maxParticles);
+
+  // --- Simulation --------------------------------------------------------------------------
+  /// Advances by `frameDt` seconds in whole fixed substeps: an accumulator carries the remainder
+  /// to the next call; at most maxSubstepsPerFrame run and the rest is dropped (reported, and a
+  /// warning is printed once). Does not throw; non-finite or negative frameDt runs nothing.
+  StepReport step(float frameDt);
+  /// Runs exactly `count` substeps, bypassing the accumulator (tests, single stepping).
+  void substep(std::uint32_t count = 1);
+
+  // --- Counts (CPU side, no sync) ----------------------------------------------------------
+  std::uint32_t bodyCount() const;
+  std::uint32_t particleCount() const;
+  std::uint32_t granulesSpawned() const;
+  std::uint32_t bodyCapacity() const;
+  std::uint32_t particleCapacity() const;
+  std::uint64_t stepCount() const;
+  double simulatedTime() const;
+  /// Bytes of GPU memory held by this world's buffers.
+  std::uint64_t gpuMemoryBytes() const;
+
+  // --- Read-back (every one is a sync point) ------------------------------------------------
+  std::vector<BodyState> readBodies() const;
+  BodyState readBody(BodyId id) const;
+  std::vector<ParticleState> readParticles() const;
+  std::vector<ContactRecord> readContacts() const;
+  WorldStats readStats();
+  /// Per-kernel GPU times of the last step (empty unless profileKernels). Sync point.
+  std::vector<KernelTime> kernelTimes() const;
+
+  struct Impl;
+  /// Internal: for gl_interop.h and the test suite.
+  Impl& impl();
+
+ private:
+  std::unique_ptr<Impl> m_impl;
+};
+
+}  // namespace sandphys

@@ -1,0 +1,143 @@
+#include "sandphys/contact_model.h"
+
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <numbers>
+
+#include "core/validation.h"
+
+namespace sandphys {
+namespace {
+
+// The dimensionless impact x'' = -max(0, x^{3/2} + c x^{1/4} x'), x(0) = 0, x'(0) = 1, in units
+// ξ0 = (m* v² / k_n)^{2/5} and ξ0 / v. Integrated with RK4 until the surfaces separate.
+struct ImpactResult {
+  double restitution;
+  double duration;
+};
+
+ImpactResult integrateImpact(double c) {
+  auto accel = [c](double x, double v) {
+    if (x <= 0.0) return 0.0;
+    return -std::max(0.0, x * std::sqrt(x) + c * std::sqrt(std::sqrt(x)) * v);
+  };
+  const double h = 2.0e-4;
+  double x = 0.0;
+  double v = 1.0;
+  double t = 0.0;
+  for (int i = 0; i < 10'000'000; ++i) {
+    double k1x = v, k1v = accel(x, v);
+    double k2x = v + 0.5 * h * k1v, k2v = accel(x + 0.5 * h * k1x, v + 0.5 * h * k1v);
+    double k3x = v + 0.5 * h * k2v, k3v = accel(x + 0.5 * h * k2x, v + 0.5 * h * k2v);
+    double k4x = v + h * k3v, k4v = accel(x + h * k3x, v + h * k3v);
+    double nx = x + h / 6.0 * (k1x + 2 * k2x + 2 * k3x + k4x);
+    double nv = v + h / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
+    if (nx <= 0.0 && nv < 0.0) {
+      // Separation inside this step: interpolate the crossing linearly.
+      double frac = x / (x - nx);
+      return {-(v + frac * (nv - v)), t + frac * h};
+    }
+    x = nx;
+    v = nv;
+    t += h;
+  }
+  return {0.0, t};
+}
+
+double requireRestitution(double e, const std::string& field) {
+  detail::require(std::isfinite(e) && e > 0.0 && e <= 1.0, field, e, "must be in (0, 1]");
+  return e;
+}
+
+}  // namespace
+
+double hertzDampingFactor(double restitution) {
+  requireRestitution(restitution, "restitution");
+  if (restitution >= 1.0) return 0.0;
+  static std::mutex mutex;
+  static std::map<double, double> cache;
+  std::lock_guard lock(mutex);
+  if (auto it = cache.find(restitution); it != cache.end()) return it->second;
+  // e(c) falls monotonically from 1 at c = 0; bisect.
+  double lo = 0.0;
+  double hi = 1.0;
+  while (integrateImpact(hi).restitution > restitution) hi *= 2.0;
+  for (int i = 0; i < 48; ++i) {
+    double mid = 0.5 * (lo + hi);
+    (integrateImpact(mid).restitution > restitution ? lo : hi) = mid;
+  }
+  double c = 0.5 * (lo + hi);
+  cache[restitution] = c;
+  return c;
+}
+
+double hertzContactTime(double effectiveMass, double stiffness, double dampingFactor, double speed) {
+  double tau = integrateImpact(dampingFactor).duration;
+  return tau * std::pow(effectiveMass * effectiveMass / (stiffness * stiffness * speed), 0.2);
+}
+
+double hertzRestingOverlap(double load, double stiffness) {
+  return std::pow(load / stiffness, 2.0 / 3.0);
+}
+
+ContactModel ContactModel::fromSettings(const WorldSettings& s) {
+  using detail::require;
+  using detail::requireFinite;
+  using detail::requireNonNegative;
+  using detail::requirePositive;
+  requirePositive("WorldSettings.particleDiameter", s.particleDiameter, "(m)");
+  requireFinite("WorldSettings.gravity.x", s.gravity.x);
+  requireFinite("WorldSettings.gravity.y", s.gravity.y);
+  requireFinite("WorldSettings.gravity.z", s.gravity.z);
+  requirePositive("WorldSettings.material.density", s.material.density, "(kg/m^3)");
+  requirePositive("WorldSettings.material.youngsModulus", s.material.youngsModulus, "(Pa)");
+  require(std::isfinite(s.material.poissonRatio) && s.material.poissonRatio >= 0.0f &&
+              s.material.poissonRatio < 0.5f,
+          "WorldSettings.material.poissonRatio", s.material.poissonRatio, "must be in [0, 0.5)");
+  requireRestitution(s.material.restitution, "WorldSettings.material.restitution");
+  requireNonNegative("WorldSettings.material.friction", s.material.friction, "");
+  requireNonNegative("WorldSettings.material.tangentialDamping", s.material.tangentialDamping,
+                     "(N s/m)");
+  requirePositive("WorldSettings.maxSpeed", s.maxSpeed, "(m/s)");
+  require(std::isfinite(s.stepsPerContact) && s.stepsPerContact >= kMinStepsPerContact,
+          "WorldSettings.stepsPerContact", s.stepsPerContact,
+          "must be >= " + detail::formatValue(kMinStepsPerContact) + " (substeps per contact time t_n)");
+  requireNonNegative("WorldSettings.timeStep", s.timeStep, "(s)");
+
+  ContactModel m;
+  const double d = s.particleDiameter;
+  const double r = 0.5 * d;
+  const double nu = s.material.poissonRatio;
+  const double eStar = s.material.youngsModulus / (2.0 * (1.0 - nu * nu));
+  const double eStarWall = s.material.youngsModulus / (1.0 - nu * nu);
+  const double mass = s.material.density * std::numbers::pi * d * d * d / 6.0;
+  m.radius = static_cast<float>(r);
+  m.particleMass = static_cast<float>(mass);
+  m.stiffnessGrain = static_cast<float>(4.0 / 3.0 * eStar * std::sqrt(0.5 * r));
+  m.stiffnessWall = static_cast<float>(4.0 / 3.0 * eStarWall * std::sqrt(r));
+  m.dampingFactorGrain = static_cast<float>(hertzDampingFactor(s.material.restitution));
+  m.maxOverlap = static_cast<float>(0.1 * d);
+
+  // t_n: the shorter of a grain-grain (m* = m/2) and a grain-wall (m* = m) impact at maxSpeed.
+  const double tGrain = hertzContactTime(0.5 * mass, m.stiffnessGrain, m.dampingFactorGrain, s.maxSpeed);
+  const double tWall = hertzContactTime(mass, m.stiffnessWall, m.dampingFactorGrain, s.maxSpeed);
+  m.contactTime = static_cast<float>(std::min(tGrain, tWall));
+  const double limit = m.contactTime / kMinStepsPerContact;
+  if (s.timeStep > 0.0f) {
+    require(s.timeStep <= limit, "WorldSettings.timeStep", s.timeStep,
+            "must be <= t_n / " + detail::formatValue(kMinStepsPerContact) + " = " +
+                detail::formatValue(limit) + " s for this material (t_n = " +
+                detail::formatValue(m.contactTime) + " s at maxSpeed " +
+                detail::formatValue(s.maxSpeed) + " m/s); lower it, or lower youngsModulus or maxSpeed");
+    m.timeStep = s.timeStep;
+  } else {
+    m.timeStep = static_cast<float>(m.contactTime / s.stepsPerContact);
+  }
+  m.tangentialDamping = s.material.tangentialDamping > 0.0f
+                            ? s.material.tangentialDamping
+                            : static_cast<float>(0.25 * mass / m.timeStep);
+  return m;
+}
+
+}  // namespace sandphys

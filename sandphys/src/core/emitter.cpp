@@ -1,0 +1,72 @@
+#include "core/emitter.h"
+
+#include <cmath>
+
+#include "core/validation.h"
+
+namespace sandphys::detail {
+
+EmitterState::EmitterState(const EmitterSettings& s, float particleDiameter)
+    : m_settings(s), m_rng(s.seed) {
+  requireFinite("EmitterSettings.center.x", s.center.x);
+  requireFinite("EmitterSettings.center.y", s.center.y);
+  requireFinite("EmitterSettings.center.z", s.center.z);
+  requirePositive("EmitterSettings.halfExtentX", s.halfExtentX, "(m)");
+  requirePositive("EmitterSettings.halfExtentZ", s.halfExtentZ, "(m)");
+  requirePositive("EmitterSettings.rate", s.rate, "(granules/s)");
+  const double speed = std::sqrt(double(s.velocity.x) * s.velocity.x + double(s.velocity.y) * s.velocity.y +
+                                 double(s.velocity.z) * s.velocity.z);
+  requirePositive("EmitterSettings.velocity (speed)", speed, "(m/s): emitted granules must move away");
+
+  const double spacing = kDefaultGranuleSpacing * particleDiameter;
+  const int nx = 1 + int(std::floor(2.0 * s.halfExtentX / spacing));
+  const int nz = 1 + int(std::floor(2.0 * s.halfExtentZ / spacing));
+  for (int z = 0; z < nz; ++z) {
+    for (int x = 0; x < nx; ++x) {
+      m_slots.push_back({float(s.center.x + (x - 0.5 * (nx - 1)) * spacing), s.center.y,
+                         float(s.center.z + (z - 0.5 * (nz - 1)) * spacing)});
+    }
+  }
+  m_order.resize(m_slots.size());
+  m_layerInterval = spacing / speed;
+  m_layerAge = m_layerInterval;
+  m_nextSlot = m_slots.size();
+}
+
+void EmitterState::shuffleLayer() {
+  for (std::uint32_t i = 0; i < m_order.size(); ++i) m_order[i] = i;
+  for (std::size_t i = m_order.size(); i > 1; --i) {
+    std::size_t j = std::size_t(m_rng() % i);
+    std::swap(m_order[i - 1], m_order[j]);
+  }
+}
+
+std::vector<GranuleSpawn> EmitterState::advance(double dt, std::uint32_t room, bool& blocked) {
+  std::vector<GranuleSpawn> out;
+  if (finished()) return out;
+  m_due = std::min(m_due + m_settings.rate * dt, double(m_slots.size()));
+  m_layerAge += dt;
+  while (m_due >= 1.0 && !finished()) {
+    if (m_nextSlot == m_slots.size()) {
+      if (m_layerAge < m_layerInterval) break;
+      shuffleLayer();
+      m_nextSlot = 0;
+      m_layerAge = 0.0;
+    }
+    if (room == 0) {
+      blocked = true;
+      break;
+    }
+    GranuleSpawn spawn;
+    spawn.position = m_slots[m_order[m_nextSlot++]];
+    spawn.orientation = randomOrientation(m_rng);
+    spawn.velocity = m_settings.velocity;
+    out.push_back(spawn);
+    m_due -= 1.0;
+    ++m_emitted;
+    --room;
+  }
+  return out;
+}
+
+}  // namespace sandphys::detail

@@ -1,0 +1,113 @@
+#pragma once
+
+// C++ twin of shaders/sim/common/layout.glsl. A test compiles a probe shader and checks these
+// sizes and offsets against the driver's view of the GLSL declarations.
+
+#include <cstddef>
+#include <cstdint>
+
+namespace sandphys::detail {
+
+/// SSBO binding points, one per attribute (layout.glsl).
+enum Binding : unsigned {
+  kBodyPosition = 0,
+  kBodyOrientation = 1,
+  kBodyVelocity = 2,
+  kBodyAngularVelocity = 3,
+  kBodyInertia = 4,
+  kBodyInfo = 5,
+  kParticleLocal = 6,
+  kParticleBody = 7,
+  kParticlePosition = 8,
+  kParticleVelocity = 9,
+  kParticleForce = 10,
+  kParticleStats = 11,
+  kCellCount = 12,
+  kCellStart = 13,
+  kCellParticles = 14,
+  kSortedPosition = 15,
+  kSortedVelocity = 16,
+  kParticleCell = 17,
+  kScanBlockSums = 18,
+  kColliders = 19,
+  kSinks = 20,
+  kCounters = 21,
+  kStatsPartials = 22,
+  kContactList = 23,
+  kBindingCount = 24,
+};
+
+inline constexpr unsigned kSimParamsBinding = 0;
+inline constexpr unsigned kWorkgroupSize = 64;
+inline constexpr unsigned kScanBlock = 1024;        // elements per scan workgroup (256 x 4)
+inline constexpr unsigned kStatsWorkgroups = 32;    // fixed: the reduction order never changes
+inline constexpr std::uint32_t kCounterKilled = 0;
+inline constexpr std::uint32_t kCounterCount = 4;
+
+// bodyInfo.z flags
+inline constexpr std::uint32_t kBodyAlive = 1u;
+inline constexpr std::uint32_t kBodyGranule = 2u;
+inline constexpr std::uint32_t kBodyMotionShift = 4u;
+
+struct alignas(16) GpuVec4 {
+  float x, y, z, w;
+};
+struct alignas(16) GpuUVec4 {
+  std::uint32_t x, y, z, w;
+};
+
+enum ColliderType : std::uint32_t {
+  kColliderPlane = 1,
+  kColliderBox = 2,
+  kColliderRevolution = 3,  // cylinder wall and funnel: a segment swept around the y axis
+};
+
+/// struct Collider in layout.glsl.
+struct GpuCollider {
+  GpuVec4 a;
+  GpuVec4 b;
+  GpuVec4 c;
+  GpuVec4 material;  // x: type, y: friction, z: damping factor c(e), w: ColliderId (uint bits)
+};
+
+/// struct SinkBox in layout.glsl.
+struct GpuSink {
+  GpuVec4 lo;
+  GpuVec4 hi;
+};
+
+/// One record of the contact list (contacts.comp with CONTACT_LIST): 4 vec4.
+struct GpuContactRecord {
+  std::uint32_t particleA, particleB, bodyA, bodyB;
+  float px, py, pz, overlap;
+  float nx, ny, nz, normalForce;
+  float tx, ty, tz;
+  std::uint32_t collider;
+};
+
+/// Partial sums written by one workgroup of stats_reduce.comp.
+struct GpuStatsPartial {
+  GpuUVec4 counts;  // x: particle-particle contact ends, y: collider contacts,
+                    // z: penetration-guard count, w: velocity-guard count
+  GpuVec4 sums;     // x: translational KE, y: rotational KE, z: max overlap, w: alive granules
+};
+
+/// uniform SimParams in layout.glsl (std140).
+struct SimParams {
+  GpuVec4 gravityDt;
+  GpuVec4 particleGeom;
+  GpuVec4 grainContact;
+  GpuVec4 wallContact;
+  GpuUVec4 counts;
+  GpuUVec4 counts2;
+  GpuUVec4 colliderEnds;
+};
+
+static_assert(sizeof(GpuCollider) == 64);
+static_assert(sizeof(GpuSink) == 32);
+static_assert(sizeof(GpuContactRecord) == 64);
+static_assert(sizeof(GpuStatsPartial) == 32);
+static_assert(sizeof(SimParams) == 112);
+static_assert(offsetof(SimParams, counts) == 64);
+
+}  // namespace sandphys::detail

@@ -1,0 +1,424 @@
+#include "sandphys/world.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <numbers>
+
+#include "core/granule_spawner.h"
+#include "core/validation.h"
+#include "core/world_impl.h"
+#include "gl/gl_check.h"
+
+namespace sandphys {
+
+using namespace detail;
+
+namespace {
+
+// Particle counts above this would exceed the 128 MiB a single GL storage buffer may hold on
+// Mesa (16 bytes per particle attribute) and the 2^31 dispatch range.
+constexpr std::uint32_t kMaxParticles = 1u << 23;
+
+GpuVec4 toGpu(Vec3 v, float w) { return {v.x, v.y, v.z, w}; }
+
+// Quaternion product a · b, both (w, x, y, z).
+Quat multiply(Quat a, Quat b) {
+  return {a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z, a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
+          a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x, a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w};
+}
+
+Quat normalised(Quat q, const std::string& field) {
+  double n = std::sqrt(double(q.w) * q.w + double(q.x) * q.x + double(q.y) * q.y + double(q.z) * q.z);
+  require(std::isfinite(n) && n > 1e-6, field, n, "must be a non-zero, finite quaternion");
+  return {float(q.w / n), float(q.x / n), float(q.y / n), float(q.z / n)};
+}
+
+void requireFiniteVec(const std::string& field, Vec3 v) {
+  requireFinite(field + ".x", v.x);
+  requireFinite(field + ".y", v.y);
+  requireFinite(field + ".z", v.z);
+}
+
+void requireSurface(const std::string& type, const SurfaceMaterial& m) {
+  requireNonNegative(type + ".material.friction", m.friction, "");
+  require(std::isfinite(m.restitution) && m.restitution > 0.0f && m.restitution <= 1.0f,
+          type + ".material.restitution", m.restitution, "must be in (0, 1]");
+}
+
+GpuVec4 surfaceParams(ColliderType type, const SurfaceMaterial& m) {
+  return {float(type), m.friction, float(hertzDampingFactor(m.restitution)), 0.0f};
+}
+
+GpuCollider toGpu(const Plane& p) {
+  requireFiniteVec("Plane.normal", p.normal);
+  requireFinite("Plane.offset", p.offset);
+  requireSurface("Plane", p.material);
+  double n = std::sqrt(double(p.normal.x) * p.normal.x + double(p.normal.y) * p.normal.y +
+                       double(p.normal.z) * p.normal.z);
+  require(n > 1e-12, "Plane.normal (length)", n, "must be non-zero");
+  // dot(n/|n|, x) < offset/|n| describes the same half-space.
+  return {{float(p.normal.x / n), float(p.normal.y / n), float(p.normal.z / n), float(p.offset / n)},
+          {},
+          {},
+          surfaceParams(kColliderPlane, p.material)};
+}
+
+GpuCollider toGpu(const Box& b) {
+  requireFiniteVec("Box.center", b.center);
+  requirePositive("Box.halfExtents.x", b.halfExtents.x, "(m)");
+  requirePositive("Box.halfExtents.y", b.halfExtents.y, "(m)");
+  requirePositive("Box.halfExtents.z", b.halfExtents.z, "(m)");
+  requireSurface("Box", b.material);
+  Quat q = normalised(b.orientation, "Box.orientation");
+  return {toGpu(b.center, b.inside ? 1.0f : 0.0f), toGpu(b.halfExtents, 0.0f), {q.x, q.y, q.z, q.w},
+          surfaceParams(kColliderBox, b.material)};
+}
+
+GpuCollider toGpu(const Cylinder& c) {
+  requireFiniteVec("Cylinder.base", c.base);
+  requirePositive("Cylinder.radius", c.radius, "(m)");
+  requirePositive("Cylinder.height", c.height, "(m)");
+  requireSurface("Cylinder", c.material);
+  return {toGpu(c.base, 0.0f), {c.radius, 0.0f, c.radius, c.height}, {},
+          surfaceParams(kColliderRevolution, c.material)};
+}
+
+GpuCollider toGpu(const Funnel& f) {
+  requireFiniteVec("Funnel.outletCenter", f.outletCenter);
+  requireNonNegative("Funnel.outletRadius", f.outletRadius, "(m)");
+  require(std::isfinite(f.halfAngle) && f.halfAngle > 0.0f && f.halfAngle < 0.5f * std::numbers::pi_v<float>,
+          "Funnel.halfAngle", f.halfAngle, "must be in (0, pi/2) rad");
+  requirePositive("Funnel.height", f.height, "(m)");
+  requireSurface("Funnel", f.material);
+  float top = f.outletRadius + f.height * std::tan(f.halfAngle);
+  return {toGpu(f.outletCenter, 0.0f), {f.outletRadius, 0.0f, top, f.height}, {},
+          surfaceParams(kColliderRevolution, f.material)};
+}
+
+}  // namespace
+
+World::Impl::Impl(const GpuContext& context, const WorldSettings& s) : gpu(&context), settings(s) {
+  model = ContactModel::fromSettings(settings);
+  require(settings.maxSubstepsPerFrame > 0, "WorldSettings.maxSubstepsPerFrame",
+          settings.maxSubstepsPerFrame, "must be > 0");
+  require(settings.maxBodies > 0, "WorldSettings.maxBodies", settings.maxBodies, "must be > 0");
+  require(settings.maxColliders > 0, "WorldSettings.maxColliders", settings.maxColliders, "must be > 0");
+  bodyCapacity = settings.maxBodies;
+  std::uint64_t particles = settings.maxParticles ? settings.maxParticles : 4ull * settings.maxBodies;
+  require(particles <= kMaxParticles, "WorldSettings.maxParticles", double(particles),
+          "must be <= " + std::to_string(kMaxParticles) + " (GPU buffer limit)");
+  particleCapacity = std::uint32_t(particles);
+  table = HashTable::forParticles(particleCapacity);
+  granule = tetrahedronTemplate(settings.particleDiameter, settings.material.density);
+
+  context.makeCurrent();
+  kernels.compile();
+  buffers.allocate(bodyCapacity, particleCapacity, table.size, settings.maxColliders, 0, 0);
+  profiler.setEnabled(settings.profileKernels);
+  uploadParams();
+}
+
+World::Impl::~Impl() {
+  gpu->makeCurrent();
+  kernels.release();
+}
+
+std::uint32_t World::Impl::addBodies(const ParticleTemplate& shape, const std::vector<BodyDesc>& descs,
+                                     bool isGranule) {
+  const std::uint64_t n = descs.size();
+  const std::uint64_t perBody = shape.offsets.size();
+  if (bodyCount + n > bodyCapacity) {
+    throw CapacityExceeded("adding " + std::to_string(n) + " bodies to " + std::to_string(bodyCount) +
+                           " exceeds WorldSettings.maxBodies = " + std::to_string(bodyCapacity) +
+                           " (grow it with World::reserve)");
+  }
+  if (particleCount + n * perBody > particleCapacity) {
+    throw CapacityExceeded("adding " + std::to_string(n * perBody) + " particles to " +
+                           std::to_string(particleCount) + " exceeds WorldSettings.maxParticles = " +
+                           std::to_string(particleCapacity) + " (grow it with World::reserve)");
+  }
+  gpu->makeCurrent();
+  const std::uint32_t firstBody = bodyCount;
+  const std::uint32_t firstParticle = particleCount;
+
+  std::vector<GpuUVec4> info(n);
+  std::vector<GpuVec4> inertia(n);
+  std::vector<GpuVec4> local(n * perBody);
+  std::vector<std::uint32_t> owner(n * perBody);
+  for (std::uint64_t i = 0; i < n; ++i) {
+    const Motion motion = descs[i].motion;
+    const bool dynamic = motion == Motion::Dynamic;
+    const std::uint32_t flags = kBodyAlive | (isGranule ? kBodyGranule : 0u) |
+                                (std::uint32_t(motion) << kBodyMotionShift);
+    info[i] = {std::uint32_t(firstParticle + i * perBody), std::uint32_t(perBody), flags, 0u};
+    inertia[i] = toGpu(shape.principalInertia, shape.mass);
+    const float particleInvMass = dynamic ? float(perBody) / shape.mass : 0.0f;
+    for (std::uint64_t k = 0; k < perBody; ++k) {
+      local[i * perBody + k] = toGpu(shape.offsets[k], particleInvMass);
+      owner[i * perBody + k] = std::uint32_t(firstBody + i);
+    }
+  }
+  buffers[kBodyInfo].upload(firstBody * 16ull, n * 16, info.data());
+  buffers[kBodyInertia].upload(firstBody * 16ull, n * 16, inertia.data());
+  buffers[kParticleLocal].upload(firstParticle * 16ull, local.size() * 16, local.data());
+  buffers[kParticleBody].upload(firstParticle * 4ull, owner.size() * 4, owner.data());
+  bodyCount += std::uint32_t(n);
+  particleCount += std::uint32_t(n * perBody);
+  generations.resize(bodyCount, 0);
+  principalRotations.resize(bodyCount, shape.principalRotation);
+  uploadBodyStates(firstBody, descs, shape);
+  if (isGranule) granulesSpawned += std::uint32_t(n);
+  paramsDirty = true;
+  return firstBody;
+}
+
+void World::Impl::uploadBodyStates(std::uint32_t first, const std::vector<BodyDesc>& descs,
+                                   const ParticleTemplate& shape) {
+  const std::size_t n = descs.size();
+  std::vector<GpuVec4> position(n), orientation(n), velocity(n), spin(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const BodyDesc& d = descs[i];
+    const bool dynamic = d.motion == Motion::Dynamic;
+    Quat q = multiply(d.orientation, principalRotations[first + i]);
+    position[i] = toGpu(d.position, dynamic ? 1.0f / shape.mass : 0.0f);
+    orientation[i] = {q.x, q.y, q.z, q.w};
+    velocity[i] = toGpu(d.motion == Motion::Static ? Vec3{} : d.velocity, 0.0f);
+    spin[i] = toGpu(d.motion == Motion::Static ? Vec3{} : d.angularVelocity, shape.boundingRadius);
+  }
+  buffers[kBodyPosition].upload(first * 16ull, n * 16, position.data());
+  buffers[kBodyOrientation].upload(first * 16ull, n * 16, orientation.data());
+  buffers[kBodyVelocity].upload(first * 16ull, n * 16, velocity.data());
+  buffers[kBodyAngularVelocity].upload(first * 16ull, n * 16, spin.data());
+}
+
+ColliderId World::Impl::putCollider(std::optional<std::uint32_t> slot, const GpuCollider& collider) {
+  gpu->makeCurrent();
+  std::uint32_t index = slot ? *slot : std::uint32_t(colliders.size());
+  if (!slot) {
+    if (colliders.size() >= settings.maxColliders) {
+      throw CapacityExceeded("adding a collider exceeds WorldSettings.maxColliders = " +
+                             std::to_string(settings.maxColliders));
+    }
+    colliders.push_back(collider);
+  } else {
+    if (index >= colliders.size()) throw InvalidId("ColliderId " + std::to_string(index) + " does not exist");
+    colliders[index] = collider;
+  }
+  std::memcpy(&colliders[index].material.w, &index, sizeof index);
+  paramsDirty = true;  // uploadParams re-sorts and uploads the colliders
+  return ColliderId{index};
+}
+
+void World::Impl::requireBody(BodyId id) const {
+  if (!id.isValid() || id.index >= bodyCount || generations[id.index] != id.generation) {
+    throw InvalidId("BodyId {index " + std::to_string(id.index) + ", generation " +
+                    std::to_string(id.generation) + "} is invalid or stale (bodies: " +
+                    std::to_string(bodyCount) + ")");
+  }
+}
+
+// --- World ------------------------------------------------------------------------------------
+
+World::World(const GpuContext& gpu, const WorldSettings& settings)
+    : m_impl(std::make_unique<Impl>(gpu, settings)) {}
+World::~World() = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+
+const WorldSettings& World::settings() const { return m_impl->settings; }
+const ContactModel& World::contactModel() const { return m_impl->model; }
+float World::timeStep() const { return m_impl->model.timeStep; }
+World::Impl& World::impl() { return *m_impl; }
+
+ColliderId World::addCollider(const Plane& plane) { return m_impl->putCollider({}, toGpu(plane)); }
+ColliderId World::addCollider(const Box& box) { return m_impl->putCollider({}, toGpu(box)); }
+ColliderId World::addCollider(const Cylinder& c) { return m_impl->putCollider({}, toGpu(c)); }
+ColliderId World::addCollider(const Funnel& f) { return m_impl->putCollider({}, toGpu(f)); }
+void World::setCollider(ColliderId id, const Plane& p) { m_impl->putCollider(id.index, toGpu(p)); }
+void World::setCollider(ColliderId id, const Box& b) { m_impl->putCollider(id.index, toGpu(b)); }
+void World::setCollider(ColliderId id, const Cylinder& c) { m_impl->putCollider(id.index, toGpu(c)); }
+void World::setCollider(ColliderId id, const Funnel& f) { m_impl->putCollider(id.index, toGpu(f)); }
+
+SinkId World::addSink(const Sink& sink) {
+  requireFiniteVec("Sink.min", sink.min);
+  requireFiniteVec("Sink.max", sink.max);
+  require(sink.min.x <= sink.max.x && sink.min.y <= sink.max.y && sink.min.z <= sink.max.z,
+          "Sink.max.x/y/z", sink.max.x, "must be >= Sink.min on every axis");
+  Impl& w = *m_impl;
+  if (w.sinks.size() >= w.settings.maxColliders) {
+    throw CapacityExceeded("adding a sink exceeds WorldSettings.maxColliders = " +
+                           std::to_string(w.settings.maxColliders));
+  }
+  w.gpu->makeCurrent();
+  GpuSink gpuSink{toGpu(sink.min, 0.0f), toGpu(sink.max, 0.0f)};
+  w.buffers[kSinks].upload(w.sinks.size() * sizeof(GpuSink), sizeof(GpuSink), &gpuSink);
+  w.sinks.push_back(gpuSink);
+  w.paramsDirty = true;
+  return SinkId{std::uint32_t(w.sinks.size() - 1)};
+}
+
+BodyId World::addRoughFloor(const RoughFloor& floor) {
+  requireFiniteVec("RoughFloor.center", floor.center);
+  requireNonNegative("RoughFloor.radius", floor.radius, "(m)");
+  requireNonNegative("RoughFloor.spacing", floor.spacing, "(m)");
+  const float d = m_impl->settings.particleDiameter;
+  const double spacing = floor.spacing > 0.0f ? floor.spacing : d;
+  double hx = floor.radius, hz = floor.radius;
+  if (floor.radius == 0.0f) {
+    requirePositive("RoughFloor.halfExtentX", floor.halfExtentX, "(m) (or give a radius)");
+    requirePositive("RoughFloor.halfExtentZ", floor.halfExtentZ, "(m) (or give a radius)");
+    hx = floor.halfExtentX;
+    hz = floor.halfExtentZ;
+  }
+  const int nx = int(std::floor(hx / spacing));
+  const int nz = int(std::floor(hz / spacing));
+  std::vector<Vec3> centres;
+  for (int z = -nz; z <= nz; ++z) {
+    for (int x = -nx; x <= nx; ++x) {
+      double px = x * spacing, pz = z * spacing;
+      if (floor.radius > 0.0f && px * px + pz * pz > double(floor.radius) * floor.radius) continue;
+      centres.push_back({float(px), 0.0f, float(pz)});
+    }
+  }
+  // A static body: its mass does not matter; keep the template frame (no principal rotation).
+  ParticleTemplate shape;
+  shape.offsets = centres;
+  shape.mass = 1.0f;
+  shape.principalInertia = {1.0f, 1.0f, 1.0f};
+  shape.boundingRadius = float(std::sqrt(hx * hx + hz * hz));
+  std::uint32_t index = m_impl->addBodies(shape, {BodyDesc{floor.center, {}, {}, {}, Motion::Static}}, false);
+  return BodyId{index, m_impl->generations[index]};
+}
+
+BodyId World::addBody(const ParticleTemplate& shape, const BodyDesc& desc) {
+  require(!shape.offsets.empty(), "ParticleTemplate.offsets (count)", 0, "must not be empty");
+  requirePositive("ParticleTemplate.mass", shape.mass, "(kg)");
+  requirePositive("ParticleTemplate.principalInertia.x", shape.principalInertia.x, "(kg m^2)");
+  requirePositive("ParticleTemplate.principalInertia.y", shape.principalInertia.y, "(kg m^2)");
+  requirePositive("ParticleTemplate.principalInertia.z", shape.principalInertia.z, "(kg m^2)");
+  requireFiniteVec("BodyDesc.position", desc.position);
+  requireFiniteVec("BodyDesc.velocity", desc.velocity);
+  requireFiniteVec("BodyDesc.angularVelocity", desc.angularVelocity);
+  BodyDesc d = desc;
+  d.orientation = normalised(desc.orientation, "BodyDesc.orientation");
+  std::uint32_t index = m_impl->addBodies(shape, {d}, false);
+  return BodyId{index, m_impl->generations[index]};
+}
+
+BodyRange World::addGranules(const GranuleBlock& block) {
+  auto spawns = layoutGranuleBlock(block, m_impl->settings.particleDiameter);
+  std::vector<BodyDesc> descs;
+  descs.reserve(spawns.size());
+  for (const auto& s : spawns) descs.push_back({s.position, s.orientation, s.velocity, {}, Motion::Dynamic});
+  std::uint32_t first = m_impl->addBodies(m_impl->granule, descs, true);
+  return {first, std::uint32_t(descs.size())};
+}
+
+EmitterId World::addEmitter(const EmitterSettings& emitter) {
+  m_impl->emitters.emplace_back(EmitterState(emitter, m_impl->settings.particleDiameter));
+  return EmitterId{std::uint32_t(m_impl->emitters.size() - 1)};
+}
+
+void World::removeEmitter(EmitterId id) {
+  if (!id.isValid() || id.index >= m_impl->emitters.size() || !m_impl->emitters[id.index]) {
+    throw InvalidId("EmitterId " + std::to_string(id.index) + " does not exist");
+  }
+  m_impl->emitters[id.index].reset();
+}
+
+void World::setBodyState(BodyId id, const BodyDesc& state) {
+  m_impl->requireBody(id);
+  requireFiniteVec("BodyDesc.position", state.position);
+  requireFiniteVec("BodyDesc.velocity", state.velocity);
+  requireFiniteVec("BodyDesc.angularVelocity", state.angularVelocity);
+  BodyDesc d = state;
+  d.orientation = normalised(state.orientation, "BodyDesc.orientation");
+  Impl& w = *m_impl;
+  w.gpu->makeCurrent();
+  // Keep the body's mass data: read its inertia row (a small sync, setup-time call).
+  GpuVec4 inertia{};
+  w.buffers[kBodyInertia].download(id.index * 16ull, 16, &inertia);
+  GpuVec4 spin{};
+  w.buffers[kBodyAngularVelocity].download(id.index * 16ull, 16, &spin);
+  ParticleTemplate massOnly;
+  massOnly.mass = inertia.w;
+  massOnly.boundingRadius = spin.w;
+  w.uploadBodyStates(id.index, {d}, massOnly);
+}
+
+void World::reserve(std::uint32_t maxBodies, std::uint32_t maxParticles) {
+  Impl& w = *m_impl;
+  require(maxParticles <= kMaxParticles, "World::reserve maxParticles", maxParticles,
+          "must be <= " + std::to_string(kMaxParticles) + " (GPU buffer limit)");
+  w.gpu->makeCurrent();
+  w.bodyCapacity = std::max(w.bodyCapacity, maxBodies);
+  w.particleCapacity = std::max(w.particleCapacity, maxParticles);
+  w.table = HashTable::forParticles(w.particleCapacity);
+  w.buffers.allocate(w.bodyCapacity, w.particleCapacity, w.table.size, w.settings.maxColliders,
+                     w.bodyCount, w.particleCount);
+  w.paramsDirty = true;
+}
+
+StepReport World::step(float frameDt) {
+  Impl& w = *m_impl;
+  StepReport report;
+  if (!std::isfinite(frameDt) || frameDt <= 0.0f) return report;
+  w.gpu->makeCurrent();
+  w.accumulator += frameDt;
+  const double dt = w.model.timeStep;
+  auto due = std::uint64_t(std::floor(w.accumulator / dt));
+  if (due > w.settings.maxSubstepsPerFrame) {
+    report.droppedTime = float(double(due - w.settings.maxSubstepsPerFrame) * dt);
+    if (!w.warnedDroppedTime) {
+      std::fprintf(stderr,
+                   "sandphys: a frame of %.4g s needs %llu substeps of %.3g s, more than "
+                   "WorldSettings.maxSubstepsPerFrame = %u; the rest is dropped (slow motion). "
+                   "This warning is printed once; StepReport::droppedTime has every frame's.\n",
+                   double(frameDt), static_cast<unsigned long long>(due), dt,
+                   w.settings.maxSubstepsPerFrame);
+      w.warnedDroppedTime = true;
+    }
+    due = w.settings.maxSubstepsPerFrame;
+    w.accumulator = 0.0;
+  } else {
+    w.accumulator -= double(due) * dt;
+  }
+  if (w.profiler.enabled()) w.profiler.resetTotals();
+  w.buffers.bindAll();
+  for (std::uint64_t i = 0; i < due; ++i) {
+    w.emit(dt, &report);
+    w.runSubstep();
+  }
+  report.substeps = std::uint32_t(due);
+  report.simulatedTime = float(double(due) * dt);
+  if (w.profiler.enabled()) w.profiler.collect();
+  if (w.settings.statsEachFrame) {
+    report.stats = w.reduceStats();
+    report.hasStats = true;
+  }
+  return report;
+}
+
+void World::substep(std::uint32_t count) {
+  Impl& w = *m_impl;
+  w.gpu->makeCurrent();
+  if (w.profiler.enabled()) w.profiler.resetTotals();
+  w.buffers.bindAll();
+  for (std::uint32_t i = 0; i < count; ++i) {
+    w.emit(w.model.timeStep, nullptr);
+    w.runSubstep();
+  }
+  if (w.profiler.enabled()) w.profiler.collect();
+}
+
+std::uint32_t World::bodyCount() const { return m_impl->bodyCount; }
+std::uint32_t World::particleCount() const { return m_impl->particleCount; }
+std::uint32_t World::granulesSpawned() const { return m_impl->granulesSpawned; }
+std::uint32_t World::bodyCapacity() const { return m_impl->bodyCapacity; }
+std::uint32_t World::particleCapacity() const { return m_impl->particleCapacity; }
+std::uint64_t World::stepCount() const { return m_impl->steps; }
+double World::simulatedTime() const { return m_impl->simTime; }
+std::uint64_t World::gpuMemoryBytes() const { return m_impl->buffers.bytes(); }
+
+}  // namespace sandphys

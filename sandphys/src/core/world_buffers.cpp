@@ -1,0 +1,142 @@
+#include <algorithm>
+#include <bit>
+
+#include "core/world_impl.h"
+#include "gl/gl_check.h"
+#include "gl/shader_library.h"
+#include "sandphys/error.h"
+
+namespace sandphys::detail {
+namespace {
+
+// Element size of each binding and whether it is sized by bodies, particles or the hash table.
+enum class SizedBy { Bodies, Particles, Table, TablePlusOne, ScanBlocks, Colliders, Fixed };
+struct BufferSpec {
+  const char* name;
+  std::size_t elementBytes;
+  SizedBy sizedBy;
+};
+
+constexpr BufferSpec kSpecs[kBindingCount] = {
+    {"bodyPosition", 16, SizedBy::Bodies},
+    {"bodyOrientation", 16, SizedBy::Bodies},
+    {"bodyVelocity", 16, SizedBy::Bodies},
+    {"bodyAngularVelocity", 16, SizedBy::Bodies},
+    {"bodyInertia", 16, SizedBy::Bodies},
+    {"bodyInfo", 16, SizedBy::Bodies},
+    {"particleLocal", 16, SizedBy::Particles},
+    {"particleBody", 4, SizedBy::Particles},
+    {"particlePosition", 16, SizedBy::Particles},
+    {"particleVelocity", 16, SizedBy::Particles},
+    {"particleForce", 16, SizedBy::Particles},
+    {"particleStats", 16, SizedBy::Particles},
+    {"cellCount", 4, SizedBy::Table},
+    {"cellStart", 4, SizedBy::TablePlusOne},
+    {"cellParticles", 4, SizedBy::Particles},
+    {"sortedPosition", 16, SizedBy::Particles},
+    {"sortedVelocity", 16, SizedBy::Particles},
+    {"particleCell", 4, SizedBy::Particles},
+    {"scanBlockSums", 4, SizedBy::ScanBlocks},
+    {"colliders", sizeof(GpuCollider), SizedBy::Colliders},
+    {"sinks", sizeof(GpuSink), SizedBy::Colliders},
+    {"counters", 4 * kCounterCount, SizedBy::Fixed},
+    {"statsPartials", sizeof(GpuStatsPartial) * kStatsWorkgroups, SizedBy::Fixed},
+    {"contactList", 16, SizedBy::Fixed},
+};
+
+}  // namespace
+
+HashTable HashTable::forParticles(std::uint32_t particles) {
+  HashTable t;
+  t.size = std::max<std::uint32_t>(4096u, std::bit_ceil(std::max<std::uint32_t>(particles, 1u)));
+  const std::uint32_t mask = t.size - 1u;
+  // Like a dense grid of side ~size^(1/3): nearby cells get nearby buckets.
+  std::uint32_t side = 1;
+  while (side * side * side < t.size) side *= 2;
+  auto distinct = [&](std::uint32_t my, std::uint32_t mz) {
+    for (int dz = -2; dz <= 2; ++dz)
+      for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx) {
+          if (!dx && !dy && !dz) continue;
+          std::uint32_t h = std::uint32_t(dx) + std::uint32_t(dy) * my + std::uint32_t(dz) * mz;
+          if ((h & mask) == 0u) return false;
+        }
+    return true;
+  };
+  for (std::uint32_t my = side + 1; ; my += 2) {
+    std::uint32_t mz = my * side + 3;
+    if (distinct(my, mz)) {
+      t.multiplierY = my;
+      t.multiplierZ = mz;
+      return t;
+    }
+  }
+}
+
+void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::uint32_t tableSize,
+                            std::uint32_t colliders, std::uint32_t bodiesInUse,
+                            std::uint32_t particlesInUse) {
+  for (unsigned b = 0; b < kBindingCount; ++b) {
+    const BufferSpec& spec = kSpecs[b];
+    std::size_t count = 1;
+    std::size_t keep = 0;
+    switch (spec.sizedBy) {
+      case SizedBy::Bodies: count = bodies; keep = bodiesInUse; break;
+      case SizedBy::Particles: count = particles; keep = particlesInUse; break;
+      case SizedBy::Table: count = tableSize; break;
+      case SizedBy::TablePlusOne: count = tableSize + 1u; break;
+      case SizedBy::ScanBlocks: count = (tableSize + kScanBlock - 1) / kScanBlock; break;
+      case SizedBy::Colliders: count = colliders; keep = colliders; break;
+      case SizedBy::Fixed: count = 1; keep = 1; break;
+    }
+    const std::size_t bytes = count * spec.elementBytes;
+    gl::Buffer& buffer = storage[b];
+    if (buffer.id() == 0) {
+      buffer = gl::Buffer(bytes, spec.name);
+    } else if (bytes > buffer.size()) {
+      if (spec.sizedBy == SizedBy::Table || spec.sizedBy == SizedBy::TablePlusOne ||
+          spec.sizedBy == SizedBy::ScanBlocks) {
+        buffer = gl::Buffer(bytes, spec.name);  // rebuilt every substep: nothing to keep
+      } else {
+        buffer.grow(bytes, keep * spec.elementBytes);
+      }
+    }
+  }
+  if (params.id() == 0) params = gl::Buffer(sizeof(SimParams), "SimParams");
+  gl::check("allocating world buffers");
+}
+
+void WorldBuffers::bindAll() const {
+  for (unsigned b = 0; b < kBindingCount; ++b) storage[b].bindBase(GL_SHADER_STORAGE_BUFFER, b);
+  params.bindBase(GL_UNIFORM_BUFFER, kSimParamsBinding);
+}
+
+std::uint64_t WorldBuffers::bytes() const {
+  std::uint64_t total = params.size();
+  for (const auto& b : storage) total += b.size();
+  return total;
+}
+
+void WorldKernels::compile() {
+  gl::ShaderLibrary library;
+  bodiesToParticles = library.compileCompute("sim/bodies_to_particles.comp");
+  scanBlocks = library.compileCompute("sim/scan_blocks.comp");
+  scanBlockSums = library.compileCompute("sim/scan_block_sums.comp");
+  scanAdd = library.compileCompute("sim/scan_add.comp");
+  gridScatter = library.compileCompute("sim/grid_scatter.comp");
+  gridSort = library.compileCompute("sim/grid_sort.comp");
+  contacts = library.compileCompute("sim/contacts.comp");
+  contactList = library.compileCompute("sim/contacts.comp", {"CONTACT_LIST 1"});
+  integrateBodies = library.compileCompute("sim/integrate_bodies.comp");
+  statsReduce = library.compileCompute("sim/stats_reduce.comp");
+}
+
+void WorldKernels::release() {
+  for (GLuint p : {bodiesToParticles, scanBlocks, scanBlockSums, scanAdd, gridScatter, gridSort,
+                   contacts, contactList, integrateBodies, statsReduce}) {
+    if (p) glDeleteProgram(p);
+  }
+  *this = {};
+}
+
+}  // namespace sandphys::detail

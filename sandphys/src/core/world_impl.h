@@ -1,0 +1,110 @@
+#pragma once
+
+#include <GL/glew.h>
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/emitter.h"
+#include "core/gpu_layout.h"
+#include "gl/buffer.h"
+#include "gl/kernel_profiler.h"
+#include "sandphys/world.h"
+
+namespace sandphys {
+
+namespace detail {
+
+/// Every GPU buffer of a World, one per attribute (layout.glsl).
+struct WorldBuffers {
+  std::array<gl::Buffer, kBindingCount> storage;
+  gl::Buffer params;  // uniform SimParams
+
+  gl::Buffer& operator[](Binding b) { return storage[b]; }
+  const gl::Buffer& operator[](Binding b) const { return storage[b]; }
+
+  /// Allocates (or, when already allocated, grows keeping contents) for these capacities.
+  void allocate(std::uint32_t bodies, std::uint32_t particles, std::uint32_t tableSize,
+                std::uint32_t colliders, std::uint32_t bodiesInUse, std::uint32_t particlesInUse);
+  void bindAll() const;
+  std::uint64_t bytes() const;
+};
+
+/// The compute programs of a World, compiled once.
+struct WorldKernels {
+  GLuint bodiesToParticles = 0;
+  GLuint scanBlocks = 0;
+  GLuint scanBlockSums = 0;
+  GLuint scanAdd = 0;
+  GLuint gridScatter = 0;
+  GLuint gridSort = 0;
+  GLuint contacts = 0;
+  GLuint contactList = 0;
+  GLuint integrateBodies = 0;
+  GLuint statsReduce = 0;
+
+  void compile();
+  void release();
+};
+
+/// Smallest power of two >= 4096 and >= `particles`, with hash multipliers that send the 27
+/// cells around any cell to 27 distinct buckets.
+struct HashTable {
+  std::uint32_t size = 0;
+  std::uint32_t multiplierY = 0;
+  std::uint32_t multiplierZ = 0;
+  static HashTable forParticles(std::uint32_t particles);
+};
+
+}  // namespace detail
+
+struct World::Impl {
+  const GpuContext* gpu = nullptr;
+  WorldSettings settings;
+  ContactModel model;
+  ParticleTemplate granule;
+
+  std::uint32_t bodyCapacity = 0;
+  std::uint32_t particleCapacity = 0;
+  detail::HashTable table;
+  std::uint32_t bodyCount = 0;
+  std::uint32_t particleCount = 0;
+  std::uint32_t granulesSpawned = 0;
+  std::vector<std::uint32_t> generations;  // per body slot
+  std::vector<Quat> principalRotations;    // per body slot: template frame -> principal frame
+  std::vector<detail::GpuCollider> colliders;
+  std::vector<detail::GpuSink> sinks;
+  std::vector<std::optional<detail::EmitterState>> emitters;
+
+  double accumulator = 0.0;
+  std::uint64_t steps = 0;
+  double simTime = 0.0;
+  bool warnedDroppedTime = false;
+  bool paramsDirty = true;
+
+  detail::WorldBuffers buffers;
+  detail::WorldKernels kernels;
+  gl::KernelProfiler profiler;
+
+  Impl(const GpuContext& context, const WorldSettings& s);
+  ~Impl();
+
+  // Setup (world.cpp)
+  std::uint32_t addBodies(const ParticleTemplate& shape, const std::vector<BodyDesc>& descs,
+                          bool granule);
+  void uploadBodyStates(std::uint32_t first, const std::vector<BodyDesc>& descs, const ParticleTemplate& shape);
+  ColliderId putCollider(std::optional<std::uint32_t> slot, const detail::GpuCollider& collider);
+  void requireBody(BodyId id) const;
+
+  // GPU work (world_kernels.cpp)
+  void uploadParams();
+  void runSubstep();
+  void dispatch(GLuint program, const char* name, std::uint32_t threads, std::uint32_t groupSize);
+  void emit(double dt, StepReport* report);
+  WorldStats reduceStats();
+};
+
+}  // namespace sandphys

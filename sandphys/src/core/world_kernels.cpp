@@ -1,0 +1,127 @@
+// The step (docs/architecture.md): the passes of one substep in order, all on the GPU. Nothing
+// here reads GPU memory; the only CPU work is a fixed number of dispatches per substep (plus the
+// upload of granules that emitters add, proportional to those granules).
+#include <algorithm>
+#include <cmath>
+
+#include "core/world_impl.h"
+
+namespace sandphys {
+
+using namespace detail;
+
+void World::Impl::uploadParams() {
+  SimParams p{};
+  p.gravityDt = {settings.gravity.x, settings.gravity.y, settings.gravity.z, model.timeStep};
+  p.particleGeom = {model.radius, settings.particleDiameter, 1.0f / settings.particleDiameter,
+                    model.maxOverlap};
+  p.grainContact = {model.stiffnessGrain, model.dampingFactorGrain, settings.material.friction,
+                    model.tangentialDamping};
+  p.wallContact = {model.stiffnessWall, settings.maxSpeed, 0.0f, 0.0f};
+  p.counts = {particleCount, bodyCount, table.size - 1u, std::uint32_t(colliders.size())};
+  p.counts2 = {std::uint32_t(sinks.size()), table.size, table.multiplierY, table.multiplierZ};
+  // Colliders go to the GPU sorted by type (stable), so that kernels loop over one type at a time.
+  std::vector<GpuCollider> sorted;
+  sorted.reserve(colliders.size());
+  std::uint32_t ends[3] = {};
+  for (std::uint32_t type = kColliderPlane; type <= kColliderRevolution; ++type) {
+    for (const GpuCollider& c : colliders) {
+      if (std::uint32_t(c.material.x) == type) sorted.push_back(c);
+    }
+    ends[type - kColliderPlane] = std::uint32_t(sorted.size());
+  }
+  p.colliderEnds = {ends[0], ends[1], ends[2], 0u};
+  buffers[kColliders].upload(0, sorted.size() * sizeof(GpuCollider), sorted.data());
+  buffers.params.upload(0, sizeof p, &p);
+  paramsDirty = false;
+}
+
+void World::Impl::dispatch(GLuint program, const char* name, std::uint32_t threads,
+                           std::uint32_t groupSize) {
+  if (threads == 0) return;
+  glUseProgram(program);
+  // Large dispatches spill into y (threadIndex() in layout.glsl folds them back).
+  std::uint32_t groups = (threads + groupSize - 1) / groupSize;
+  constexpr std::uint32_t kMaxX = 32768;
+  std::uint32_t gx = std::min(groups, kMaxX);
+  std::uint32_t gy = (groups + gx - 1) / gx;
+  profiler.begin(name);
+  glDispatchCompute(gx, gy, 1);
+  profiler.end();
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void World::Impl::runSubstep() {
+  if (paramsDirty) uploadParams();
+  // 1. Bodies -> particles, bucket counts (eq. 7, 8).
+  dispatch(kernels.bodiesToParticles, "bodies_to_particles", particleCount, kWorkgroupSize);
+  // 2. Prefix sum of the bucket counts (the scan covers the whole table; blocks of 1024).
+  const std::uint32_t blocks = (table.size + kScanBlock - 1) / kScanBlock;
+  dispatch(kernels.scanBlocks, "scan_blocks", blocks * 256u, 256u);
+  dispatch(kernels.scanBlockSums, "scan_block_sums", 1024u, 1024u);
+  dispatch(kernels.scanAdd, "scan_add", blocks * 256u, 256u);
+  // 3. Scatter into buckets; 4. deterministic order inside each bucket + sorted copies.
+  dispatch(kernels.gridScatter, "grid_scatter", particleCount, kWorkgroupSize);
+  dispatch(kernels.gridSort, "grid_sort", table.size, kWorkgroupSize);
+  // 5. Contact forces (eq. 9, 10) and colliders, gathered per particle.
+  dispatch(kernels.contacts, "contacts", particleCount, kWorkgroupSize);
+  // 6. Body sums (eq. 2, 3) and integration (eq. 4-6), guards, sinks.
+  dispatch(kernels.integrateBodies, "integrate_bodies", bodyCount, kWorkgroupSize);
+  ++steps;
+  simTime += model.timeStep;
+}
+
+void World::Impl::emit(double dt, StepReport* report) {
+  for (auto& emitter : emitters) {
+    if (!emitter || emitter->finished()) continue;
+    bool blocked = false;
+    std::uint32_t room = std::min<std::uint32_t>(bodyCapacity - bodyCount,
+                                                 (particleCapacity - particleCount) / 4u);
+    auto spawns = emitter->advance(dt, room, blocked);
+    if (!spawns.empty()) {
+      std::vector<BodyDesc> descs;
+      descs.reserve(spawns.size());
+      for (const auto& s : spawns) descs.push_back({s.position, s.orientation, s.velocity, {}, Motion::Dynamic});
+      addBodies(granule, descs, true);
+      if (report) report->granulesEmitted += std::uint32_t(spawns.size());
+    }
+    if (blocked && report) report->emitterBlocked = true;
+  }
+}
+
+WorldStats World::Impl::reduceStats() {
+  if (paramsDirty) uploadParams();
+  buffers.bindAll();
+  glUseProgram(kernels.statsReduce);
+  glDispatchCompute(kStatsWorkgroups, 1, 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<GpuStatsPartial> partials(kStatsWorkgroups);
+  buffers[kStatsPartials].download(0, partials.size() * sizeof(GpuStatsPartial), partials.data());
+  std::uint32_t counters[kCounterCount] = {};
+  buffers[kCounters].download(0, sizeof counters, counters);
+
+  WorldStats s;
+  std::uint64_t pairEnds = 0;
+  std::uint64_t wallContacts = 0;
+  double alive = 0.0;
+  for (const auto& p : partials) {
+    pairEnds += p.counts.x;
+    wallContacts += p.counts.y;
+    s.penetrationClamps += p.counts.z;
+    s.velocityClamps += p.counts.w;
+    s.kineticEnergy += double(p.sums.x) + double(p.sums.y);
+    s.maxOverlap = std::max(s.maxOverlap, double(p.sums.z));
+    alive += p.sums.w;
+  }
+  s.bodies = bodyCount;
+  s.particles = particleCount;
+  s.granulesSpawned = granulesSpawned;
+  s.granulesAlive = std::uint32_t(std::llround(alive));
+  s.granulesKilled = counters[kCounterKilled];
+  s.contacts = std::uint32_t(pairEnds / 2 + wallContacts);
+  s.steps = steps;
+  s.simulatedTime = simTime;
+  return s;
+}
+
+}  // namespace sandphys

@@ -1,0 +1,128 @@
+// Read-back: every function here waits for the GPU (a sync point) and is meant for analysis,
+// tests and debugging, never for every substep.
+#include <algorithm>
+
+#include "core/world_impl.h"
+#include "gl/gl_check.h"
+
+namespace sandphys {
+
+using namespace detail;
+
+namespace {
+
+Quat fromGpu(const GpuVec4& q) { return {q.w, q.x, q.y, q.z}; }
+Vec3 xyz(const GpuVec4& v) { return {v.x, v.y, v.z}; }
+
+// a · conj(b), both (w, x, y, z) and unit.
+Quat multiplyConjugate(Quat a, Quat b) {
+  Quat c{b.w, -b.x, -b.y, -b.z};
+  return {a.w * c.w - a.x * c.x - a.y * c.y - a.z * c.z, a.w * c.x + a.x * c.w + a.y * c.z - a.z * c.y,
+          a.w * c.y - a.x * c.z + a.y * c.w + a.z * c.x, a.w * c.z + a.x * c.y - a.y * c.x + a.z * c.w};
+}
+
+template <typename T>
+std::vector<T> download(const gl::Buffer& buffer, std::uint32_t count) {
+  std::vector<T> out(count);
+  buffer.download(0, count * sizeof(T), out.data());
+  return out;
+}
+
+}  // namespace
+
+std::vector<BodyState> World::readBodies() const {
+  const Impl& w = *m_impl;
+  w.gpu->makeCurrent();
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  auto position = download<GpuVec4>(w.buffers[kBodyPosition], w.bodyCount);
+  auto orientation = download<GpuVec4>(w.buffers[kBodyOrientation], w.bodyCount);
+  auto velocity = download<GpuVec4>(w.buffers[kBodyVelocity], w.bodyCount);
+  auto spin = download<GpuVec4>(w.buffers[kBodyAngularVelocity], w.bodyCount);
+  auto info = download<GpuUVec4>(w.buffers[kBodyInfo], w.bodyCount);
+  gl::check("World::readBodies");
+  std::vector<BodyState> out(w.bodyCount);
+  for (std::uint32_t i = 0; i < w.bodyCount; ++i) {
+    BodyState& s = out[i];
+    s.index = i;
+    s.position = xyz(position[i]);
+    s.orientation = multiplyConjugate(fromGpu(orientation[i]), w.principalRotations[i]);
+    s.velocity = xyz(velocity[i]);
+    s.angularVelocity = xyz(spin[i]);
+    s.alive = (info[i].z & kBodyAlive) != 0;
+    s.granule = (info[i].z & kBodyGranule) != 0;
+  }
+  return out;
+}
+
+BodyState World::readBody(BodyId id) const {
+  m_impl->requireBody(id);
+  // Small scenes only call this; reading one row of each buffer would be faster for huge ones.
+  return readBodies()[id.index];
+}
+
+std::vector<ParticleState> World::readParticles() const {
+  const Impl& w = *m_impl;
+  w.gpu->makeCurrent();
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  auto owner = download<std::uint32_t>(w.buffers[kParticleBody], w.particleCount);
+  auto position = download<GpuVec4>(w.buffers[kParticlePosition], w.particleCount);
+  auto velocity = download<GpuVec4>(w.buffers[kParticleVelocity], w.particleCount);
+  auto force = download<GpuVec4>(w.buffers[kParticleForce], w.particleCount);
+  gl::check("World::readParticles");
+  std::vector<ParticleState> out(w.particleCount);
+  for (std::uint32_t i = 0; i < w.particleCount; ++i) {
+    out[i] = {owner[i], xyz(position[i]), xyz(velocity[i]), xyz(force[i])};
+  }
+  return out;
+}
+
+std::vector<ContactRecord> World::readContacts() const {
+  Impl& w = *m_impl;
+  w.gpu->makeCurrent();
+  if (w.paramsDirty) w.uploadParams();
+  // Each particle has at most ~12 neighbours in a packing (tetrahedral granules a few more) plus
+  // a few walls; grow and retry if a pile ever has more.
+  std::uint32_t capacity = std::max<std::uint32_t>(1024u, w.particleCount * 8u);
+  for (;;) {
+    gl::Buffer& list = w.buffers[kContactList];
+    const std::size_t bytes = 16 + std::size_t(capacity) * sizeof(GpuContactRecord);
+    if (list.size() < bytes) list = gl::Buffer(bytes, "contactList");
+    std::uint32_t header[4] = {0u, capacity, 0u, 0u};
+    list.upload(0, sizeof header, header);
+    w.buffers.bindAll();
+    w.dispatch(w.kernels.contactList, "contact_list", w.particleCount, kWorkgroupSize);
+    std::uint32_t count = 0;
+    list.download(0, 4, &count);
+    if (count > capacity) {
+      capacity = count;
+      continue;
+    }
+    std::vector<GpuContactRecord> raw(count);
+    list.download(16, count * sizeof(GpuContactRecord), raw.data());
+    gl::check("World::readContacts");
+    std::vector<ContactRecord> out(count);
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const auto& r = raw[i];
+      out[i] = {r.particleA, r.particleB, r.bodyA, r.bodyB, r.collider, {r.px, r.py, r.pz},
+                {r.nx, r.ny, r.nz}, r.normalForce, {r.tx, r.ty, r.tz}, r.overlap};
+    }
+    // Appends happen in thread order: sort so that the list is the same on every call.
+    std::sort(out.begin(), out.end(), [](const ContactRecord& a, const ContactRecord& b) {
+      return std::tie(a.particleA, a.particleB, a.collider) < std::tie(b.particleA, b.particleB, b.collider);
+    });
+    return out;
+  }
+}
+
+WorldStats World::readStats() {
+  m_impl->gpu->makeCurrent();
+  return m_impl->reduceStats();
+}
+
+std::vector<KernelTime> World::kernelTimes() const {
+  std::vector<KernelTime> out;
+  for (const auto& t : m_impl->profiler.totals()) out.push_back({t.name, t.milliseconds, t.dispatches});
+  return out;
+}
+
+}  // namespace sandphys

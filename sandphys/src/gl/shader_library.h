@@ -1,0 +1,39 @@
+#pragma once
+
+#include <GL/glew.h>
+
+#include <string>
+#include <vector>
+
+namespace sandphys::gl {
+
+/// A GLSL source after #include expansion: `#line L F` directives name each original file by its
+/// index F in `files`, so that compiler messages can be mapped back to file and line.
+struct ExpandedSource {
+  std::string text;
+  std::vector<std::string> files;
+};
+
+/// Finds shader files (embedded at build time; or, when SANDPHYS_SHADER_DIR is set in the
+/// environment, read from that directory so that a viewer can hot-reload them), expands
+/// `#include "relative/path.glsl"` once per file, and compiles compute programs.
+class ShaderLibrary {
+ public:
+  ShaderLibrary();
+
+  /// Source of one file relative to shaders/; throws GpuError if there is none.
+  std::string source(const std::string& name) const;
+  /// `name` with includes expanded and `defines` ("NAME VALUE" each) inserted after #version.
+  ExpandedSource expand(const std::string& name, const std::vector<std::string>& defines) const;
+  /// Compiles and links a compute program. Throws GpuError whose message names the original
+  /// file and line of each compiler error.
+  GLuint compileCompute(const std::string& name, const std::vector<std::string>& defines = {}) const;
+
+  /// Rewrites "F:L(C): msg" driver messages with file names; exposed for tests.
+  static std::string mapLog(const std::string& log, const std::vector<std::string>& files);
+
+ private:
+  std::string m_directory;  // empty: embedded sources
+};
+
+}  // namespace sandphys::gl

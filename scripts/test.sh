@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds with the `ci` preset (warnings are errors) and runs every
+# test on whatever OpenGL 4.5 device EGL finds (Mesa's llvmpipe on a machine without a GPU),
+# then fails if any C++ file needs clang-format. This is what CI runs (.ci/run).
+# Usage: scripts/test.sh [extra ctest arguments, e.g. -L physics]
+# CTEST_PARALLEL_LEVEL sets how many tests run at once (default: the number of CPUs).
+set -euo pipefail
+
+cd -- "$(dirname -- "${BASH_SOURCE[0]}")/.."
+
+phase() {
+  echo
+  echo "== $* ($((SECONDS / 60))m$((SECONDS % 60))s)"
+}
+
+phase "dependencies"
+scripts/install-deps.sh
+
+# Checked first because it is quick; reported again at the end so that one run shows both the
+# test results and the formatting.
+phase "clang-format"
+format_ok=true
+scripts/check-format.sh || format_ok=false
+
+phase "configure (preset ci)"
+cmake --preset ci
+
+phase "build (preset ci)"
+cmake --build --preset ci
+
+phase "test (preset ci)"
+ctest --preset ci --parallel "${CTEST_PARALLEL_LEVEL:-$(nproc)}" "$@"
+
+phase "done"
+if ! ${format_ok}; then
+  echo "test: every test passed, but some files need clang-format (listed above);" \
+    "run scripts/check-format.sh --fix" >&2
+  exit 1
+fi
+echo "test: every test passed"

@@ -1,0 +1,98 @@
+// Buffer layout shared by every simulation kernel; the C++ twin is sandphys/src/core/gpu_layout.h
+// (a test checks that the two agree). One std430 buffer per attribute, packed in vec4/uvec4: a
+// vec3 would be padded to 16 bytes anyway. A kernel declares only the buffers it touches, with
+// the access it needs, through these macros.
+
+#define WORKGROUP_SIZE 64
+
+// Body flags (bodyInfo.z).
+#define BODY_ALIVE 1u
+#define BODY_GRANULE 2u
+#define BODY_MOTION_SHIFT 4u
+#define BODY_MOTION_MASK 0x30u
+#define MOTION_DYNAMIC 0u
+#define MOTION_KINEMATIC 1u
+#define MOTION_STATIC 2u
+
+#define INVALID_CELL 0xffffffffu
+
+// xyz: centre of mass (m); w: inverse mass (1/kg), 0 for kinematic and static bodies.
+#define BODY_POSITION(access) layout(std430, binding = 0) access buffer BodyPositionBuffer { vec4 bodyPosition[]; };
+// Unit quaternion (x, y, z, w) from the body's principal frame to the world.
+#define BODY_ORIENTATION(access) layout(std430, binding = 1) access buffer BodyOrientationBuffer { vec4 bodyOrientation[]; };
+// xyz: linear velocity (m/s).
+#define BODY_VELOCITY(access) layout(std430, binding = 2) access buffer BodyVelocityBuffer { vec4 bodyVelocity[]; };
+// xyz: angular velocity (rad/s, world frame); w: bounding radius (m).
+#define BODY_ANGULAR_VELOCITY(access) layout(std430, binding = 3) access buffer BodyAngularVelocityBuffer { vec4 bodyAngularVelocity[]; };
+// xyz: principal moments of inertia (kg m^2); w: mass (kg).
+#define BODY_INERTIA(access) layout(std430, binding = 4) access buffer BodyInertiaBuffer { vec4 bodyInertia[]; };
+// x: first particle, y: particle count, z: flags, w: velocity-guard count.
+#define BODY_INFO(access) layout(std430, binding = 5) access buffer BodyInfoBuffer { uvec4 bodyInfo[]; };
+// xyz: particle centre in the body's principal frame (m); w: particle inverse mass (1/kg).
+#define PARTICLE_LOCAL(access) layout(std430, binding = 6) access buffer ParticleLocalBuffer { vec4 particleLocal[]; };
+// Owning body of each particle.
+#define PARTICLE_BODY(access) layout(std430, binding = 7) access buffer ParticleBodyBuffer { uint particleBody[]; };
+// xyz: world position (m).
+#define PARTICLE_POSITION(access) layout(std430, binding = 8) access buffer ParticlePositionBuffer { vec4 particlePosition[]; };
+// xyz: world velocity (m/s), eq. 8.
+#define PARTICLE_VELOCITY(access) layout(std430, binding = 9) access buffer ParticleVelocityBuffer { vec4 particleVelocity[]; };
+// xyz: contact + collider force of the last substep (N).
+#define PARTICLE_FORCE(access) layout(std430, binding = 10) access buffer ParticleForceBuffer { vec4 particleForce[]; };
+// x: contacts in the last substep; y: largest overlap since the stats were read (float bits);
+// z: penetration-guard count since creation; w: unused.
+#define PARTICLE_STATS(access) layout(std430, binding = 11) access buffer ParticleStatsBuffer { uvec4 particleStats[]; };
+// Particles per hash bucket; returns to zero after every scatter.
+#define CELL_COUNT(access) layout(std430, binding = 12) access buffer CellCountBuffer { uint cellCount[]; };
+// Exclusive prefix sum of cellCount; entry tableSize holds the total.
+#define CELL_START(access) layout(std430, binding = 13) access buffer CellStartBuffer { uint cellStart[]; };
+// Particle ids in bucket order, ascending id inside each bucket.
+#define CELL_PARTICLES(access) layout(std430, binding = 14) access buffer CellParticlesBuffer { uint cellParticles[]; };
+// Bucket-ordered copies for the contact gather. xyz: position; w: owning body (uint bits).
+#define SORTED_POSITION(access) layout(std430, binding = 15) access buffer SortedPositionBuffer { vec4 sortedPosition[]; };
+// xyz: velocity; w: particle inverse mass.
+#define SORTED_VELOCITY(access) layout(std430, binding = 16) access buffer SortedVelocityBuffer { vec4 sortedVelocity[]; };
+// Hash bucket of each particle, or INVALID_CELL for particles of dead bodies.
+#define PARTICLE_CELL(access) layout(std430, binding = 17) access buffer ParticleCellBuffer { uint particleCell[]; };
+// Per-workgroup sums of the block scan.
+#define SCAN_BLOCK_SUMS(access) layout(std430, binding = 18) access buffer ScanBlockSumsBuffer { uint scanBlockSums[]; };
+
+struct Collider {
+  vec4 a;         // meaning depends on the type (see colliders.glsl)
+  vec4 b;
+  vec4 c;
+  vec4 material;  // x: type, y: friction, z: damping factor c(e), w: ColliderId (uint bits)
+};
+#define COLLIDERS(access) layout(std430, binding = 19) access buffer ColliderBuffer { Collider colliders[]; };
+
+struct SinkBox {
+  vec4 lo;
+  vec4 hi;
+};
+#define SINKS(access) layout(std430, binding = 20) access buffer SinkBuffer { SinkBox sinks[]; };
+
+// Integer counters updated with atomics only on rare events (never in force sums).
+#define COUNTER_KILLED 0
+#define COUNTERS(access) layout(std430, binding = 21) access buffer CounterBuffer { uint counters[]; };
+// Partial sums of the statistics reduction, one per workgroup (see stats_reduce.comp).
+struct StatsPartial {
+  uvec4 counts;  // x: particle-particle contact ends; y: collider contacts; z: penetration guards; w: velocity guards
+  vec4 sums;     // x: translational KE (J); y: rotational KE (J); z: max overlap (m); w: alive granules
+};
+#define STATS_PARTIALS(access) layout(std430, binding = 22) access buffer StatsPartialsBuffer { StatsPartial statsPartials[]; };
+// Contact list for read-back: 16 floats per record (see contact_list.comp).
+#define CONTACT_LIST_BUFFER(access) layout(std430, binding = 23) access buffer ContactListBuffer { uint contactListCount; uint contactListCapacity; uint pad0; uint pad1; vec4 contactList[]; };
+
+// Constant for the whole step; set by World when settings or counts change.
+layout(std140, binding = 0) uniform SimParams {
+  vec4 gravityDt;      // xyz: gravity (m/s^2); w: time step (s)
+  vec4 particleGeom;   // x: radius (m); y: diameter = cell size (m); z: 1 / cell size; w: max overlap (m)
+  vec4 grainContact;   // x: k_n grain-grain; y: c(e) grain-grain; z: friction; w: tangential damping
+  vec4 wallContact;    // x: k_n grain-wall; y: max speed (m/s); z, w: unused
+  uvec4 counts;        // x: particles; y: bodies; z: hash table mask; w: colliders
+  uvec4 counts2;       // x: sinks; y: hash table size; z, w: hash multipliers for y and z
+  uvec4 colliderEnds;  // colliders are sorted by type: planes end at x, boxes at y, walls of revolution at z
+};
+
+// Linear thread index of a dispatch that World may fold into two dimensions. A macro, because
+// gl_WorkGroupSize exists only after the kernel's own local_size declaration.
+#define threadIndex() (gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x)

@@ -1,0 +1,21 @@
+#version 450
+// Pass 3. Counting-sort scatter: each particle takes a slot in its bucket's range. The slot order
+// inside a bucket depends on thread timing; grid_sort.comp makes it deterministic. Decrementing
+// the count returns every bucket count to zero, so no clear pass is needed next substep.
+#include "common/layout.glsl"
+
+layout(local_size_x = WORKGROUP_SIZE) in;
+
+PARTICLE_CELL(readonly)
+CELL_COUNT(coherent)
+CELL_START(readonly)
+CELL_PARTICLES(writeonly)
+
+void main() {
+  uint i = threadIndex();
+  if (i >= counts.x) return;
+  uint bucket = particleCell[i];
+  if (bucket == INVALID_CELL) return;
+  uint previous = atomicAdd(cellCount[bucket], 0xffffffffu);
+  cellParticles[cellStart[bucket] + previous - 1u] = i;
+}

@@ -1,0 +1,18 @@
+#version 450
+// Pass 2c. Adds each block's offset to its 1024 exclusive sums.
+#include "common/layout.glsl"
+
+#define SCAN_THREADS 256
+layout(local_size_x = SCAN_THREADS) in;
+
+CELL_START(coherent)
+SCAN_BLOCK_SUMS(readonly)
+
+void main() {
+  uint group = gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x;
+  uint add = scanBlockSums[group];
+  uint base = group * (SCAN_THREADS * 4u) + gl_LocalInvocationID.x * 4u;
+  for (uint k = 0u; k < 4u; ++k) {
+    if (base + k < counts2.y) cellStart[base + k] += add;
+  }
+}

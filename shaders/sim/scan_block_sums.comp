@@ -1,0 +1,37 @@
+#version 450
+// Pass 2b. Exclusive scan of the per-block totals by one workgroup, in chunks with a running
+// carry; the grand total (particles in the grid) goes to cellStart[tableSize].
+#include "common/layout.glsl"
+
+#define SCAN_THREADS 1024
+layout(local_size_x = SCAN_THREADS) in;
+
+CELL_START(writeonly)
+SCAN_BLOCK_SUMS(coherent)
+
+shared uint partial[SCAN_THREADS];
+shared uint carry;
+
+void main() {
+  uint local = gl_LocalInvocationID.x;
+  uint blocks = (counts2.y + 1023u) / 1024u;
+  if (local == 0u) carry = 0u;
+  barrier();
+  for (uint chunk = 0u; chunk < blocks; chunk += SCAN_THREADS) {
+    uint index = chunk + local;
+    uint value = index < blocks ? scanBlockSums[index] : 0u;
+    partial[local] = value;
+    barrier();
+    for (uint offset = 1u; offset < SCAN_THREADS; offset <<= 1u) {
+      uint add = local >= offset ? partial[local - offset] : 0u;
+      barrier();
+      partial[local] += add;
+      barrier();
+    }
+    if (index < blocks) scanBlockSums[index] = carry + partial[local] - value;
+    barrier();
+    if (local == 0u) carry += partial[SCAN_THREADS - 1u];
+    barrier();
+  }
+  if (local == 0u) cellStart[counts2.y] = carry;
+}

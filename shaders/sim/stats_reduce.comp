@@ -1,0 +1,65 @@
+#version 450
+// Statistics, once per frame (never per substep): a fixed number of workgroups each reduce a
+// fixed stride of particles and bodies in shared memory in a fixed order; the CPU adds the
+// partials in double. Also resets the per-particle largest overlap, which is "since last read".
+#include "common/layout.glsl"
+
+#define STATS_THREADS 256
+layout(local_size_x = STATS_THREADS) in;
+
+PARTICLE_STATS(coherent)
+BODY_POSITION(readonly)
+BODY_VELOCITY(readonly)
+BODY_ANGULAR_VELOCITY(readonly)
+BODY_ORIENTATION(readonly)
+BODY_INERTIA(readonly)
+BODY_INFO(readonly)
+STATS_PARTIALS(writeonly)
+
+#include "common/quaternion.glsl"
+
+shared uvec4 sharedCounts[STATS_THREADS];
+shared vec4 sharedSums[STATS_THREADS];
+
+void main() {
+  uint local = gl_LocalInvocationID.x;
+  uint stride = gl_NumWorkGroups.x * STATS_THREADS;
+  uvec4 c = uvec4(0u);
+  vec4 s = vec4(0.0);
+  for (uint i = gl_GlobalInvocationID.x; i < counts.x; i += stride) {
+    uvec4 p = particleStats[i];
+    c.x += p.x;
+    c.y += p.w;
+    c.z += p.z;
+    s.z = max(s.z, uintBitsToFloat(p.y));
+    particleStats[i] = uvec4(p.x, 0u, p.z, p.w);
+  }
+  for (uint b = gl_GlobalInvocationID.x; b < counts.y; b += stride) {
+    uvec4 info = bodyInfo[b];
+    c.w += info.w;
+    if ((info.z & BODY_ALIVE) == 0u) continue;
+    if ((info.z & BODY_GRANULE) != 0u) s.w += 1.0;
+    if (((info.z & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT) != MOTION_DYNAMIC) continue;
+    float mass = bodyInertia[b].w;
+    vec3 v = bodyVelocity[b].xyz;
+    vec3 omegaLocal = quatRotateInverse(bodyOrientation[b], bodyAngularVelocity[b].xyz);
+    s.x += 0.5 * mass * dot(v, v);
+    s.y += 0.5 * dot(omegaLocal, bodyInertia[b].xyz * omegaLocal);
+  }
+  sharedCounts[local] = c;
+  sharedSums[local] = s;
+  barrier();
+  for (uint width = STATS_THREADS / 2u; width > 0u; width >>= 1u) {
+    if (local < width) {
+      sharedCounts[local] += sharedCounts[local + width];
+      vec4 a = sharedSums[local];
+      vec4 o = sharedSums[local + width];
+      sharedSums[local] = vec4(a.xy + o.xy, max(a.z, o.z), a.w + o.w);
+    }
+    barrier();
+  }
+  if (local == 0u) {
+    statsPartials[gl_WorkGroupID.x].counts = sharedCounts[0];
+    statsPartials[gl_WorkGroupID.x].sums = sharedSums[0];
+  }
+}

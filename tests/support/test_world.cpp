@@ -1,0 +1,43 @@
+#include "support/test_world.h"
+
+#include <cmath>
+
+namespace sandphys::testing {
+
+const GpuContext& gpu() {
+  static GpuContext context = GpuContext::headless();
+  return context;
+}
+
+WorldSettings smallSettings(std::uint32_t maxBodies) {
+  WorldSettings s;
+  s.maxBodies = maxBodies;
+  s.maxColliders = 16;
+  s.statsEachFrame = false;
+  return s;
+}
+
+TestWorld::TestWorld(const WorldSettings& settings) : m_world(gpu(), settings) {}
+
+ColliderId TestWorld::addFloor(float y, SurfaceMaterial material) {
+  return m_world.addCollider(Plane{{0.0f, 1.0f, 0.0f}, y, material});
+}
+
+BodyId TestWorld::addGranule(Vec3 position, Quat orientation, Vec3 velocity, Vec3 spin) {
+  const auto& s = m_world.settings();
+  return m_world.addBody(tetrahedronTemplate(s.particleDiameter, s.material.density),
+                         {position, orientation, velocity, spin, Motion::Dynamic});
+}
+
+BodyId TestWorld::addSphere(Vec3 position, Vec3 velocity) {
+  const auto& s = m_world.settings();
+  return m_world.addBody(makeParticleTemplate({{0.0f, 0.0f, 0.0f}}, s.particleDiameter, s.material.density),
+                         {position, {}, velocity, {}, Motion::Dynamic});
+}
+
+void TestWorld::simulate(double seconds) {
+  const auto steps = std::uint32_t(std::llround(seconds / m_world.timeStep()));
+  m_world.substep(steps);
+}
+
+}  // namespace sandphys::testing

@@ -1,0 +1,37 @@
+#pragma once
+
+#include <sandphys/sandphys.h>
+
+#include <cstdint>
+
+namespace sandphys::testing {
+
+/// The one headless GL context of a test process (created on first use).
+const GpuContext& gpu();
+
+/// Settings for small test scenes: default material, capacity for `maxBodies` bodies.
+WorldSettings smallSettings(std::uint32_t maxBodies = 256);
+
+/// A world with helpers in the manner of Chrono's DEM unit tests: build the scene in a line each,
+/// then simulate(seconds).
+class TestWorld {
+ public:
+  explicit TestWorld(const WorldSettings& settings = smallSettings());
+
+  World& operator*() { return m_world; }
+  World* operator->() { return &m_world; }
+
+  /// A smooth floor plane at height y (m).
+  ColliderId addFloor(float y = 0.0f, SurfaceMaterial material = {});
+  /// One granule at `position` with the given orientation, velocity and spin.
+  BodyId addGranule(Vec3 position, Quat orientation = {}, Vec3 velocity = {}, Vec3 spin = {});
+  /// One body of a single particle (a sphere of the world's particle diameter).
+  BodyId addSphere(Vec3 position, Vec3 velocity = {});
+  /// Runs whole substeps for `seconds` of simulated time.
+  void simulate(double seconds);
+
+ private:
+  World m_world;
+};
+
+}  // namespace sandphys::testing
