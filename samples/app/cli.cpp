@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <stdexcept>
 
 #include <CLI/CLI.hpp>
@@ -96,8 +97,10 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
   app.add_option("--export", exports,
                  "write the granules at the end to FILE.csv or FILE.vtk (repeatable)");
   app.add_option("--batches", batches, "cylinder-pile: batches dropped in total");
-  app.add_option("--batch,--batch-size", batch,
-                 "cylinder-pile: granules per batch along x, y (layers), z")
+  app.add_option(
+         "--batch,--batch-size", batch,
+         "cylinder-pile: granules per batch X Y Z: X·Z columns laid out as a disc, Y layers "
+         "high (default 32 16 32)")
       ->expected(3);
   app.add_option("--seed", seed, "random seed of the scene's granules");
   app.add_option("--param", assignments, "set a scene parameter NAME=VALUE (see --list)");
@@ -122,7 +125,9 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
     }
     options.frames = static_cast<std::uint64_t>(frames);
     if (!(options.frameDt > 0.0) || !(options.frameDt <= 1.0)) {
-      throw UsageError("--frame-dt " + std::to_string(options.frameDt) + ": must be in (0, 1] s");
+      std::ostringstream value;
+      value << options.frameDt;
+      throw UsageError("--frame-dt " + value.str() + ": must be in (0, 1] s");
     }
     const scenes::SceneEntry* entry = scenes::findScene(options.sceneName);
     if (!entry) {

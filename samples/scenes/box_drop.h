@@ -37,12 +37,21 @@ class BoxDrop final : public Scene {
   Config& config() { return m_config; }
   const Config& config() const { return m_config; }
 
+  // The Scene interface (contracts in Scene).
+
+  /// "box-drop".
   std::string_view name() const override { return "box-drop"; }
+  /// Capacity for exactly the block.
   WorldSettings settings() const override;
+  /// The box container and the block.
   void build(World& world) override;
+  /// Inside the box.
   bool contains(const Vec3& centre) const override;
+  /// Mean and highest granule centre, m.
   std::vector<SceneMetric> metrics(std::span<const BodyState> bodies) const override;
+  /// block, seed and diameter.
   std::vector<SceneParameter> parameters() override;
+  /// The box.
   SceneBounds bounds() const override;
 
  private:

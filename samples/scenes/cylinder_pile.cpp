@@ -137,6 +137,17 @@ void CylinderPile::dropBatch(World& world, float bottomLayerY, double simTime) {
   const float spacing = m_config.spacing * d();
   const float blockHeight = static_cast<float>(m_config.batch[1] - 1) * spacing;
   const float centreY = bottomLayerY + 0.5f * blockHeight;
+  // A batch is added row by row; check the room for all of it first so that it is all or nothing.
+  const std::uint64_t granules = batchGranules();
+  if (world.bodyCount() + granules > world.bodyCapacity() ||
+      world.particleCount() + 4 * granules > world.particleCapacity()) {
+    throw CapacityExceeded("cylinder-pile: batch " + std::to_string(m_batchesDropped + 1) +
+                           " needs " + std::to_string(granules) + " bodies and " +
+                           std::to_string(4 * granules) + " particles, the world has room for " +
+                           std::to_string(world.bodyCapacity() - world.bodyCount()) + " and " +
+                           std::to_string(world.particleCapacity() - world.particleCount()) +
+                           " (create it from CylinderPile::settings())");
+  }
   // One GranuleBlock per row of the footprint; each gets its own seed so that rows differ.
   std::uint64_t seed = m_config.seed * 1000003u + m_batchesDropped * 4099u;
   for (const FootprintRow& row : footprint()) {

@@ -58,15 +58,27 @@ class CylinderPile final : public Scene {
   Config& config() { return m_config; }
   const Config& config() const { return m_config; }
 
+  // The Scene interface (contracts in Scene).
+
+  /// "cylinder-pile".
   std::string_view name() const override { return "cylinder-pile"; }
+  /// Capacity for every batch plus the floor, allocated up front as in the paper.
   WorldSettings settings() const override;
+  /// Cylinder wall, rough floor, a safety-net plane below it and the first batch.
   void build(World& world) override;
+  /// Drops the next batch once the newest has settled (one World::readBodies per batch).
   void update(World& world, const StepReport& report, double simTime) override;
+  /// True once the last batch has settled.
   bool finished() const override { return m_finished; }
+  /// "batch i/n", plus "settled" at the end.
   std::string status() const override;
+  /// Within the wall's radius and not below the floor.
   bool contains(const Vec3& centre) const override;
+  /// Batches dropped and settled, mean settle time, pile top (m and d), cylinder size.
   std::vector<SceneMetric> metrics(std::span<const BodyState> bodies) const override;
+  /// Every field of Config, by kebab-case name (see --list of sandphys-samples).
   std::vector<SceneParameter> parameters() override;
+  /// The cylinder, from just below the floor to the top of the wall.
   SceneBounds bounds() const override;
 
   /// Granules in one batch.

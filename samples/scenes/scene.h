@@ -35,14 +35,15 @@ struct SceneParameter {
 struct SceneMetric {
   /// snake_case key, with the unit as a suffix where it has one ("pile_top_m").
   std::string name;
+  /// The value, in the unit the name states.
   double value = 0.0;
 };
 
 /// Axis-aligned box around everything a scene puts in the world, m. The viewer frames its camera
 /// on it.
 struct SceneBounds {
-  Vec3 min{};
-  Vec3 max{};
+  Vec3 min{};  ///< smallest corner, m
+  Vec3 max{};  ///< largest corner, m
 };
 
 /// A sample scene: world settings, the initial contents and the scene's own logic over time

@@ -58,7 +58,7 @@ TEST(CylinderPile, DefaultsAreThePapersBenchmark) {
 TEST(CylinderPile, FloorParticleCountIsTheLatticeInTheDisc) {
   // Lattice points with i² + j² <= 50² (Gauss's circle problem): 7845, close to π·50² = 7854.
   EXPECT_EQ(CylinderPile::roughFloorParticles(1.0f, 0.02f), 7845u);
-  EXPECT_EQ(CylinderPile::roughFloorParticles(0.05f, 0.02f), 9u);  // 3 × 3 below r = 2.5
+  EXPECT_EQ(CylinderPile::roughFloorParticles(0.05f, 0.02f), 21u);  // 5 × 5 less 4 corners
   EXPECT_EQ(CylinderPile::roughFloorParticles(0.01f, 0.02f), 1u);
 }
 
@@ -146,7 +146,9 @@ TEST(SceneParameters, SetFromTextWithinTheRange) {
   EXPECT_FLOAT_EQ(pile.config().settleSpeed, 0.125f);
 
   for (const SceneParameter& parameter : pile.parameters()) {
-    if (parameter.name == "batch") EXPECT_EQ(formatSceneParameter(parameter), "2,3,5");
+    if (parameter.name == "batch") {
+      EXPECT_EQ(formatSceneParameter(parameter), "2,3,5");
+    }
   }
 }
 

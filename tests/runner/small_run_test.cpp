@@ -1,6 +1,7 @@
 // Checks the files written by the CTest fixture runner.small_run (tests/runner/CMakeLists.txt):
-//   sandphys-samples --headless --scene cylinder-pile --batch 8 4 8 --param first-drop=5
-//                    --frames 20 --metrics metrics.json --export granules.csv --export granules.vtk
+//   sandphys-samples --headless --scene cylinder-pile --batch 8 4 8 --param radius=15
+//                    --param first-drop=2 --frames 12 --metrics metrics.json
+//                    --export granules.csv --export granules.vtk
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,7 +20,8 @@ namespace {
 
 const std::string kDir = SANDPHYS_SMALL_RUN_DIR;
 constexpr unsigned kGranules = 8 * 4 * 8;
-constexpr double kD = 0.02;
+constexpr float kRadius = 15.0f * 0.02f;  // m, as the scene computes it
+constexpr int kFrames = 12;
 
 std::string readFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -67,18 +69,19 @@ TEST(SmallRun, MetricsDescribeTheRun) {
   EXPECT_EQ(m["granules_spawned"], kGranules);
   EXPECT_EQ(m["granules_killed"], 0);
   EXPECT_EQ(m["bodies"], kGranules + 1);  // + the rough floor
-  EXPECT_EQ(m["particles"], 4 * kGranules + scenes::CylinderPile::roughFloorParticles(1.0f, 0.02f));
+  EXPECT_EQ(m["particles"],
+            4 * kGranules + scenes::CylinderPile::roughFloorParticles(kRadius, 0.02f));
   EXPECT_EQ(m["scene_parameters"]["batch"], nlohmann::json::array({8, 4, 8}));
   EXPECT_FALSE(m["gpu"].get<std::string>().empty());
 
-  // Time: 20 frames of 1/60 s in whole substeps of time_step.
+  // Time: kFrames frames of 1/60 s in whole substeps of time_step.
   const double dt = m["time_step"];
   const double steps = m["steps"];
   const double simulated = m["simulated_seconds"];
   EXPECT_GT(dt, 0.0);
   EXPECT_GT(steps, 0.0);
   EXPECT_NEAR(simulated, steps * dt, 1e-6 * simulated + 1e-9);
-  EXPECT_NEAR(simulated + m["dropped_seconds"].get<double>(), 20.0 / 60.0, dt + 1e-6);
+  EXPECT_NEAR(simulated + m["dropped_seconds"].get<double>(), kFrames / 60.0, dt + 1e-6);
 
   EXPECT_GT(m["wall_seconds"].get<double>(), 0.0);
   EXPECT_GT(m["cundall_number"].get<double>(), 0.0);
@@ -87,7 +90,7 @@ TEST(SmallRun, MetricsDescribeTheRun) {
 
 TEST(SmallRun, GranulesLandedInsideTheCylinderWithoutDeepOverlap) {
   const nlohmann::json m = metrics();
-  // The batch starts 5 d above the floor and has fallen onto it after 1/3 s.
+  // The batch starts 2 d above the floor and has fallen onto it after 0.2 s.
   EXPECT_GT(m["contacts"].get<double>(), kGranules) << "granules should rest on the floor";
   EXPECT_GE(m["max_overlap_d"].get<double>(), 0.0);
   EXPECT_LT(m["max_overlap_d"].get<double>(), 0.1);  // the paper's guard is d/10
@@ -114,7 +117,7 @@ TEST(SmallRun, CsvHasTheHeaderAndOneRowPerGranule) {
     ASSERT_EQ(values.size(), 11u) << line;
     EXPECT_TRUE(ids.insert(static_cast<unsigned long>(values[0])).second) << "duplicate id";
     const double x = values[1], y = values[2], z = values[3];
-    EXPECT_LE(std::hypot(x, z), 50.0 * kD) << line;
+    EXPECT_LE(std::hypot(x, z), kRadius) << line;
     EXPECT_GT(y, 0.0) << line;
     const double qNorm = std::sqrt(values[4] * values[4] + values[5] * values[5] +
                                    values[6] * values[6] + values[7] * values[7]);

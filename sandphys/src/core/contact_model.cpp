@@ -22,6 +22,11 @@ ImpactResult integrateImpact(double c) {
     if (x <= 0.0) return 0.0;
     return -std::max(0.0, x * std::sqrt(x) + c * std::sqrt(std::sqrt(x)) * v);
   };
+  // The contact ends when the (non-adhesive) force vanishes on the way out: from then on the
+  // bodies move apart freely, whatever overlap remains.
+  auto released = [c](double x, double v) {
+    return v < 0.0 && x * std::sqrt(x) + c * std::sqrt(std::sqrt(std::max(x, 0.0))) * v <= 0.0;
+  };
   const double h = 2.0e-4;
   double x = 0.0;
   double v = 1.0;
@@ -33,9 +38,11 @@ ImpactResult integrateImpact(double c) {
     double k4x = v + h * k3v, k4v = accel(x + h * k3x, v + h * k3v);
     double nx = x + h / 6.0 * (k1x + 2 * k2x + 2 * k3x + k4x);
     double nv = v + h / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
-    if (nx <= 0.0 && nv < 0.0) {
-      // Separation inside this step: interpolate the crossing linearly.
-      double frac = x / (x - nx);
+    if (nx <= 0.0 || released(nx, nv)) {
+      // Released inside this step: interpolate the end of the contact linearly.
+      double before = x * std::sqrt(x) + c * std::sqrt(std::sqrt(x)) * v;
+      double after = nx <= 0.0 ? -before : nx * std::sqrt(nx) + c * std::sqrt(std::sqrt(nx)) * nv;
+      double frac = nx <= 0.0 ? x / (x - nx) : before / (before - after);
       return {-(v + frac * (nv - v)), t + frac * h};
     }
     x = nx;

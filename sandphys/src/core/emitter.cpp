@@ -31,6 +31,10 @@ EmitterState::EmitterState(const EmitterSettings& s, float particleDiameter)
   m_layerInterval = spacing / speed;
   m_layerAge = m_layerInterval;
   m_nextSlot = m_slots.size();
+  require(s.rate <= maxRate(), "EmitterSettings.rate", s.rate,
+          "must be <= " + formatValue(std::floor(maxRate())) + " granules/s for this rectangle and speed (" +
+              std::to_string(m_slots.size()) + " lattice slots every " + formatValue(m_layerInterval) +
+              " s); enlarge the rectangle or the speed");
 }
 
 void EmitterState::shuffleLayer() {
@@ -46,6 +50,7 @@ std::vector<GranuleSpawn> EmitterState::advance(double dt, std::uint32_t room, b
   if (finished()) return out;
   m_due = std::min(m_due + m_settings.rate * dt, double(m_slots.size()));
   m_layerAge += dt;
+  const Vec3& v = m_settings.velocity;
   while (m_due >= 1.0 && !finished()) {
     if (m_nextSlot == m_slots.size()) {
       if (m_layerAge < m_layerInterval) break;
@@ -58,7 +63,10 @@ std::vector<GranuleSpawn> EmitterState::advance(double dt, std::uint32_t room, b
       break;
     }
     GranuleSpawn spawn;
-    spawn.position = m_slots[m_order[m_nextSlot++]];
+    // Where this slot of the layer would be had it been emitted when the layer started.
+    const Vec3& slot = m_slots[m_order[m_nextSlot++]];
+    spawn.position = {float(slot.x + v.x * m_layerAge), float(slot.y + v.y * m_layerAge),
+                      float(slot.z + v.z * m_layerAge)};
     spawn.orientation = randomOrientation(m_rng);
     spawn.velocity = m_settings.velocity;
     out.push_back(spawn);

@@ -10,9 +10,10 @@
 namespace sandphys::detail {
 
 /// CPU side of an emitter: decides which granules to add in each substep. Granules are placed on
-/// a lattice of the emitting rectangle, one layer at a time in a shuffled order; a new layer
-/// starts only once the previous one has had time to move one spacing away, so that new granules
-/// never overlap the ones emitted before (the effective rate is capped by that).
+/// a lattice of the emitting rectangle that moves with the emitter velocity, one layer at a time
+/// in a shuffled order; a new layer starts when the previous one has moved one spacing on. So new
+/// granules never start inside earlier ones, and the rate is bounded by the lattice: a rate above
+/// maxRate() is refused at creation.
 class EmitterState {
  public:
   EmitterState(const EmitterSettings& settings, float particleDiameter);
@@ -21,6 +22,8 @@ class EmitterState {
   /// rate, stopped it. CPU work is proportional to the granules returned.
   std::vector<GranuleSpawn> advance(double dt, std::uint32_t room, bool& blocked);
   bool finished() const { return m_emitted >= m_settings.maxGranules; }
+  /// Granules per second the lattice can take at this speed.
+  double maxRate() const { return double(m_slots.size()) / m_layerInterval; }
   std::uint32_t emitted() const { return m_emitted; }
 
  private:

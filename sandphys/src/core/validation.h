@@ -10,8 +10,11 @@ namespace sandphys::detail {
 
 /// Formats a value the way error messages show it (NaN and infinities spelled out).
 inline std::string formatValue(double value) {
+  if (std::isfinite(value) && value == std::floor(value) && std::abs(value) < 1e15) {
+    return std::to_string(static_cast<long long>(value));  // counts and capacities: exact
+  }
   std::ostringstream out;
-  out.precision(9);
+  out.precision(7);  // settings are floats: show what the user typed, not float noise
   out << value;
   return out.str();
 }

@@ -12,6 +12,15 @@
 namespace sandphys::gl {
 namespace {
 
+// Every file gets its own range of line numbers in the expanded source, so that a message can be
+// traced to its file from the line number alone: Mesa reports the right line but, for some
+// errors, source string 0 instead of the number given by #line.
+constexpr int kLinesPerFile = 100000;
+
+std::string lineDirective(int line, int fileIndex) {
+  return "#line " + std::to_string(fileIndex * kLinesPerFile + line) + " " + std::to_string(fileIndex) + "\n";
+}
+
 std::string directoryOf(const std::string& name) {
   auto slash = name.rfind('/');
   return slash == std::string::npos ? std::string() : name.substr(0, slash + 1);
@@ -55,16 +64,16 @@ struct Expander {
       if (defines && std::regex_match(line, versionRe)) {
         result.text += line + "\n";
         for (const auto& define : *defines) result.text += "#define " + define + "\n";
-        result.text += "#line " + std::to_string(lineNumber + 1) + " " + std::to_string(fileIndex) + "\n";
+        result.text += lineDirective(lineNumber + 1, fileIndex);
         continue;
       }
       if (std::regex_match(line, match, includeRe)) {
         std::string child = normalisePath(directoryOf(name) + match[1].str());
         if (!included.count(child)) {
-          result.text += "#line 1 " + std::to_string(result.files.size()) + "\n";
+          result.text += lineDirective(1, int(result.files.size()));
           append(child, nullptr);
         }
-        result.text += "#line " + std::to_string(lineNumber + 1) + " " + std::to_string(fileIndex) + "\n";
+        result.text += lineDirective(lineNumber + 1, fileIndex);
         continue;
       }
       result.text += line + "\n";
@@ -111,14 +120,23 @@ std::string ShaderLibrary::mapLog(const std::string& log, const std::vector<std:
   std::string out;
   while (std::getline(lines, line)) {
     std::smatch m;
-    auto fileName = [&](const std::string& index) {
-      std::size_t i = std::stoul(index);
-      return i < files.size() ? files[i] : "<file " + index + ">";
+    // The file comes from the line number's range (see kLinesPerFile); the source number is a
+    // fallback for lines below the first range.
+    auto location = [&](const std::string& source, const std::string& lineText) {
+      long long index = std::stoll(source);
+      long long number = std::stoll(lineText);
+      if (number >= kLinesPerFile) {
+        index = number / kLinesPerFile;
+        number %= kLinesPerFile;
+      }
+      std::string name = index >= 0 && std::size_t(index) < files.size() ? files[std::size_t(index)]
+                                                                      : "<file " + std::to_string(index) + ">";
+      return "shaders/" + name + ":" + std::to_string(number);
     };
     if (std::regex_match(line, m, mesaRe)) {
-      out += "shaders/" + fileName(m[1]) + ":" + m[2].str() + ":" + m[3].str() + m[4].str();
+      out += location(m[1], m[2]) + ":" + m[3].str() + m[4].str();
     } else if (std::regex_match(line, m, nvRe)) {
-      out += "shaders/" + fileName(m[1]) + ":" + m[2].str() + ":" + m[3].str();
+      out += location(m[1], m[2]) + ":" + m[3].str();
     } else {
       out += line;
     }

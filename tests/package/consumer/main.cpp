@@ -24,6 +24,7 @@ int main() {
   try {
     sandphys::GpuContext gpu = sandphys::GpuContext::headless();
     std::printf("device: %s\n", gpu.description().c_str());
+    std::fflush(stdout);  // keep it before any failure message when both go to one pipe
 
     sandphys::World world(gpu, sandphys::WorldSettings{.maxBodies = 64});
     world.addCollider(sandphys::Plane{});  // the floor, y = 0

@@ -1,0 +1,23 @@
+#version 450
+// Not a simulation pass: touches every declaration of layout.glsl whose offsets the C++ twin
+// (gpu_layout.h) relies on, so that tests/gl/layout_twin_test.cpp can ask the driver for them.
+#include "common/layout.glsl"
+
+layout(local_size_x = 1) in;
+
+BODY_POSITION(coherent)
+PARTICLE_BODY(readonly)
+COLLIDERS(readonly)
+SINKS(readonly)
+STATS_PARTIALS(readonly)
+CONTACT_LIST_BUFFER(readonly)
+
+void main() {
+  vec4 sum = gravityDt + particleGeom + grainContact + wallContact + vec4(counts + counts2 + colliderEnds);
+  sum += colliders[0].a + colliders[0].b + colliders[0].c + colliders[0].material;
+  sum += sinks[0].lo + sinks[0].hi;
+  sum += vec4(statsPartials[0].counts) + statsPartials[0].sums;
+  sum += contactList[0] + vec4(float(contactListCount + contactListCapacity + pad0 + pad1));
+  sum.x += float(particleBody[0]);
+  bodyPosition[0] = sum;
+}

@@ -1,0 +1,71 @@
+// layout.glsl and its C++ twin gpu_layout.h must agree: the driver's offsets of every member of
+// the uniform block and the structs must match offsetof on the C++ side.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstddef>
+
+#include "core/gpu_layout.h"
+#include "gl/shader_library.h"
+#include "support/test_world.h"
+
+namespace sandphys::detail {
+namespace {
+
+GLint resourceOffset(GLuint program, GLenum interface, const char* name) {
+  GLuint index = glGetProgramResourceIndex(program, interface, name);
+  EXPECT_NE(index, GL_INVALID_INDEX) << name << " is not active in the probe shader";
+  if (index == GL_INVALID_INDEX) return -1;
+  GLenum property = GL_OFFSET;
+  GLint offset = -1;
+  glGetProgramResourceiv(program, interface, index, 1, &property, 1, nullptr, &offset);
+  return offset;
+}
+
+// Stride of the top-level array of a buffer block: "colliders[0].a" for arrays of structs,
+// "bodyPosition[0]" for arrays of vectors.
+GLint stride(GLuint program, const char* name) {
+  GLuint index = glGetProgramResourceIndex(program, GL_BUFFER_VARIABLE, name);
+  EXPECT_NE(index, GL_INVALID_INDEX) << name;
+  // GL reports a plain array's stride as ARRAY_STRIDE, an array of structs' as TOP_LEVEL_ARRAY_STRIDE.
+  const GLenum properties[2] = {GL_ARRAY_STRIDE, GL_TOP_LEVEL_ARRAY_STRIDE};
+  GLint values[2] = {0, 0};
+  glGetProgramResourceiv(program, GL_BUFFER_VARIABLE, index, 2, properties, 2, nullptr, values);
+  return std::max(values[0], values[1]);
+}
+
+TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
+  testing::gpu().makeCurrent();
+  gl::ShaderLibrary library;
+  GLuint program = library.compileCompute("sim/layout_probe.comp");
+
+  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "gravityDt"), GLint(offsetof(SimParams, gravityDt)));
+  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "particleGeom"), GLint(offsetof(SimParams, particleGeom)));
+  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "grainContact"), GLint(offsetof(SimParams, grainContact)));
+  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "wallContact"), GLint(offsetof(SimParams, wallContact)));
+  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "counts"), GLint(offsetof(SimParams, counts)));
+  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "counts2"), GLint(offsetof(SimParams, counts2)));
+  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "colliderEnds"), GLint(offsetof(SimParams, colliderEnds)));
+  GLuint block = glGetProgramResourceIndex(program, GL_UNIFORM_BLOCK, "SimParams");
+  GLenum property = GL_BUFFER_DATA_SIZE;
+  GLint size = 0;
+  glGetProgramResourceiv(program, GL_UNIFORM_BLOCK, block, 1, &property, 1, nullptr, &size);
+  EXPECT_EQ(size, GLint(sizeof(SimParams)));
+
+  EXPECT_EQ(stride(program, "colliders[0].a"), GLint(sizeof(GpuCollider)));
+  EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, "colliders[0].material"),
+            GLint(offsetof(GpuCollider, material)));
+  EXPECT_EQ(stride(program, "sinks[0].lo"), GLint(sizeof(GpuSink)));
+  EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, "sinks[0].hi"), GLint(offsetof(GpuSink, hi)));
+  EXPECT_EQ(stride(program, "statsPartials[0].counts"), GLint(sizeof(GpuStatsPartial)));
+  EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, "statsPartials[0].sums"),
+            GLint(offsetof(GpuStatsPartial, sums)));
+  EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, "contactList[0]"), 16);
+  EXPECT_EQ(stride(program, "contactList[0]"), 16);
+  EXPECT_EQ(stride(program, "bodyPosition[0]"), 16);
+  EXPECT_EQ(stride(program, "particleBody[0]"), 4);
+  glDeleteProgram(program);
+}
+
+}  // namespace
+}  // namespace sandphys::detail
