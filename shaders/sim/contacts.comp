@@ -14,10 +14,10 @@
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 
-CELL_START(readonly)
+CELL_START_TEXTURE
 CELL_PARTICLES(readonly)
-SORTED_POSITION(readonly)
-SORTED_VELOCITY(readonly)
+SORTED_POSITION_TEXTURE
+SORTED_VELOCITY_TEXTURE
 COLLIDERS(readonly)
 #ifdef CONTACT_LIST
 CONTACT_LIST_BUFFER(coherent)
@@ -69,9 +69,9 @@ void record(uint a, uint b, uint bodyA, uint bodyB, uint collider, vec3 point, v
 
 void main() {
   uint i = threadIndex();
-  if (i >= cellStart[counts2.y]) return;
-  vec4 self = sortedPosition[i];
-  vec4 selfVelocity = sortedVelocity[i];
+  if (i >= texelFetch(cellStartTexture, int(counts2.y)).x) return;
+  vec4 self = texelFetch(sortedPositionTexture, int(i));
+  vec4 selfVelocity = texelFetch(sortedVelocityTexture, int(i));
   uint selfBody = floatBitsToUint(self.w);
   float radius = particleGeom.x;
   float diameter = particleGeom.y;
@@ -97,15 +97,15 @@ void main() {
       for (uint part = 0u; part < (contiguous ? 1u : 3u); ++part) {
         uint bucketBegin = contiguous ? first : ((centre + part - 1u) & counts.z);
         uint bucketEnd = contiguous ? last : bucketBegin;
-        uint begin = cellStart[bucketBegin];
-        uint end = cellStart[bucketEnd + 1u];
+        uint begin = texelFetch(cellStartTexture, int(bucketBegin)).x;
+        uint end = texelFetch(cellStartTexture, int(bucketEnd + 1u)).x;
         for (uint s = begin; s < end; ++s) {
-          vec4 other = sortedPosition[s];
+          vec4 other = texelFetch(sortedPositionTexture, int(s));
           if (floatBitsToUint(other.w) == selfBody) continue;  // own body, and self
           vec3 d = self.xyz - other.xyz;
           float dist2 = dot(d, d);
           if (dist2 >= diameter * diameter || dist2 == 0.0) continue;
-          vec4 otherVelocity = sortedVelocity[s];
+          vec4 otherVelocity = texelFetch(sortedVelocityTexture, int(s));
           float invMassSum = selfVelocity.w + otherVelocity.w;
           if (invMassSum == 0.0) continue;  // two immovable bodies
           float dist = sqrt(dist2);

@@ -27,7 +27,8 @@ GLint resourceOffset(GLuint program, GLenum interface, const char* name) {
 GLint stride(GLuint program, const char* name) {
   GLuint index = glGetProgramResourceIndex(program, GL_BUFFER_VARIABLE, name);
   EXPECT_NE(index, GL_INVALID_INDEX) << name;
-  // GL reports a plain array's stride as ARRAY_STRIDE, an array of structs' as TOP_LEVEL_ARRAY_STRIDE.
+  // GL reports a plain array's stride as ARRAY_STRIDE, an array of structs' as
+  // TOP_LEVEL_ARRAY_STRIDE.
   const GLenum properties[2] = {GL_ARRAY_STRIDE, GL_TOP_LEVEL_ARRAY_STRIDE};
   GLint values[2] = {0, 0};
   glGetProgramResourceiv(program, GL_BUFFER_VARIABLE, index, 2, properties, 2, nullptr, values);
@@ -39,13 +40,18 @@ TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
   gl::ShaderLibrary library;
   GLuint program = library.compileCompute("sim/layout_probe.comp");
 
-  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "gravityDt"), GLint(offsetof(SimParams, gravityDt)));
-  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "particleGeom"), GLint(offsetof(SimParams, particleGeom)));
-  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "grainContact"), GLint(offsetof(SimParams, grainContact)));
-  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "wallContact"), GLint(offsetof(SimParams, wallContact)));
+  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "gravityDt"),
+            GLint(offsetof(SimParams, gravityDt)));
+  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "particleGeom"),
+            GLint(offsetof(SimParams, particleGeom)));
+  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "grainContact"),
+            GLint(offsetof(SimParams, grainContact)));
+  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "wallContact"),
+            GLint(offsetof(SimParams, wallContact)));
   EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "counts"), GLint(offsetof(SimParams, counts)));
   EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "counts2"), GLint(offsetof(SimParams, counts2)));
-  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "colliderEnds"), GLint(offsetof(SimParams, colliderEnds)));
+  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "colliderEnds"),
+            GLint(offsetof(SimParams, colliderEnds)));
   GLuint block = glGetProgramResourceIndex(program, GL_UNIFORM_BLOCK, "SimParams");
   GLenum property = GL_BUFFER_DATA_SIZE;
   GLint size = 0;
@@ -56,7 +62,8 @@ TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
   EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, "colliders[0].material"),
             GLint(offsetof(GpuCollider, material)));
   EXPECT_EQ(stride(program, "sinks[0].lo"), GLint(sizeof(GpuSink)));
-  EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, "sinks[0].hi"), GLint(offsetof(GpuSink, hi)));
+  EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, "sinks[0].hi"),
+            GLint(offsetof(GpuSink, hi)));
   EXPECT_EQ(stride(program, "statsPartials[0].counts"), GLint(sizeof(GpuStatsPartial)));
   EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, "statsPartials[0].sums"),
             GLint(offsetof(GpuStatsPartial, sums)));

@@ -38,8 +38,10 @@ TEST(ShaderErrors, NameTheIncludedFileAndLine) {
   testing::gpu().makeCurrent();
   fs::path dir = freshDirectory("sandphys_bad_shader");
   write(dir / "sim" / "bad.comp",
-        "#version 450\n#include \"common/helper.glsl\"\nlayout(local_size_x = 1) in;\nvoid main() { helper(); }\n");
-  write(dir / "sim" / "common" / "helper.glsl", "// helper\n\nvoid helper() { undefinedThing = 1.0; }\n");
+        "#version 450\n#include \"common/helper.glsl\"\nlayout(local_size_x = 1) in;\nvoid main() "
+        "{ helper(); }\n");
+  write(dir / "sim" / "common" / "helper.glsl",
+        "// helper\n\nvoid helper() { undefinedThing = 1.0; }\n");
   ShaderDirectory use(dir);
   gl::ShaderLibrary library;
   try {

@@ -28,8 +28,9 @@ TEST(WorldErrors, CapacityExceededAddsNothing) {
   EXPECT_NE(message.find("maxBodies = 10"), std::string::npos) << message;
   EXPECT_EQ(w->bodyCount(), 8u);
   EXPECT_EQ(w->particleCount(), 32u);
-  EXPECT_THROW(w->addGranules(GranuleBlock{.center = {0, 2, 0}, .countX = 3, .countY = 1, .countZ = 1}),
-               CapacityExceeded);
+  EXPECT_THROW(
+      w->addGranules(GranuleBlock{.center = {0, 2, 0}, .countX = 3, .countY = 1, .countZ = 1}),
+      CapacityExceeded);
   // reserve() is the explicit way to grow; afterwards the same call succeeds and the old
   // granules are still there.
   w->reserve(20, 80);
@@ -49,26 +50,41 @@ TEST(WorldErrors, TooManyParticlesNamesTheLimit) {
 
 TEST(WorldErrors, BadDescriptorsNameTheirField) {
   testing::TestWorld w;
-  EXPECT_NE(messageOf([&] { w->addCollider(Cylinder{.radius = -1.0f}); }).find("Cylinder.radius = -1"),
+  EXPECT_NE(
+      messageOf([&] { w->addCollider(Cylinder{.radius = -1.0f}); }).find("Cylinder.radius = -1"),
+      std::string::npos);
+  EXPECT_NE(messageOf([&] {
+              w->addCollider(Plane{.normal = {0, 0, 0}});
+            }).find("Plane.normal"),
             std::string::npos);
-  EXPECT_NE(messageOf([&] { w->addCollider(Plane{.normal = {0, 0, 0}}); }).find("Plane.normal"),
+  EXPECT_NE(
+      messageOf([&] { w->addCollider(Funnel{.halfAngle = 2.0f}); }).find("Funnel.halfAngle = 2"),
+      std::string::npos);
+  EXPECT_NE(messageOf([&] {
+              w->addCollider(Box{.material = {.friction = -1.0f}});
+            }).find("Box.material.friction"),
             std::string::npos);
-  EXPECT_NE(messageOf([&] { w->addCollider(Funnel{.halfAngle = 2.0f}); }).find("Funnel.halfAngle = 2"),
+  EXPECT_NE(
+      messageOf([&] { w->addCollider(Box{.material = {.restitution = 0.0f}}); }).find("(0, 1]"),
+      std::string::npos);
+  EXPECT_NE(
+      messageOf([&] { w->addGranules(GranuleBlock{.countX = 0}); }).find("GranuleBlock.countX = 0"),
+      std::string::npos);
+  EXPECT_NE(messageOf([&] {
+              w->addGranules(GranuleBlock{.spacing = 0.03f});
+            }).find("GranuleBlock.spacing = 0.03"),
             std::string::npos);
-  EXPECT_NE(messageOf([&] { w->addCollider(Box{.material = {.friction = -1.0f}}); }).find("Box.material.friction"),
+  EXPECT_NE(messageOf([&] {
+              w->addGranules(GranuleBlock{.center = {0, std::nanf(""), 0}});
+            }).find("GranuleBlock.center.y = nan"),
             std::string::npos);
-  EXPECT_NE(messageOf([&] { w->addCollider(Box{.material = {.restitution = 0.0f}}); }).find("(0, 1]"),
+  EXPECT_NE(messageOf([&] {
+              w->addEmitter(EmitterSettings{.rate = 0.0f});
+            }).find("EmitterSettings.rate = 0"),
             std::string::npos);
-  EXPECT_NE(messageOf([&] { w->addGranules(GranuleBlock{.countX = 0}); }).find("GranuleBlock.countX = 0"),
-            std::string::npos);
-  EXPECT_NE(messageOf([&] { w->addGranules(GranuleBlock{.spacing = 0.03f}); }).find("GranuleBlock.spacing = 0.03"),
-            std::string::npos);
-  EXPECT_NE(messageOf([&] { w->addGranules(GranuleBlock{.center = {0, std::nanf(""), 0}}); })
-                .find("GranuleBlock.center.y = nan"),
-            std::string::npos);
-  EXPECT_NE(messageOf([&] { w->addEmitter(EmitterSettings{.rate = 0.0f}); }).find("EmitterSettings.rate = 0"),
-            std::string::npos);
-  EXPECT_NE(messageOf([&] { w->addSink(Sink{.min = {1, 1, 1}, .max = {0, 0, 0}}); }).find("Sink.max"),
+  EXPECT_NE(messageOf([&] {
+              w->addSink(Sink{.min = {1, 1, 1}, .max = {0, 0, 0}});
+            }).find("Sink.max"),
             std::string::npos);
   EXPECT_EQ(w->bodyCount(), 0u);
 }

@@ -5,8 +5,12 @@
 
 namespace sandphys::oracle {
 
-Vec3d toDouble(Vec3 v) { return {v.x, v.y, v.z}; }
-QuatD toDouble(Quat q) { return {q.w, q.x, q.y, q.z}; }
+Vec3d toDouble(Vec3 v) {
+  return {v.x, v.y, v.z};
+}
+QuatD toDouble(Quat q) {
+  return {q.w, q.x, q.y, q.z};
+}
 
 Vec3d rotate(const QuatD& q, const Vec3d& v) {
   // v' = v + 2w (u × v) + 2 u × (u × v), u = (x, y, z): the same identity as quaternion.glsl.
@@ -15,13 +19,14 @@ Vec3d rotate(const QuatD& q, const Vec3d& v) {
   return v + q.w * t + u.cross(t);
 }
 
-Vec3d rotateInverse(const QuatD& q, const Vec3d& v) { return rotate({q.w, -q.x, -q.y, -q.z}, v); }
+Vec3d rotateInverse(const QuatD& q, const Vec3d& v) {
+  return rotate({q.w, -q.x, -q.y, -q.z}, v);
+}
 
 QuatD multiply(const QuatD& a, const QuatD& b) {
-  return {a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z,
-          a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
-          a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
-          a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w};
+  return {
+      a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z, a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
+      a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x, a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w};
 }
 
 // --- Model and scene ------------------------------------------------------------------------
@@ -115,7 +120,13 @@ OracleBody OracleBody::from(const BodyState& state, const ParticleTemplate& shap
   b.boundingRadius = shape.boundingRadius;
   b.motion = motion;
   for (const Vec3& o : shape.offsets) b.offsets.push_back(toDouble(o));
+  b.principalRotation = toDouble(shape.principalRotation);
   return b;
+}
+
+QuatD OracleBody::templateOrientation() const {
+  const QuatD& p = principalRotation;
+  return multiply(orientation, {p.w, -p.x, -p.y, -p.z});
 }
 
 double OracleBody::particleInverseMass() const {
@@ -160,8 +171,8 @@ std::vector<ColliderHit> colliderHits(const OracleCollider& c, const Vec3d& p, d
         break;
       }
       const Vec3d depth = c.halfExtents - local.cwiseAbs();
-      const int axis = depth.x() < depth.y() ? (depth.x() < depth.z() ? 0 : 2)
-                                             : (depth.y() < depth.z() ? 1 : 2);
+      const int axis =
+          depth.x() < depth.y() ? (depth.x() < depth.z() ? 0 : 2) : (depth.y() < depth.z() ? 1 : 2);
       Vec3d normal = Vec3d::Zero();
       normal[axis] = local[axis] >= 0.0 ? 1.0 : -1.0;
       hits.push_back({rotate(c.orientation, normal), r + depth[axis]});
@@ -318,7 +329,8 @@ void CpuOracle::integrate(const std::vector<OracleParticle>& particles,
       Vec3d omegaLocal = rotateInverse(body.orientation, body.angularVelocity);
       const Vec3d torqueLocal = rotateInverse(body.orientation, torque);
       omegaLocal +=
-          dt * (torqueLocal - omegaLocal.cross(inertia.cwiseProduct(omegaLocal))).cwiseQuotient(inertia);
+          dt *
+          (torqueLocal - omegaLocal.cross(inertia.cwiseProduct(omegaLocal))).cwiseQuotient(inertia);
       body.angularVelocity = rotate(body.orientation, omegaLocal);
 
       // Speed guard (CFL clamp): body speed and rim speed |ω| · bounding radius.
@@ -331,7 +343,7 @@ void CpuOracle::integrate(const std::vector<OracleParticle>& particles,
     // q += ½ dt [ω, 0] q, renormalised.
     body.position += dt * body.velocity;
     const QuatD w{0.0, body.angularVelocity.x(), body.angularVelocity.y(),
-                      body.angularVelocity.z()};
+                  body.angularVelocity.z()};
     const QuatD dq = multiply(w, body.orientation);
     QuatD& q = body.orientation;
     q = {q.w + 0.5 * dt * dq.w, q.x + 0.5 * dt * dq.x, q.y + 0.5 * dt * dq.y,

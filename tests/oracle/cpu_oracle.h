@@ -8,7 +8,8 @@
 //   2. contact and collider forces    (eq. 9, 10)          contacts.comp, contact_law.glsl,
 //                                                          colliders.glsl
 //   3. body sums and integration      (eq. 2-6)            integrate_bodies.comp
-// Not modelled, because no oracle scene uses them: sinks, emitters, rough floors' hash limits.
+// Left out: sinks and emitters (no oracle scene uses them), and the grid by design: the O(n²)
+// search finds every neighbour that the GPU's hashed gather should find.
 
 #include <Eigen/Dense>
 
@@ -65,9 +66,9 @@ struct OracleModel {
 struct OracleCollider {
   enum class Kind { Plane, BoxInside, BoxOutside, Revolution };
   Kind kind = Kind::Plane;
-  Vec3d normal = Vec3d::UnitY();  ///< Plane: unit normal
-  double offset = 0.0;            ///< Plane: solid where normal·x < offset, m
-  Vec3d center = Vec3d::Zero();   ///< Box: centre; Revolution: base of the axis, m
+  Vec3d normal = Vec3d::UnitY();      ///< Plane: unit normal
+  double offset = 0.0;                ///< Plane: solid where normal·x < offset, m
+  Vec3d center = Vec3d::Zero();       ///< Box: centre; Revolution: base of the axis, m
   Vec3d halfExtents = Vec3d::Zero();  ///< Box, m
   QuatD orientation{};                ///< Box
   /// Revolution: the segment (r0, y0)-(r1, y1) of the (radius, height above base) half-plane.
@@ -92,20 +93,23 @@ std::vector<ColliderHit> colliderHits(const OracleCollider& c, const Vec3d& p, d
 
 /// A rigid body in its principal frame.
 struct OracleBody {
-  Vec3d position = Vec3d::Zero();  ///< centre of mass, m
-  QuatD orientation{};             ///< principal frame to world
-  Vec3d velocity = Vec3d::Zero();  ///< m/s
-  Vec3d angularVelocity = Vec3d::Zero();  ///< rad/s, world frame
+  Vec3d position = Vec3d::Zero();          ///< centre of mass, m
+  QuatD orientation{};                     ///< principal frame to world
+  Vec3d velocity = Vec3d::Zero();          ///< m/s
+  Vec3d angularVelocity = Vec3d::Zero();   ///< rad/s, world frame
   Vec3d principalInertia = Vec3d::Ones();  ///< kg·m²
   double mass = 1.0;                       ///< kg
   double boundingRadius = 0.0;             ///< m; the rim-speed guard uses it
   Motion motion = Motion::Dynamic;
   std::vector<Vec3d> offsets;  ///< particle centres in the principal frame, m
+  QuatD principalRotation{};   ///< the template's principal frame in its original frame
 
   /// A body from a read-back state and the template it was built from. BodyState's orientation
   /// is the template's original frame; the principal frame is that times principalRotation (the
   /// identity for the tetrahedral granule and the single sphere).
   static OracleBody from(const BodyState& state, const ParticleTemplate& shape, Motion motion);
+  /// Orientation of the template's original frame, as World::readBodies reports it.
+  QuatD templateOrientation() const;
   /// Particle inverse mass as World uploads it: count / mass for dynamic bodies, 0 otherwise.
   double particleInverseMass() const;
 };
@@ -127,16 +131,16 @@ Vec3d contactForce(double xi, const Vec3d& n, const Vec3d& vRel, double stiffnes
 /// One contact as pass 2 sees it from one particle (a particle pair appears twice, once from
 /// each side, as in the GPU's gather).
 struct OracleContact {
-  std::size_t particle = 0;        ///< the particle the force acts on
-  std::size_t other = kCollider;   ///< the other particle, or kCollider
-  Vec3d normal = Vec3d::Zero();    ///< unit, from the other body (or the surface) to `particle`
-  double overlap = 0.0;            ///< ξ after the penetration guard, m
+  std::size_t particle = 0;       ///< the particle the force acts on
+  std::size_t other = kCollider;  ///< the other particle, or kCollider
+  Vec3d normal = Vec3d::Zero();   ///< unit, from the other body (or the surface) to `particle`
+  double overlap = 0.0;           ///< ξ after the penetration guard, m
   Vec3d relativeVelocity = Vec3d::Zero();  ///< v_particle - v_other, m/s
-  double stiffness = 0.0;          ///< k_n, N/m^{3/2}
-  double dampingFactor = 0.0;      ///< c(e)
-  double invMassSum = 0.0;         ///< 1/m*, 1/kg
-  double friction = 0.0;           ///< μ
-  double tangentialDamping = 0.0;  ///< γ_s, N·s/m
+  double stiffness = 0.0;                  ///< k_n, N/m^{3/2}
+  double dampingFactor = 0.0;              ///< c(e)
+  double invMassSum = 0.0;                 ///< 1/m*, 1/kg
+  double friction = 0.0;                   ///< μ
+  double tangentialDamping = 0.0;          ///< γ_s, N·s/m
   static constexpr std::size_t kCollider = ~std::size_t(0);
 
   /// The contact law applied to this contact (eq. 9, 10).
@@ -162,8 +166,9 @@ class CpuOracle {
   void step(int count);
 
   const std::vector<OracleBody>& bodies() const { return m_bodies; }
-  /// Mutable, so that a test can run a deliberately wrong model (the oracle must notice).
+  /// Mutable, so that a test can run a deliberately wrong model (the comparison must notice).
   OracleModel& model() { return m_model; }
+  std::vector<OracleCollider>& colliders() { return m_colliders; }
 
  private:
   void integrate(const std::vector<OracleParticle>& particles, const std::vector<Vec3d>& forces);

@@ -34,7 +34,8 @@ TEST(ClosedForm, GranuleRestsAtTheHertzOverlapOfItsWeight) {
   const float faceHeight = d * std::sqrt(6.0f) / 12.0f;  // centre to face = circumradius / 3
   w.addGranule({0.0f, 0.5f * d + faceHeight + 1e-4f, 0.0f}, faceDown());
   w.simulate(0.4);
-  const double expected = hertzRestingOverlap(weightOfGranule(*w) / 3.0, w->contactModel().stiffnessWall);
+  const double expected =
+      hertzRestingOverlap(weightOfGranule(*w) / 3.0, w->contactModel().stiffnessWall);
   auto particles = w->readParticles();
   ASSERT_EQ(particles.size(), 4u);
   int touching = 0;
@@ -72,8 +73,8 @@ TEST(ClosedForm, HeadOnImpactHasTheSetRestitutionAndHertzContactTime) {
   const double restitution = (bodies[1].velocity.x - bodies[0].velocity.x) / (2.0 * v);
   EXPECT_NEAR(restitution, 0.6, 0.03 * 0.6);
   const ContactModel& m = w->contactModel();
-  const double expected = hertzContactTime(0.5 * m.particleMass, m.stiffnessGrain,
-                                           hertzDampingFactor(0.6), 2.0 * v);
+  const double expected =
+      hertzContactTime(0.5 * m.particleMass, m.stiffnessGrain, hertzDampingFactor(0.6), 2.0 * v);
   const double measured = contactSteps * double(w->timeStep());
   EXPECT_NEAR(measured, expected, 0.05 * expected);
   // Momentum is exchanged symmetrically.
@@ -128,14 +129,17 @@ Vec3 angularMomentum(const ParticleTemplate& t, const BodyState& s) {
     };
     Vec3 c = cross(u, v);
     Vec3 c2 = cross(u, c);
-    return Vec3{v.x + 2 * (q.w * c.x + c2.x), v.y + 2 * (q.w * c.y + c2.y), v.z + 2 * (q.w * c.z + c2.z)};
+    return Vec3{v.x + 2 * (q.w * c.x + c2.x), v.y + 2 * (q.w * c.y + c2.y),
+                v.z + 2 * (q.w * c.z + c2.z)};
   };
   Quat p = t.principalRotation;
   Quat q = s.orientation;
-  Quat r{q.w * p.w - q.x * p.x - q.y * p.y - q.z * p.z, q.w * p.x + q.x * p.w + q.y * p.z - q.z * p.y,
-         q.w * p.y - q.x * p.z + q.y * p.w + q.z * p.x, q.w * p.z + q.x * p.y - q.y * p.x + q.z * p.w};
+  Quat r{
+      q.w * p.w - q.x * p.x - q.y * p.y - q.z * p.z, q.w * p.x + q.x * p.w + q.y * p.z - q.z * p.y,
+      q.w * p.y - q.x * p.z + q.y * p.w + q.z * p.x, q.w * p.z + q.x * p.y - q.y * p.x + q.z * p.w};
   Vec3 local = rotate(r, s.angularVelocity, true);
-  Vec3 l{local.x * t.principalInertia.x, local.y * t.principalInertia.y, local.z * t.principalInertia.z};
+  Vec3 l{local.x * t.principalInertia.x, local.y * t.principalInertia.y,
+         local.z * t.principalInertia.z};
   return rotate(r, l, false);
 }
 
@@ -147,7 +151,8 @@ TEST(ClosedForm, TorqueFreeSpinKeepsItsAngularMomentum) {
   // A tetrahedral granule (isotropic) and an L-shaped body of three particles (three different
   // moments), both spun about a skew axis: the second exercises the gyroscopic term.
   ParticleTemplate granule = tetrahedronTemplate(d, s.material.density);
-  ParticleTemplate ell = makeParticleTemplate({{0, 0, 0}, {d, 0, 0}, {0, 1.5f * d, 0}}, d, s.material.density);
+  ParticleTemplate ell =
+      makeParticleTemplate({{0, 0, 0}, {d, 0, 0}, {0, 1.5f * d, 0}}, d, s.material.density);
   const Vec3 spin{3.0f, -5.0f, 7.0f};  // rad/s: a rim speed well under the speed guard
   BodyId a = w->addBody(granule, {{0, 0, 0}, {}, {}, spin, Motion::Dynamic});
   BodyId b = w->addBody(ell, {{1, 0, 0}, {}, {}, spin, Motion::Dynamic});
@@ -156,7 +161,9 @@ TEST(ClosedForm, TorqueFreeSpinKeepsItsAngularMomentum) {
   w->substep(1000);
   const Vec3 la = angularMomentum(granule, w->readBody(a));
   const Vec3 lb = angularMomentum(ell, w->readBody(b));
-  auto norm = [](Vec3 v) { return std::sqrt(double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z); };
+  auto norm = [](Vec3 v) {
+    return std::sqrt(double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z);
+  };
   auto diff = [](Vec3 x, Vec3 y) { return Vec3{x.x - y.x, x.y - y.y, x.z - y.z}; };
   EXPECT_LT(norm(diff(la, la0)), 0.005 * norm(la0));
   EXPECT_LT(norm(diff(lb, lb0)), 0.005 * norm(lb0));

@@ -11,7 +11,10 @@ TEST(Conservation, ClosedBoxLosesNoGranule) {
   testing::TestWorld w(testing::smallSettings(400));
   const Box box{.center = {0, 0.2f, 0}, .halfExtents = {0.08f, 0.2f, 0.08f}, .inside = true};
   w->addCollider(box);
-  w->addGranules(GranuleBlock{.center = {0, 0.2f, 0}, .countX = 5, .countY = 12, .countZ = 5,
+  w->addGranules(GranuleBlock{.center = {0, 0.2f, 0},
+                              .countX = 5,
+                              .countY = 12,
+                              .countZ = 5,
                               .velocity = {0.5f, -1.0f, 0.3f}});
   w.simulate(0.25);
   WorldStats stats = w->readStats();
@@ -30,7 +33,8 @@ TEST(Conservation, SinkRemovesAndCountsGranules) {
   testing::TestWorld w(testing::smallSettings(300));
   // A funnel over a sink: what drains through the outlet is removed.
   const float d = w->settings().particleDiameter;
-  w->addCollider(Funnel{.outletCenter = {0, 0.2f, 0}, .outletRadius = 4 * d, .halfAngle = 0.785f, .height = 0.3f});
+  w->addCollider(Funnel{
+      .outletCenter = {0, 0.2f, 0}, .outletRadius = 4 * d, .halfAngle = 0.785f, .height = 0.3f});
   w->addSink(Sink{.min = {-1, -1, -1}, .max = {1, 0.05f, 1}});
   w->addGranules(GranuleBlock{.center = {0, 0.35f, 0}, .countX = 5, .countY = 8, .countZ = 5});
   w.simulate(0.6);

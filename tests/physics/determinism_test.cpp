@@ -12,8 +12,12 @@ namespace {
 void buildPile(World& w) {
   w.addCollider(Plane{});
   w.addCollider(Box{.center = {0, 0.3f, 0}, .halfExtents = {0.1f, 0.3f, 0.1f}, .inside = true});
-  w.addGranules(GranuleBlock{.center = {0, 0.12f, 0}, .countX = 4, .countY = 6, .countZ = 4,
-                             .velocity = {0, -1.5f, 0}, .seed = 11});
+  w.addGranules(GranuleBlock{.center = {0, 0.12f, 0},
+                             .countX = 4,
+                             .countY = 6,
+                             .countZ = 4,
+                             .velocity = {0, -1.5f, 0},
+                             .seed = 11});
 }
 
 bool identical(const std::vector<BodyState>& a, const std::vector<BodyState>& b) {
@@ -61,7 +65,8 @@ TEST(Determinism, ADifferentSeedGivesADifferentPile) {
   buildPile(*a);
   b->addCollider(Plane{});
   b->addCollider(Box{.center = {0, 0.3f, 0}, .halfExtents = {0.1f, 0.3f, 0.1f}, .inside = true});
-  b->addGranules(GranuleBlock{.center = {0, 0.12f, 0}, .countX = 4, .countY = 6, .countZ = 4, .seed = 12});
+  b->addGranules(
+      GranuleBlock{.center = {0, 0.12f, 0}, .countX = 4, .countY = 6, .countZ = 4, .seed = 12});
   a->substep(200);
   b->substep(200);
   EXPECT_FALSE(identical(a->readBodies(), b->readBodies()));

@@ -9,8 +9,11 @@ namespace {
 TEST(Emitter, AddsGranulesAtItsRateWithoutOverlaps) {
   // No floor: the only way two granules could touch is an emitter placing one inside another.
   testing::TestWorld w(testing::smallSettings(1000));
-  w->addEmitter(EmitterSettings{.center = {0, 0.5f, 0}, .halfExtentX = 0.1f, .halfExtentZ = 0.1f,
-                                .rate = 400.0f, .velocity = {0, -1.0f, 0}});
+  w->addEmitter(EmitterSettings{.center = {0, 0.5f, 0},
+                                .halfExtentX = 0.1f,
+                                .halfExtentZ = 0.1f,
+                                .rate = 400.0f,
+                                .velocity = {0, -1.0f, 0}});
   w.simulate(0.25);
   const std::uint32_t spawned = w->granulesSpawned();
   EXPECT_NEAR(double(spawned), 400.0 * 0.25, 2.0);
@@ -28,19 +31,23 @@ TEST(Emitter, RefusesARateItsLatticeCannotTake) {
     w->addEmitter(EmitterSettings{.halfExtentX = 0.05f, .halfExtentZ = 0.05f, .rate = 400.0f});
     FAIL() << "accepted";
   } catch (const InvalidArgument& e) {
-    EXPECT_NE(std::string(e.what()).find("EmitterSettings.rate = 400 is invalid: must be <= 187"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("EmitterSettings.rate = 400 is invalid: must be <= 187"),
+              std::string::npos)
         << e.what();
   }
 }
 
 TEST(Emitter, StopsAtItsBudgetAndAtCapacity) {
   testing::TestWorld w(testing::smallSettings(30));
-  w->addEmitter(EmitterSettings{.center = {0, 0.5f, 0}, .halfExtentX = 0.1f, .halfExtentZ = 0.1f,
-                                .rate = 200.0f, .maxGranules = 20});
+  w->addEmitter(EmitterSettings{.center = {0, 0.5f, 0},
+                                .halfExtentX = 0.1f,
+                                .halfExtentZ = 0.1f,
+                                .rate = 200.0f,
+                                .maxGranules = 20});
   w.simulate(0.15);
   EXPECT_EQ(w->granulesSpawned(), 20u);
-  w->addEmitter(EmitterSettings{.center = {0, 0.8f, 0}, .halfExtentX = 0.1f, .halfExtentZ = 0.1f,
-                                .rate = 500.0f, .seed = 2});
+  w->addEmitter(EmitterSettings{
+      .center = {0, 0.8f, 0}, .halfExtentX = 0.1f, .halfExtentZ = 0.1f, .rate = 500.0f, .seed = 2});
   StepReport report = w->step(0.1f);
   EXPECT_EQ(w->bodyCount(), 30u);
   EXPECT_TRUE(report.emitterBlocked);

@@ -31,8 +31,9 @@ BodyId TestWorld::addGranule(Vec3 position, Quat orientation, Vec3 velocity, Vec
 
 BodyId TestWorld::addSphere(Vec3 position, Vec3 velocity) {
   const auto& s = m_world.settings();
-  return m_world.addBody(makeParticleTemplate({{0.0f, 0.0f, 0.0f}}, s.particleDiameter, s.material.density),
-                         {position, {}, velocity, {}, Motion::Dynamic});
+  return m_world.addBody(
+      makeParticleTemplate({{0.0f, 0.0f, 0.0f}}, s.particleDiameter, s.material.density),
+      {position, {}, velocity, {}, Motion::Dynamic});
 }
 
 void TestWorld::simulate(double seconds) {

@@ -73,19 +73,30 @@ TEST_P(BadSettings, AreRefusedWithFieldValueAndLimit) {
 INSTANTIATE_TEST_SUITE_P(
     Settings, BadSettings,
     ::testing::Values(
-        BadSetting{"particleDiameter", [](WorldSettings& s) { s.particleDiameter = std::nanf(""); }, "nan", "> 0"},
-        BadSetting{"particleDiameter", [](WorldSettings& s) { s.particleDiameter = -0.01f; }, "-0.01", "> 0"},
-        BadSetting{"material.density", [](WorldSettings& s) { s.material.density = 0.0f; }, "0", "> 0"},
-        BadSetting{"material.youngsModulus", [](WorldSettings& s) { s.material.youngsModulus = -5.0f; }, "-5", "> 0"},
+        BadSetting{"particleDiameter", [](WorldSettings& s) { s.particleDiameter = std::nanf(""); },
+                   "nan", "> 0"},
+        BadSetting{"particleDiameter", [](WorldSettings& s) { s.particleDiameter = -0.01f; },
+                   "-0.01", "> 0"},
+        BadSetting{"material.density", [](WorldSettings& s) { s.material.density = 0.0f; }, "0",
+                   "> 0"},
         BadSetting{"material.youngsModulus",
-                   [](WorldSettings& s) { s.material.youngsModulus = std::numeric_limits<float>::infinity(); },
+                   [](WorldSettings& s) { s.material.youngsModulus = -5.0f; }, "-5", "> 0"},
+        BadSetting{"material.youngsModulus",
+                   [](WorldSettings& s) {
+                     s.material.youngsModulus = std::numeric_limits<float>::infinity();
+                   },
                    "inf", "> 0"},
-        BadSetting{"material.friction", [](WorldSettings& s) { s.material.friction = -0.1f; }, "-0.1", ">= 0"},
-        BadSetting{"material.restitution", [](WorldSettings& s) { s.material.restitution = 0.0f; }, "0", "(0, 1]"},
-        BadSetting{"material.restitution", [](WorldSettings& s) { s.material.restitution = 1.5f; }, "1.5", "(0, 1]"},
-        BadSetting{"material.poissonRatio", [](WorldSettings& s) { s.material.poissonRatio = 0.5f; }, "0.5", "[0, 0.5)"},
+        BadSetting{"material.friction", [](WorldSettings& s) { s.material.friction = -0.1f; },
+                   "-0.1", ">= 0"},
+        BadSetting{"material.restitution", [](WorldSettings& s) { s.material.restitution = 0.0f; },
+                   "0", "(0, 1]"},
+        BadSetting{"material.restitution", [](WorldSettings& s) { s.material.restitution = 1.5f; },
+                   "1.5", "(0, 1]"},
+        BadSetting{"material.poissonRatio",
+                   [](WorldSettings& s) { s.material.poissonRatio = 0.5f; }, "0.5", "[0, 0.5)"},
         BadSetting{"maxSpeed", [](WorldSettings& s) { s.maxSpeed = 0.0f; }, "0", "> 0"},
-        BadSetting{"stepsPerContact", [](WorldSettings& s) { s.stepsPerContact = 4.0f; }, "4", ">= 8"},
+        BadSetting{"stepsPerContact", [](WorldSettings& s) { s.stepsPerContact = 4.0f; }, "4",
+                   ">= 8"},
         BadSetting{"timeStep", [](WorldSettings& s) { s.timeStep = 1e-3f; }, "0.001", "t_n / 8"}));
 
 }  // namespace

@@ -8,7 +8,9 @@
 namespace sandphys {
 namespace {
 
-double length(Vec3 v) { return std::sqrt(double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z); }
+double length(Vec3 v) {
+  return std::sqrt(double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z);
+}
 
 TEST(ParticleTemplate, TetrahedronHasTouchingParticlesAndIsotropicInertia) {
   const float d = 0.02f, density = 2600.0f;

@@ -26,8 +26,11 @@ TEST(ShaderLibrary, MapsDriverMessagesToFileAndLine) {
   // The file is known from the line range even when the driver reports source string 0.
   std::string mapped = ShaderLibrary::mapLog("0:100042(7): error: `foo' undeclared\nplain line\n",
                                              {"sim/a.comp", "sim/common/b.glsl"});
-  EXPECT_NE(mapped.find("shaders/sim/common/b.glsl:42:7: error: `foo' undeclared"), std::string::npos) << mapped;
-  EXPECT_NE(ShaderLibrary::mapLog("0:12(3): x", {"sim/a.comp"}).find("shaders/sim/a.comp:12:3: x"), std::string::npos);
+  EXPECT_NE(mapped.find("shaders/sim/common/b.glsl:42:7: error: `foo' undeclared"),
+            std::string::npos)
+      << mapped;
+  EXPECT_NE(ShaderLibrary::mapLog("0:12(3): x", {"sim/a.comp"}).find("shaders/sim/a.comp:12:3: x"),
+            std::string::npos);
   EXPECT_NE(mapped.find("plain line"), std::string::npos);
 }
 

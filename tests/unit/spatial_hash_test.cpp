@@ -26,7 +26,8 @@ TEST(SpatialHash, NeighbourhoodsNeverShareABucket) {
           for (int dz = -1; dz <= 1; ++dz)
             for (int dy = -1; dy <= 1; ++dy)
               for (int dx = -1; dx <= 1; ++dx) seen.insert(bucket(t, cx + dx, cy + dy, cz + dz));
-          ASSERT_EQ(seen.size(), 27u) << "table " << t.size << " at cell " << cx << "," << cy << "," << cz;
+          ASSERT_EQ(seen.size(), 27u)
+              << "table " << t.size << " at cell " << cx << "," << cy << "," << cz;
         }
       }
     }

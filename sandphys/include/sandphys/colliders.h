@@ -37,9 +37,9 @@ struct Cylinder {
 /// axis to height outletCenter.y + height. The outlet is an open hole.
 struct Funnel {
   Vec3 outletCenter{};
-  float outletRadius = 0.1f;  ///< m, >= 0
+  float outletRadius = 0.1f;    ///< m, >= 0
   float halfAngle = 0.785398f;  ///< rad, in (0, π/2)
-  float height = 1.0f;        ///< m, > 0
+  float height = 1.0f;          ///< m, > 0
   SurfaceMaterial material{};
 };
 

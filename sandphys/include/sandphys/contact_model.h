@@ -31,8 +31,7 @@ double hertzDampingFactor(double restitution);
 
 /// Duration of a Hertz impact with damping factor c between bodies of effective mass m* (kg)
 /// and stiffness k_n (N/m^{3/2}) at approach speed v (m/s): t_n = τ(c) · (m*² / (k_n² v))^{1/5}.
-double hertzContactTime(double effectiveMass, double stiffness, double dampingFactor,
-                        double speed);
+double hertzContactTime(double effectiveMass, double stiffness, double dampingFactor, double speed);
 
 /// Static Hertz overlap (m) under a normal load (N): ξ = (load / k_n)^{2/3}.
 double hertzRestingOverlap(double load, double stiffness);

@@ -43,8 +43,8 @@ struct ContactRecord {
 
 /// Totals over the world, reduced on the GPU (World::readStats, a sync point).
 struct WorldStats {
-  std::uint32_t bodies = 0;          ///< body slots in use (alive or not)
-  std::uint32_t particles = 0;       ///< particle slots in use
+  std::uint32_t bodies = 0;     ///< body slots in use (alive or not)
+  std::uint32_t particles = 0;  ///< particle slots in use
   std::uint32_t granulesSpawned = 0;
   std::uint32_t granulesAlive = 0;
   std::uint32_t granulesKilled = 0;  ///< removed by sinks

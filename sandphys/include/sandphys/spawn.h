@@ -12,16 +12,16 @@ inline constexpr float kDefaultGranuleSpacing = 2.4f;
 
 /// A block of granules on a lattice, each with a small random offset and a random orientation.
 struct GranuleBlock {
-  Vec3 center{};                     ///< centre of the block, m
-  std::uint32_t countX = 8;          ///< granules along x; > 0
-  std::uint32_t countY = 8;          ///< granules along y; > 0
-  std::uint32_t countZ = 8;          ///< granules along z; > 0
+  Vec3 center{};             ///< centre of the block, m
+  std::uint32_t countX = 8;  ///< granules along x; > 0
+  std::uint32_t countY = 8;  ///< granules along y; > 0
+  std::uint32_t countZ = 8;  ///< granules along z; > 0
   /// Lattice spacing, m; 0 means kDefaultGranuleSpacing particle diameters. Must leave room for
   /// any orientation: spacing · (1 - 2 jitter) >= 2.225 d (else InvalidArgument).
   float spacing = 0.0f;
-  float jitter = 0.03f;              ///< random offset per axis, in units of spacing; [0, 0.25]
-  Vec3 velocity{};                   ///< initial velocity of every granule, m/s
-  std::uint64_t seed = 1;            ///< same seed, same block
+  float jitter = 0.03f;    ///< random offset per axis, in units of spacing; [0, 0.25]
+  Vec3 velocity{};         ///< initial velocity of every granule, m/s
+  std::uint64_t seed = 1;  ///< same seed, same block
 };
 
 /// Adds granules over time from a horizontal rectangle, moving with `velocity` (which should

@@ -79,7 +79,8 @@ double hertzDampingFactor(double restitution) {
   return c;
 }
 
-double hertzContactTime(double effectiveMass, double stiffness, double dampingFactor, double speed) {
+double hertzContactTime(double effectiveMass, double stiffness, double dampingFactor,
+                        double speed) {
   double tau = integrateImpact(dampingFactor).duration;
   return tau * std::pow(effectiveMass * effectiveMass / (stiffness * stiffness * speed), 0.2);
 }
@@ -109,7 +110,8 @@ ContactModel ContactModel::fromSettings(const WorldSettings& s) {
   requirePositive("WorldSettings.maxSpeed", s.maxSpeed, "(m/s)");
   require(std::isfinite(s.stepsPerContact) && s.stepsPerContact >= kMinStepsPerContact,
           "WorldSettings.stepsPerContact", s.stepsPerContact,
-          "must be >= " + detail::formatValue(kMinStepsPerContact) + " (substeps per contact time t_n)");
+          "must be >= " + detail::formatValue(kMinStepsPerContact) +
+              " (substeps per contact time t_n)");
   requireNonNegative("WorldSettings.timeStep", s.timeStep, "(s)");
 
   ContactModel m;
@@ -127,16 +129,18 @@ ContactModel ContactModel::fromSettings(const WorldSettings& s) {
   m.maxOverlap = static_cast<float>(0.1 * d);
 
   // t_n: the shorter of a grain-grain (m* = m/2) and a grain-wall (m* = m) impact at maxSpeed.
-  const double tGrain = hertzContactTime(0.5 * mass, m.stiffnessGrain, m.dampingFactorGrain, s.maxSpeed);
+  const double tGrain =
+      hertzContactTime(0.5 * mass, m.stiffnessGrain, m.dampingFactorGrain, s.maxSpeed);
   const double tWall = hertzContactTime(mass, m.stiffnessWall, m.dampingFactorGrain, s.maxSpeed);
   m.contactTime = static_cast<float>(std::min(tGrain, tWall));
   const double limit = m.contactTime / kMinStepsPerContact;
   if (s.timeStep > 0.0f) {
     require(s.timeStep <= limit, "WorldSettings.timeStep", s.timeStep,
             "must be <= t_n / " + detail::formatValue(kMinStepsPerContact) + " = " +
-                detail::formatValue(limit) + " s for this material (t_n = " +
-                detail::formatValue(m.contactTime) + " s at maxSpeed " +
-                detail::formatValue(s.maxSpeed) + " m/s); lower it, or lower youngsModulus or maxSpeed");
+                detail::formatValue(limit) +
+                " s for this material (t_n = " + detail::formatValue(m.contactTime) +
+                " s at maxSpeed " + detail::formatValue(s.maxSpeed) +
+                " m/s); lower it, or lower youngsModulus or maxSpeed");
     m.timeStep = s.timeStep;
   } else {
     m.timeStep = static_cast<float>(m.contactTime / s.stepsPerContact);

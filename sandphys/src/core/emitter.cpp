@@ -14,9 +14,11 @@ EmitterState::EmitterState(const EmitterSettings& s, float particleDiameter)
   requirePositive("EmitterSettings.halfExtentX", s.halfExtentX, "(m)");
   requirePositive("EmitterSettings.halfExtentZ", s.halfExtentZ, "(m)");
   requirePositive("EmitterSettings.rate", s.rate, "(granules/s)");
-  const double speed = std::sqrt(double(s.velocity.x) * s.velocity.x + double(s.velocity.y) * s.velocity.y +
-                                 double(s.velocity.z) * s.velocity.z);
-  requirePositive("EmitterSettings.velocity (speed)", speed, "(m/s): emitted granules must move away");
+  const double speed =
+      std::sqrt(double(s.velocity.x) * s.velocity.x + double(s.velocity.y) * s.velocity.y +
+                double(s.velocity.z) * s.velocity.z);
+  requirePositive("EmitterSettings.velocity (speed)", speed,
+                  "(m/s): emitted granules must move away");
 
   const double spacing = kDefaultGranuleSpacing * particleDiameter;
   const int nx = 1 + int(std::floor(2.0 * s.halfExtentX / spacing));
@@ -32,8 +34,9 @@ EmitterState::EmitterState(const EmitterSettings& s, float particleDiameter)
   m_layerAge = m_layerInterval;
   m_nextSlot = m_slots.size();
   require(s.rate <= maxRate(), "EmitterSettings.rate", s.rate,
-          "must be <= " + formatValue(std::floor(maxRate())) + " granules/s for this rectangle and speed (" +
-              std::to_string(m_slots.size()) + " lattice slots every " + formatValue(m_layerInterval) +
+          "must be <= " + formatValue(std::floor(maxRate())) +
+              " granules/s for this rectangle and speed (" + std::to_string(m_slots.size()) +
+              " lattice slots every " + formatValue(m_layerInterval) +
               " s); enlarge the rectangle or the speed");
 }
 

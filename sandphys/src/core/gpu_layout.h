@@ -39,8 +39,8 @@ enum Binding : unsigned {
 
 inline constexpr unsigned kSimParamsBinding = 0;
 inline constexpr unsigned kWorkgroupSize = 64;
-inline constexpr unsigned kScanBlock = 1024;        // elements per scan workgroup (256 x 4)
-inline constexpr unsigned kStatsWorkgroups = 32;    // fixed: the reduction order never changes
+inline constexpr unsigned kScanBlock = 1024;      // elements per scan workgroup (256 x 4)
+inline constexpr unsigned kStatsWorkgroups = 32;  // fixed: the reduction order never changes
 inline constexpr std::uint32_t kCounterKilled = 0;
 inline constexpr std::uint32_t kCounterCount = 4;
 

@@ -34,13 +34,15 @@ std::vector<GranuleSpawn> layoutGranuleBlock(const GranuleBlock& block, float pa
   requireFinite("GranuleBlock.velocity.x", block.velocity.x);
   requireFinite("GranuleBlock.velocity.y", block.velocity.y);
   requireFinite("GranuleBlock.velocity.z", block.velocity.z);
-  const double spacing = block.spacing > 0.0f ? block.spacing : kDefaultGranuleSpacing * particleDiameter;
+  const double spacing =
+      block.spacing > 0.0f ? block.spacing : kDefaultGranuleSpacing * particleDiameter;
   // A granule's particles reach d·√6/4 + d/2 = 1.1124 d from its centre; in random orientations
   // two granules closer than twice that may start overlapping.
   const double reach = std::sqrt(6.0) / 4.0 + 0.5;
-  require(spacing * (1.0 - 2.0 * block.jitter) >= 2.0 * reach * particleDiameter, "GranuleBlock.spacing",
-          spacing, "less twice the jitter must be >= 2.225 particle diameters (" +
-                       formatValue(2.0 * reach * particleDiameter) + " m), or granules start overlapping");
+  require(spacing * (1.0 - 2.0 * block.jitter) >= 2.0 * reach * particleDiameter,
+          "GranuleBlock.spacing", spacing,
+          "less twice the jitter must be >= 2.225 particle diameters (" +
+              formatValue(2.0 * reach * particleDiameter) + " m), or granules start overlapping");
 
   std::mt19937_64 rng(block.seed);
   std::vector<GranuleSpawn> spawns;
@@ -50,10 +52,12 @@ std::vector<GranuleSpawn> layoutGranuleBlock(const GranuleBlock& block, float pa
     for (std::uint32_t z = 0; z < block.countZ; ++z) {
       for (std::uint32_t x = 0; x < block.countX; ++x) {
         GranuleSpawn s;
-        s.position = {
-            float(block.center.x + (x - 0.5 * (block.countX - 1)) * spacing + uniform(rng, -jitter, jitter)),
-            float(block.center.y + (y - 0.5 * (block.countY - 1)) * spacing + uniform(rng, -jitter, jitter)),
-            float(block.center.z + (z - 0.5 * (block.countZ - 1)) * spacing + uniform(rng, -jitter, jitter))};
+        s.position = {float(block.center.x + (x - 0.5 * (block.countX - 1)) * spacing +
+                            uniform(rng, -jitter, jitter)),
+                      float(block.center.y + (y - 0.5 * (block.countY - 1)) * spacing +
+                            uniform(rng, -jitter, jitter)),
+                      float(block.center.z + (z - 0.5 * (block.countZ - 1)) * spacing +
+                            uniform(rng, -jitter, jitter))};
         s.orientation = randomOrientation(rng);
         s.velocity = block.velocity;
         spawns.push_back(s);

@@ -22,8 +22,8 @@ ParticleTemplate makeParticleTemplate(const std::vector<Vec3>& centres, float pa
   for (std::size_t i = 0; i < centres.size(); ++i) {
     const Vec3& c = centres[i];
     detail::require(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z),
-                    "particle centre " + std::to_string(i), std::isfinite(c.x) ? (std::isfinite(c.y) ? c.z : c.y) : c.x,
-                    "must be finite");
+                    "particle centre " + std::to_string(i),
+                    std::isfinite(c.x) ? (std::isfinite(c.y) ? c.z : c.y) : c.x, "must be finite");
     com += Eigen::Vector3d(c.x, c.y, c.z);
   }
   com /= double(centres.size());
@@ -36,7 +36,7 @@ ParticleTemplate makeParticleTemplate(const std::vector<Vec3>& centres, float pa
                              (p.squaredNorm() * Eigen::Matrix3d::Identity() - p * p.transpose()));
   }
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(inertia);
-  Eigen::Matrix3d axes = solver.eigenvectors();  // columns: principal axes in the given frame
+  Eigen::Matrix3d axes = solver.eigenvectors();       // columns: principal axes in the given frame
   if (axes.determinant() < 0.0) axes.col(2) *= -1.0;  // keep it a rotation
   // An isotropic body (the tetrahedral granule) is principal in any frame: keep the given one so
   // that its orientation needs no conversion on read-back.

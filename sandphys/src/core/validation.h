@@ -27,11 +27,13 @@ inline void require(bool ok, const std::string& field, double value, const std::
 }
 
 inline void requirePositive(const std::string& field, double value, const char* unit) {
-  require(std::isfinite(value) && value > 0.0, field, value, std::string("must be finite and > 0 ") + unit);
+  require(std::isfinite(value) && value > 0.0, field, value,
+          std::string("must be finite and > 0 ") + unit);
 }
 
 inline void requireNonNegative(const std::string& field, double value, const char* unit) {
-  require(std::isfinite(value) && value >= 0.0, field, value, std::string("must be finite and >= 0 ") + unit);
+  require(std::isfinite(value) && value >= 0.0, field, value,
+          std::string("must be finite and >= 0 ") + unit);
 }
 
 inline void requireFinite(const std::string& field, double value) {

@@ -20,16 +20,20 @@ namespace {
 // Mesa (16 bytes per particle attribute) and the 2^31 dispatch range.
 constexpr std::uint32_t kMaxParticles = 1u << 23;
 
-GpuVec4 toGpu(Vec3 v, float w) { return {v.x, v.y, v.z, w}; }
+GpuVec4 toGpu(Vec3 v, float w) {
+  return {v.x, v.y, v.z, w};
+}
 
 // Quaternion product a · b, both (w, x, y, z).
 Quat multiply(Quat a, Quat b) {
-  return {a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z, a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
-          a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x, a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w};
+  return {
+      a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z, a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
+      a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x, a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w};
 }
 
 Quat normalised(Quat q, const std::string& field) {
-  double n = std::sqrt(double(q.w) * q.w + double(q.x) * q.x + double(q.y) * q.y + double(q.z) * q.z);
+  double n =
+      std::sqrt(double(q.w) * q.w + double(q.x) * q.x + double(q.y) * q.y + double(q.z) * q.z);
   require(std::isfinite(n) && n > 1e-6, field, n, "must be a non-zero, finite quaternion");
   return {float(q.w / n), float(q.x / n), float(q.y / n), float(q.z / n)};
 }
@@ -58,10 +62,11 @@ GpuCollider toGpu(const Plane& p) {
                        double(p.normal.z) * p.normal.z);
   require(n > 1e-12, "Plane.normal (length)", n, "must be non-zero");
   // dot(n/|n|, x) < offset/|n| describes the same half-space.
-  return {{float(p.normal.x / n), float(p.normal.y / n), float(p.normal.z / n), float(p.offset / n)},
-          {},
-          {},
-          surfaceParams(kColliderPlane, p.material)};
+  return {
+      {float(p.normal.x / n), float(p.normal.y / n), float(p.normal.z / n), float(p.offset / n)},
+      {},
+      {},
+      surfaceParams(kColliderPlane, p.material)};
 }
 
 GpuCollider toGpu(const Box& b) {
@@ -71,7 +76,9 @@ GpuCollider toGpu(const Box& b) {
   requirePositive("Box.halfExtents.z", b.halfExtents.z, "(m)");
   requireSurface("Box", b.material);
   Quat q = normalised(b.orientation, "Box.orientation");
-  return {toGpu(b.center, b.inside ? 1.0f : 0.0f), toGpu(b.halfExtents, 0.0f), {q.x, q.y, q.z, q.w},
+  return {toGpu(b.center, b.inside ? 1.0f : 0.0f),
+          toGpu(b.halfExtents, 0.0f),
+          {q.x, q.y, q.z, q.w},
           surfaceParams(kColliderBox, b.material)};
 }
 
@@ -80,19 +87,24 @@ GpuCollider toGpu(const Cylinder& c) {
   requirePositive("Cylinder.radius", c.radius, "(m)");
   requirePositive("Cylinder.height", c.height, "(m)");
   requireSurface("Cylinder", c.material);
-  return {toGpu(c.base, 0.0f), {c.radius, 0.0f, c.radius, c.height}, {},
+  return {toGpu(c.base, 0.0f),
+          {c.radius, 0.0f, c.radius, c.height},
+          {},
           surfaceParams(kColliderRevolution, c.material)};
 }
 
 GpuCollider toGpu(const Funnel& f) {
   requireFiniteVec("Funnel.outletCenter", f.outletCenter);
   requireNonNegative("Funnel.outletRadius", f.outletRadius, "(m)");
-  require(std::isfinite(f.halfAngle) && f.halfAngle > 0.0f && f.halfAngle < 0.5f * std::numbers::pi_v<float>,
+  require(std::isfinite(f.halfAngle) && f.halfAngle > 0.0f &&
+              f.halfAngle < 0.5f * std::numbers::pi_v<float>,
           "Funnel.halfAngle", f.halfAngle, "must be in (0, pi/2) rad");
   requirePositive("Funnel.height", f.height, "(m)");
   requireSurface("Funnel", f.material);
   float top = f.outletRadius + f.height * std::tan(f.halfAngle);
-  return {toGpu(f.outletCenter, 0.0f), {f.outletRadius, 0.0f, top, f.height}, {},
+  return {toGpu(f.outletCenter, 0.0f),
+          {f.outletRadius, 0.0f, top, f.height},
+          {},
           surfaceParams(kColliderRevolution, f.material)};
 }
 
@@ -103,9 +115,11 @@ World::Impl::Impl(const GpuContext& context, const WorldSettings& s) : gpu(&cont
   require(settings.maxSubstepsPerFrame > 0, "WorldSettings.maxSubstepsPerFrame",
           settings.maxSubstepsPerFrame, "must be > 0");
   require(settings.maxBodies > 0, "WorldSettings.maxBodies", settings.maxBodies, "must be > 0");
-  require(settings.maxColliders > 0, "WorldSettings.maxColliders", settings.maxColliders, "must be > 0");
+  require(settings.maxColliders > 0, "WorldSettings.maxColliders", settings.maxColliders,
+          "must be > 0");
   bodyCapacity = settings.maxBodies;
-  std::uint64_t particles = settings.maxParticles ? settings.maxParticles : 4ull * settings.maxBodies;
+  std::uint64_t particles =
+      settings.maxParticles ? settings.maxParticles : 4ull * settings.maxBodies;
   require(particles <= kMaxParticles, "WorldSettings.maxParticles", double(particles),
           "must be <= " + std::to_string(kMaxParticles) + " (GPU buffer limit)");
   particleCapacity = std::uint32_t(particles);
@@ -124,19 +138,20 @@ World::Impl::~Impl() {
   kernels.release();
 }
 
-std::uint32_t World::Impl::addBodies(const ParticleTemplate& shape, const std::vector<BodyDesc>& descs,
-                                     bool isGranule) {
+std::uint32_t World::Impl::addBodies(const ParticleTemplate& shape,
+                                     const std::vector<BodyDesc>& descs, bool isGranule) {
   const std::uint64_t n = descs.size();
   const std::uint64_t perBody = shape.offsets.size();
   if (bodyCount + n > bodyCapacity) {
-    throw CapacityExceeded("adding " + std::to_string(n) + " bodies to " + std::to_string(bodyCount) +
-                           " exceeds WorldSettings.maxBodies = " + std::to_string(bodyCapacity) +
-                           " (grow it with World::reserve)");
+    throw CapacityExceeded("adding " + std::to_string(n) + " bodies to " +
+                           std::to_string(bodyCount) + " exceeds WorldSettings.maxBodies = " +
+                           std::to_string(bodyCapacity) + " (grow it with World::reserve)");
   }
   if (particleCount + n * perBody > particleCapacity) {
-    throw CapacityExceeded("adding " + std::to_string(n * perBody) + " particles to " +
-                           std::to_string(particleCount) + " exceeds WorldSettings.maxParticles = " +
-                           std::to_string(particleCapacity) + " (grow it with World::reserve)");
+    throw CapacityExceeded(
+        "adding " + std::to_string(n * perBody) + " particles to " + std::to_string(particleCount) +
+        " exceeds WorldSettings.maxParticles = " + std::to_string(particleCapacity) +
+        " (grow it with World::reserve)");
   }
   gpu->makeCurrent();
   const std::uint32_t firstBody = bodyCount;
@@ -149,8 +164,8 @@ std::uint32_t World::Impl::addBodies(const ParticleTemplate& shape, const std::v
   for (std::uint64_t i = 0; i < n; ++i) {
     const Motion motion = descs[i].motion;
     const bool dynamic = motion == Motion::Dynamic;
-    const std::uint32_t flags = kBodyAlive | (isGranule ? kBodyGranule : 0u) |
-                                (std::uint32_t(motion) << kBodyMotionShift);
+    const std::uint32_t flags =
+        kBodyAlive | (isGranule ? kBodyGranule : 0u) | (std::uint32_t(motion) << kBodyMotionShift);
     info[i] = {std::uint32_t(firstParticle + i * perBody), std::uint32_t(perBody), flags, 0u};
     inertia[i] = toGpu(shape.principalInertia, shape.mass);
     const float particleInvMass = dynamic ? float(perBody) / shape.mass : 0.0f;
@@ -192,7 +207,8 @@ void World::Impl::uploadBodyStates(std::uint32_t first, const std::vector<BodyDe
   buffers[kBodyAngularVelocity].upload(first * 16ull, n * 16, spin.data());
 }
 
-ColliderId World::Impl::putCollider(std::optional<std::uint32_t> slot, const GpuCollider& collider) {
+ColliderId World::Impl::putCollider(std::optional<std::uint32_t> slot,
+                                    const GpuCollider& collider) {
   gpu->makeCurrent();
   std::uint32_t index = slot ? *slot : std::uint32_t(colliders.size());
   if (!slot) {
@@ -202,7 +218,8 @@ ColliderId World::Impl::putCollider(std::optional<std::uint32_t> slot, const Gpu
     }
     colliders.push_back(collider);
   } else {
-    if (index >= colliders.size()) throw InvalidId("ColliderId " + std::to_string(index) + " does not exist");
+    if (index >= colliders.size())
+      throw InvalidId("ColliderId " + std::to_string(index) + " does not exist");
     colliders[index] = collider;
   }
   std::memcpy(&colliders[index].material.w, &index, sizeof index);
@@ -213,8 +230,8 @@ ColliderId World::Impl::putCollider(std::optional<std::uint32_t> slot, const Gpu
 void World::Impl::requireBody(BodyId id) const {
   if (!id.isValid() || id.index >= bodyCount || generations[id.index] != id.generation) {
     throw InvalidId("BodyId {index " + std::to_string(id.index) + ", generation " +
-                    std::to_string(id.generation) + "} is invalid or stale (bodies: " +
-                    std::to_string(bodyCount) + ")");
+                    std::to_string(id.generation) +
+                    "} is invalid or stale (bodies: " + std::to_string(bodyCount) + ")");
   }
 }
 
@@ -226,19 +243,43 @@ World::~World() = default;
 World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
 
-const WorldSettings& World::settings() const { return m_impl->settings; }
-const ContactModel& World::contactModel() const { return m_impl->model; }
-float World::timeStep() const { return m_impl->model.timeStep; }
-World::Impl& World::impl() { return *m_impl; }
+const WorldSettings& World::settings() const {
+  return m_impl->settings;
+}
+const ContactModel& World::contactModel() const {
+  return m_impl->model;
+}
+float World::timeStep() const {
+  return m_impl->model.timeStep;
+}
+World::Impl& World::impl() {
+  return *m_impl;
+}
 
-ColliderId World::addCollider(const Plane& plane) { return m_impl->putCollider({}, toGpu(plane)); }
-ColliderId World::addCollider(const Box& box) { return m_impl->putCollider({}, toGpu(box)); }
-ColliderId World::addCollider(const Cylinder& c) { return m_impl->putCollider({}, toGpu(c)); }
-ColliderId World::addCollider(const Funnel& f) { return m_impl->putCollider({}, toGpu(f)); }
-void World::setCollider(ColliderId id, const Plane& p) { m_impl->putCollider(id.index, toGpu(p)); }
-void World::setCollider(ColliderId id, const Box& b) { m_impl->putCollider(id.index, toGpu(b)); }
-void World::setCollider(ColliderId id, const Cylinder& c) { m_impl->putCollider(id.index, toGpu(c)); }
-void World::setCollider(ColliderId id, const Funnel& f) { m_impl->putCollider(id.index, toGpu(f)); }
+ColliderId World::addCollider(const Plane& plane) {
+  return m_impl->putCollider({}, toGpu(plane));
+}
+ColliderId World::addCollider(const Box& box) {
+  return m_impl->putCollider({}, toGpu(box));
+}
+ColliderId World::addCollider(const Cylinder& c) {
+  return m_impl->putCollider({}, toGpu(c));
+}
+ColliderId World::addCollider(const Funnel& f) {
+  return m_impl->putCollider({}, toGpu(f));
+}
+void World::setCollider(ColliderId id, const Plane& p) {
+  m_impl->putCollider(id.index, toGpu(p));
+}
+void World::setCollider(ColliderId id, const Box& b) {
+  m_impl->putCollider(id.index, toGpu(b));
+}
+void World::setCollider(ColliderId id, const Cylinder& c) {
+  m_impl->putCollider(id.index, toGpu(c));
+}
+void World::setCollider(ColliderId id, const Funnel& f) {
+  m_impl->putCollider(id.index, toGpu(f));
+}
 
 SinkId World::addSink(const Sink& sink) {
   requireFiniteVec("Sink.min", sink.min);
@@ -287,7 +328,8 @@ BodyId World::addRoughFloor(const RoughFloor& floor) {
   shape.mass = 1.0f;
   shape.principalInertia = {1.0f, 1.0f, 1.0f};
   shape.boundingRadius = float(std::sqrt(hx * hx + hz * hz));
-  std::uint32_t index = m_impl->addBodies(shape, {BodyDesc{floor.center, {}, {}, {}, Motion::Static}}, false);
+  std::uint32_t index =
+      m_impl->addBodies(shape, {BodyDesc{floor.center, {}, {}, {}, Motion::Static}}, false);
   return BodyId{index, m_impl->generations[index]};
 }
 
@@ -310,7 +352,8 @@ BodyRange World::addGranules(const GranuleBlock& block) {
   auto spawns = layoutGranuleBlock(block, m_impl->settings.particleDiameter);
   std::vector<BodyDesc> descs;
   descs.reserve(spawns.size());
-  for (const auto& s : spawns) descs.push_back({s.position, s.orientation, s.velocity, {}, Motion::Dynamic});
+  for (const auto& s : spawns)
+    descs.push_back({s.position, s.orientation, s.velocity, {}, Motion::Dynamic});
   std::uint32_t first = m_impl->addBodies(m_impl->granule, descs, true);
   return {first, std::uint32_t(descs.size())};
 }
@@ -412,13 +455,29 @@ void World::substep(std::uint32_t count) {
   if (w.profiler.enabled()) w.profiler.collect();
 }
 
-std::uint32_t World::bodyCount() const { return m_impl->bodyCount; }
-std::uint32_t World::particleCount() const { return m_impl->particleCount; }
-std::uint32_t World::granulesSpawned() const { return m_impl->granulesSpawned; }
-std::uint32_t World::bodyCapacity() const { return m_impl->bodyCapacity; }
-std::uint32_t World::particleCapacity() const { return m_impl->particleCapacity; }
-std::uint64_t World::stepCount() const { return m_impl->steps; }
-double World::simulatedTime() const { return m_impl->simTime; }
-std::uint64_t World::gpuMemoryBytes() const { return m_impl->buffers.bytes(); }
+std::uint32_t World::bodyCount() const {
+  return m_impl->bodyCount;
+}
+std::uint32_t World::particleCount() const {
+  return m_impl->particleCount;
+}
+std::uint32_t World::granulesSpawned() const {
+  return m_impl->granulesSpawned;
+}
+std::uint32_t World::bodyCapacity() const {
+  return m_impl->bodyCapacity;
+}
+std::uint32_t World::particleCapacity() const {
+  return m_impl->particleCapacity;
+}
+std::uint64_t World::stepCount() const {
+  return m_impl->steps;
+}
+double World::simulatedTime() const {
+  return m_impl->simTime;
+}
+std::uint64_t World::gpuMemoryBytes() const {
+  return m_impl->buffers.bytes();
+}
 
 }  // namespace sandphys

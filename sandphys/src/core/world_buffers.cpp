@@ -63,7 +63,7 @@ HashTable HashTable::forParticles(std::uint32_t particles) {
         }
     return true;
   };
-  for (std::uint32_t my = side + 1; ; my += 2) {
+  for (std::uint32_t my = side + 1;; my += 2) {
     std::uint32_t mz = my * side + 3;
     if (distinct(my, mz)) {
       t.multiplierY = my;
@@ -81,13 +81,31 @@ void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::
     std::size_t count = 1;
     std::size_t keep = 0;
     switch (spec.sizedBy) {
-      case SizedBy::Bodies: count = bodies; keep = bodiesInUse; break;
-      case SizedBy::Particles: count = particles; keep = particlesInUse; break;
-      case SizedBy::Table: count = tableSize; break;
-      case SizedBy::TablePlusOne: count = tableSize + 1u; break;
-      case SizedBy::ScanBlocks: count = (tableSize + kScanBlock - 1) / kScanBlock; break;
-      case SizedBy::Colliders: count = colliders; keep = colliders; break;
-      case SizedBy::Fixed: count = 1; keep = 1; break;
+      case SizedBy::Bodies:
+        count = bodies;
+        keep = bodiesInUse;
+        break;
+      case SizedBy::Particles:
+        count = particles;
+        keep = particlesInUse;
+        break;
+      case SizedBy::Table:
+        count = tableSize;
+        break;
+      case SizedBy::TablePlusOne:
+        count = tableSize + 1u;
+        break;
+      case SizedBy::ScanBlocks:
+        count = (tableSize + kScanBlock - 1) / kScanBlock;
+        break;
+      case SizedBy::Colliders:
+        count = colliders;
+        keep = colliders;
+        break;
+      case SizedBy::Fixed:
+        count = 1;
+        keep = 1;
+        break;
     }
     const std::size_t bytes = count * spec.elementBytes;
     gl::Buffer& buffer = storage[b];
@@ -103,12 +121,23 @@ void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::
     }
   }
   if (params.id() == 0) params = gl::Buffer(sizeof(SimParams), "SimParams");
+  // The texture views follow the buffers (a grown buffer is a new buffer object).
+  if (textures[0] == 0)
+    glCreateTextures(GL_TEXTURE_BUFFER, GLsizei(textures.size()), textures.data());
+  glTextureBuffer(textures[0], GL_RGBA32F, storage[kSortedPosition].id());
+  glTextureBuffer(textures[1], GL_RGBA32F, storage[kSortedVelocity].id());
+  glTextureBuffer(textures[2], GL_R32UI, storage[kCellStart].id());
   gl::check("allocating world buffers");
+}
+
+WorldBuffers::~WorldBuffers() {
+  if (textures[0]) glDeleteTextures(GLsizei(textures.size()), textures.data());
 }
 
 void WorldBuffers::bindAll() const {
   for (unsigned b = 0; b < kBindingCount; ++b) storage[b].bindBase(GL_SHADER_STORAGE_BUFFER, b);
   params.bindBase(GL_UNIFORM_BUFFER, kSimParamsBinding);
+  for (GLuint unit = 0; unit < textures.size(); ++unit) glBindTextureUnit(unit, textures[unit]);
 }
 
 std::uint64_t WorldBuffers::bytes() const {

@@ -22,6 +22,13 @@ namespace detail {
 struct WorldBuffers {
   std::array<gl::Buffer, kBindingCount> storage;
   gl::Buffer params;  // uniform SimParams
+  // Buffer-texture views (layout.glsl, *_TEXTURE) of sortedPosition, sortedVelocity, cellStart.
+  std::array<GLuint, 3> textures{};
+
+  WorldBuffers() = default;
+  ~WorldBuffers();
+  WorldBuffers(const WorldBuffers&) = delete;
+  WorldBuffers& operator=(const WorldBuffers&) = delete;
 
   gl::Buffer& operator[](Binding b) { return storage[b]; }
   const gl::Buffer& operator[](Binding b) const { return storage[b]; }
@@ -95,7 +102,8 @@ struct World::Impl {
   // Setup (world.cpp)
   std::uint32_t addBodies(const ParticleTemplate& shape, const std::vector<BodyDesc>& descs,
                           bool granule);
-  void uploadBodyStates(std::uint32_t first, const std::vector<BodyDesc>& descs, const ParticleTemplate& shape);
+  void uploadBodyStates(std::uint32_t first, const std::vector<BodyDesc>& descs,
+                        const ParticleTemplate& shape);
   ColliderId putCollider(std::optional<std::uint32_t> slot, const detail::GpuCollider& collider);
   void requireBody(BodyId id) const;
 

@@ -75,13 +75,14 @@ void World::Impl::emit(double dt, StepReport* report) {
   for (auto& emitter : emitters) {
     if (!emitter || emitter->finished()) continue;
     bool blocked = false;
-    std::uint32_t room = std::min<std::uint32_t>(bodyCapacity - bodyCount,
-                                                 (particleCapacity - particleCount) / 4u);
+    std::uint32_t room =
+        std::min<std::uint32_t>(bodyCapacity - bodyCount, (particleCapacity - particleCount) / 4u);
     auto spawns = emitter->advance(dt, room, blocked);
     if (!spawns.empty()) {
       std::vector<BodyDesc> descs;
       descs.reserve(spawns.size());
-      for (const auto& s : spawns) descs.push_back({s.position, s.orientation, s.velocity, {}, Motion::Dynamic});
+      for (const auto& s : spawns)
+        descs.push_back({s.position, s.orientation, s.velocity, {}, Motion::Dynamic});
       addBodies(granule, descs, true);
       if (report) report->granulesEmitted += std::uint32_t(spawns.size());
     }

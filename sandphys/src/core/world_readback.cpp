@@ -11,14 +11,19 @@ using namespace detail;
 
 namespace {
 
-Quat fromGpu(const GpuVec4& q) { return {q.w, q.x, q.y, q.z}; }
-Vec3 xyz(const GpuVec4& v) { return {v.x, v.y, v.z}; }
+Quat fromGpu(const GpuVec4& q) {
+  return {q.w, q.x, q.y, q.z};
+}
+Vec3 xyz(const GpuVec4& v) {
+  return {v.x, v.y, v.z};
+}
 
 // a · conj(b), both (w, x, y, z) and unit.
 Quat multiplyConjugate(Quat a, Quat b) {
   Quat c{b.w, -b.x, -b.y, -b.z};
-  return {a.w * c.w - a.x * c.x - a.y * c.y - a.z * c.z, a.w * c.x + a.x * c.w + a.y * c.z - a.z * c.y,
-          a.w * c.y - a.x * c.z + a.y * c.w + a.z * c.x, a.w * c.z + a.x * c.y - a.y * c.x + a.z * c.w};
+  return {
+      a.w * c.w - a.x * c.x - a.y * c.y - a.z * c.z, a.w * c.x + a.x * c.w + a.y * c.z - a.z * c.y,
+      a.w * c.y - a.x * c.z + a.y * c.w + a.z * c.x, a.w * c.z + a.x * c.y - a.y * c.x + a.z * c.w};
 }
 
 template <typename T>
@@ -103,12 +108,21 @@ std::vector<ContactRecord> World::readContacts() const {
     std::vector<ContactRecord> out(count);
     for (std::uint32_t i = 0; i < count; ++i) {
       const auto& r = raw[i];
-      out[i] = {r.particleA, r.particleB, r.bodyA, r.bodyB, r.collider, {r.px, r.py, r.pz},
-                {r.nx, r.ny, r.nz}, r.normalForce, {r.tx, r.ty, r.tz}, r.overlap};
+      out[i] = {r.particleA,
+                r.particleB,
+                r.bodyA,
+                r.bodyB,
+                r.collider,
+                {r.px, r.py, r.pz},
+                {r.nx, r.ny, r.nz},
+                r.normalForce,
+                {r.tx, r.ty, r.tz},
+                r.overlap};
     }
     // Appends happen in thread order: sort so that the list is the same on every call.
     std::sort(out.begin(), out.end(), [](const ContactRecord& a, const ContactRecord& b) {
-      return std::tie(a.particleA, a.particleB, a.collider) < std::tie(b.particleA, b.particleB, b.collider);
+      return std::tie(a.particleA, a.particleB, a.collider) <
+             std::tie(b.particleA, b.particleB, b.collider);
     });
     return out;
   }
@@ -121,7 +135,8 @@ WorldStats World::readStats() {
 
 std::vector<KernelTime> World::kernelTimes() const {
   std::vector<KernelTime> out;
-  for (const auto& t : m_impl->profiler.totals()) out.push_back({t.name, t.milliseconds, t.dispatches});
+  for (const auto& t : m_impl->profiler.totals())
+    out.push_back({t.name, t.milliseconds, t.dispatches});
   return out;
 }
 

@@ -9,7 +9,8 @@
 
 namespace sandphys::gl {
 
-Buffer::Buffer(std::size_t bytes, const char* name) : m_bytes(std::max<std::size_t>(bytes, 16)), m_name(name) {
+Buffer::Buffer(std::size_t bytes, const char* name)
+    : m_bytes(std::max<std::size_t>(bytes, 16)), m_name(name) {
   glCreateBuffers(1, &m_id);
   glNamedBufferStorage(m_id, static_cast<GLsizeiptr>(m_bytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
   GLenum err = glGetError();
@@ -25,7 +26,9 @@ Buffer::~Buffer() {
 }
 
 Buffer::Buffer(Buffer&& other) noexcept
-    : m_id(std::exchange(other.m_id, 0)), m_bytes(std::exchange(other.m_bytes, 0)), m_name(other.m_name) {}
+    : m_id(std::exchange(other.m_id, 0)),
+      m_bytes(std::exchange(other.m_bytes, 0)),
+      m_name(other.m_name) {}
 
 Buffer& Buffer::operator=(Buffer&& other) noexcept {
   if (this != &other) {
@@ -37,7 +40,9 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
   return *this;
 }
 
-void Buffer::bindBase(GLenum target, GLuint binding) const { glBindBufferBase(target, binding, m_id); }
+void Buffer::bindBase(GLenum target, GLuint binding) const {
+  glBindBufferBase(target, binding, m_id);
+}
 
 void Buffer::upload(std::size_t offset, std::size_t bytes, const void* data) {
   if (bytes == 0) return;
@@ -47,7 +52,8 @@ void Buffer::upload(std::size_t offset, std::size_t bytes, const void* data) {
 void Buffer::download(std::size_t offset, std::size_t bytes, void* data) const {
   if (bytes == 0) return;
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  glGetNamedBufferSubData(m_id, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), data);
+  glGetNamedBufferSubData(m_id, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes),
+                          data);
 }
 
 void Buffer::zero() {

@@ -1,8 +1,8 @@
 #include "sandphys/gpu_context.h"
 
-#include <GL/glew.h>
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
+#include <GL/glew.h>
 
 #include <cstring>
 #include <string>
@@ -54,9 +54,9 @@ void loadAndCheckGl(bool egl) {
   glGetIntegerv(GL_MINOR_VERSION, &minor);
   const char* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
   if (major * 10 + minor < 45) {
-    throw GpuError("OpenGL 4.5 core is required, the context offers " +
-                   std::to_string(major) + "." + std::to_string(minor) + " (" +
-                   (version ? version : "no GL_VERSION") + ")");
+    throw GpuError("OpenGL 4.5 core is required, the context offers " + std::to_string(major) +
+                   "." + std::to_string(minor) + " (" + (version ? version : "no GL_VERSION") +
+                   ")");
   }
   if (!glDispatchCompute || !glMemoryBarrier) {
     throw GpuError("compute shaders are required but glDispatchCompute is missing");
@@ -106,7 +106,8 @@ GpuContext GpuContext::headless() {
                    eglErrorName(eglGetError()) + "); sandphys needs OpenGL 4.5 compute shaders");
   }
   if (!eglMakeCurrent(impl->display, EGL_NO_SURFACE, EGL_NO_SURFACE, impl->context)) {
-    throw GpuError("headless GPU context: eglMakeCurrent failed (" + eglErrorName(eglGetError()) + ")");
+    throw GpuError("headless GPU context: eglMakeCurrent failed (" + eglErrorName(eglGetError()) +
+                   ")");
   }
   loadAndCheckGl(true);
   return GpuContext(std::move(impl));
@@ -134,6 +135,8 @@ std::string GpuContext::description() const {
   return text(GL_RENDERER) + " / " + text(GL_VERSION);
 }
 
-bool GpuContext::isHeadless() const { return m_impl->headless; }
+bool GpuContext::isHeadless() const {
+  return m_impl->headless;
+}
 
 }  // namespace sandphys

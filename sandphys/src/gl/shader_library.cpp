@@ -18,7 +18,8 @@ namespace {
 constexpr int kLinesPerFile = 100000;
 
 std::string lineDirective(int line, int fileIndex) {
-  return "#line " + std::to_string(fileIndex * kLinesPerFile + line) + " " + std::to_string(fileIndex) + "\n";
+  return "#line " + std::to_string(fileIndex * kLinesPerFile + line) + " " +
+         std::to_string(fileIndex) + "\n";
 }
 
 std::string directoryOf(const std::string& name) {
@@ -129,8 +130,9 @@ std::string ShaderLibrary::mapLog(const std::string& log, const std::vector<std:
         index = number / kLinesPerFile;
         number %= kLinesPerFile;
       }
-      std::string name = index >= 0 && std::size_t(index) < files.size() ? files[std::size_t(index)]
-                                                                      : "<file " + std::to_string(index) + ">";
+      std::string name = index >= 0 && std::size_t(index) < files.size()
+                             ? files[std::size_t(index)]
+                             : "<file " + std::to_string(index) + ">";
       return "shaders/" + name + ":" + std::to_string(number);
     };
     if (std::regex_match(line, m, mesaRe)) {

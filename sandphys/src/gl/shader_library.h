@@ -27,7 +27,8 @@ class ShaderLibrary {
   ExpandedSource expand(const std::string& name, const std::vector<std::string>& defines) const;
   /// Compiles and links a compute program. Throws GpuError whose message names the original
   /// file and line of each compiler error.
-  GLuint compileCompute(const std::string& name, const std::vector<std::string>& defines = {}) const;
+  GLuint compileCompute(const std::string& name,
+                        const std::vector<std::string>& defines = {}) const;
 
   /// Rewrites "F:L(C): msg" driver messages with file names; exposed for tests.
   static std::string mapLog(const std::string& log, const std::vector<std::string>& files);

@@ -56,6 +56,13 @@
 // Per-workgroup sums of the block scan.
 #define SCAN_BLOCK_SUMS(access) layout(std430, binding = 18) access buffer ScanBlockSumsBuffer { uint scanBlockSums[]; };
 
+// Read-only views of three buffers above as buffer textures, for the contact gather: a texel
+// fetch is the fast gather path on GPUs and on llvmpipe (whose SSBO loads at per-invocation
+// offsets run lane by lane). Same memory, no copy.
+#define SORTED_POSITION_TEXTURE layout(binding = 0) uniform samplerBuffer sortedPositionTexture;
+#define SORTED_VELOCITY_TEXTURE layout(binding = 1) uniform samplerBuffer sortedVelocityTexture;
+#define CELL_START_TEXTURE layout(binding = 2) uniform usamplerBuffer cellStartTexture;
+
 struct Collider {
   vec4 a;         // meaning depends on the type (see colliders.glsl)
   vec4 b;

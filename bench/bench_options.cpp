@@ -1,0 +1,198 @@
+#include "bench_options.h"
+
+#include <cerrno>
+#include <charconv>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+
+#include <CLI/CLI.hpp>
+
+namespace sandphys::bench {
+
+namespace {
+
+constexpr const char* kProgram = "sandphys-bench";
+
+// A usage error: the message names the flag and the offending value.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Defaults of the paper's benchmark sizes (4K, 16K, 64K, 256K granules).
+const std::vector<std::string> kDefaultSizes = {"4K", "16K", "64K", "256K"};
+constexpr std::uint32_t kDefaultSteps = 200;
+
+// Substeps of settling by default: about 0.1 s simulated for the small piles, less for the large
+// ones, whose settling alone would otherwise take most of the run on a CPU (llvmpipe).
+std::uint32_t defaultSettleSteps(std::uint32_t granules) {
+  if (granules <= 16384) return 2000;
+  if (granules <= 65536) return 1000;
+  return 400;
+}
+
+// "4096", "16K" or "1M" (K = 1024, M = 1024²) as a positive count.
+std::uint32_t parseCount(const std::string& flag, const std::string& text, bool allowZero) {
+  std::uint64_t value = 0;
+  const char* first = text.data();
+  const char* last = text.data() + text.size();
+  const auto [end, ec] = std::from_chars(first, last, value);
+  std::uint64_t scale = 1;
+  if (end != last && end + 1 == last) {
+    if (*end == 'k' || *end == 'K') scale = 1024;
+    if (*end == 'm' || *end == 'M') scale = 1024 * 1024;
+  }
+  if (ec != std::errc() || end == first || (end != last && (scale == 1 || end + 1 != last))) {
+    throw UsageError(flag + " " + text + ": expected a whole number (K and M suffixes allowed)");
+  }
+  value *= scale;
+  if (value > 0xffffffffu || (value == 0 && !allowZero)) {
+    throw UsageError(flag + " " + text + ": must be in [" + (allowZero ? "0" : "1") +
+                     ", 4294967295]");
+  }
+  return static_cast<std::uint32_t>(value);
+}
+
+// One value for every size, or one per size.
+std::vector<std::uint32_t> perSize(const std::string& flag, const std::vector<std::string>& texts,
+                                   std::size_t sizes, bool allowZero) {
+  if (texts.size() != 1 && texts.size() != sizes) {
+    throw UsageError(flag + ": give one value or one per size (" + std::to_string(sizes) +
+                     "), not " + std::to_string(texts.size()));
+  }
+  std::vector<std::uint32_t> values;
+  for (std::size_t i = 0; i < sizes; ++i) {
+    values.push_back(parseCount(flag, texts[texts.size() == 1 ? 0 : i], allowZero));
+  }
+  return values;
+}
+
+// Fails now, before any simulation, if `path` cannot be written. A file that did not exist is
+// removed again.
+void checkWritable(const std::string& flag, const std::string& path) {
+  errno = 0;
+  const bool existed = std::ifstream(path).good();
+  {
+    std::ofstream probe(path, std::ios::app);
+    if (!probe) {
+      const std::string reason = errno ? std::strerror(errno) : "cannot open";
+      throw UsageError(flag + ": cannot write '" + path + "': " + reason);
+    }
+  }
+  if (!existed) std::remove(path.c_str());
+}
+
+std::string formatValue(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+}  // namespace
+
+std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options) {
+  CLI::App app{
+      "sandphys benchmark: the settled cylinder pile of Longmore et al. 2013 (wall radius 50 d, "
+      "rough particle floor, smooth wall) at several granule counts. Per size: Cundall number "
+      "(granule-steps per wall second), microseconds per granule-step, simulated seconds per "
+      "wall second, GPU memory per granule and GPU time per kernel.\n"
+      "The pile is built directly (granules on a dense lattice from the floor up) and settles "
+      "for --settle-steps substeps before --steps substeps are timed; the output states how "
+      "settled it is (kinetic energy and contacts per granule).",
+      kProgram};
+  std::vector<std::string> sizes = kDefaultSizes;
+  std::vector<std::string> steps = {std::to_string(kDefaultSteps)};
+  std::vector<std::string> settleSteps;
+  MeasureOptions& measure = options.measure;
+  bool noKernelTimes = false;
+  bool quiet = false;
+
+  app.add_option("--sizes", sizes, "granule counts, comma-separated (K = 1024)")
+      ->delimiter(',')
+      ->capture_default_str();
+  app.add_option("--steps", steps, "substeps timed per size: one value, or one per size")
+      ->delimiter(',')
+      ->capture_default_str();
+  app.add_option("--settle-steps", settleSteps,
+                 "substeps the pile settles before timing: one value, or one per size "
+                 "(default 2000 up to 16K granules, 1000 up to 64K, 400 above)")
+      ->delimiter(',');
+  app.add_option("--budget-seconds", measure.budgetSeconds,
+                 "wall-time cap of the timed substeps per size, s (0 = none; checked every "
+                 "--chunk substeps)")
+      ->capture_default_str();
+  app.add_option("--settle-budget-seconds", measure.settleBudgetSeconds,
+                 "wall-time cap of the settling per size, s (0 = none)")
+      ->capture_default_str();
+  app.add_option("--chunk", measure.chunk, "substeps per World::substep call")
+      ->capture_default_str();
+  app.add_option("--spacing", measure.pile.spacing,
+                 "lattice spacing of the initial pile, d; spacing*(1-2*jitter) >= 2.225")
+      ->capture_default_str();
+  app.add_option("--jitter", measure.pile.jitter,
+                 "random offset of the initial lattice per axis, units of spacing")
+      ->capture_default_str();
+  app.add_option("--seed", measure.pile.seed, "seed of the jitter and orientations")
+      ->capture_default_str();
+  app.add_flag("--no-kernel-times", noKernelTimes,
+               "do not record per-kernel GL timer queries (to see their cost)");
+  app.add_option("--json", options.jsonPath, "write the results to this JSON file");
+  app.add_flag("--quiet", quiet, "no progress lines on stderr");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    if (error.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) {
+      return app.exit(error);  // --help
+    }
+    std::cerr << kProgram << ": error: " << error.what() << "\nRun with --help for usage.\n";
+    return kExitUsage;
+  }
+
+  try {
+    if (sizes.empty()) throw UsageError("--sizes: give at least one granule count");
+    std::vector<std::uint32_t> granules;
+    for (const std::string& size : sizes) granules.push_back(parseCount("--sizes", size, false));
+    const std::vector<std::uint32_t> timed = perSize("--steps", steps, granules.size(), false);
+    std::vector<std::uint32_t> settle;
+    if (settleSteps.empty()) {
+      for (std::uint32_t n : granules) settle.push_back(defaultSettleSteps(n));
+    } else {
+      settle = perSize("--settle-steps", settleSteps, granules.size(), true);
+    }
+    for (std::size_t i = 0; i < granules.size(); ++i) {
+      options.sizes.push_back({granules[i], settle[i], timed[i]});
+    }
+    if (!(measure.budgetSeconds >= 0.0)) {
+      throw UsageError("--budget-seconds " + formatValue(measure.budgetSeconds) +
+                       ": must be >= 0");
+    }
+    if (!(measure.settleBudgetSeconds >= 0.0)) {
+      throw UsageError("--settle-budget-seconds " + formatValue(measure.settleBudgetSeconds) +
+                       ": must be >= 0");
+    }
+    if (measure.chunk == 0) throw UsageError("--chunk 0: must be >= 1");
+    if (!(measure.pile.jitter >= 0.0f && measure.pile.jitter <= 0.25f)) {
+      throw UsageError("--jitter " + formatValue(measure.pile.jitter) + ": must be in [0, 0.25]");
+    }
+    // GranuleBlock's own limit, checked here so that the message names the flags.
+    if (!(measure.pile.spacing * (1.0f - 2.0f * measure.pile.jitter) >= 2.225f)) {
+      throw UsageError("--spacing " + formatValue(measure.pile.spacing) + " with --jitter " +
+                       formatValue(measure.pile.jitter) +
+                       ": spacing*(1-2*jitter) must be >= 2.225 d, or granules start overlapping");
+    }
+    measure.kernelTimes = !noKernelTimes;
+    measure.progress = !quiet;
+    if (!options.jsonPath.empty()) checkWritable("--json", options.jsonPath);
+  } catch (const UsageError& error) {
+    std::cerr << kProgram << ": error: " << error.what() << "\nRun with --help for usage.\n";
+    return kExitUsage;
+  }
+  return std::nullopt;
+}
+
+}  // namespace sandphys::bench

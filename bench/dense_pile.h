@@ -1,0 +1,82 @@
+#pragma once
+
+#include <cstdint>
+
+#include <sandphys/sandphys.h>
+
+#include "scenes/cylinder_pile.h"
+
+namespace sandphys::bench {
+
+/// How to build the benchmark pile directly, without pouring batches: the cylinder pile scene's
+/// container (smooth wall, rough particle floor, safety plane) filled from just above the floor
+/// with granules on a dense lattice, which then settles under gravity.
+struct DensePileConfig {
+  /// Granules in the pile; > 0.
+  std::uint32_t granules = 4096;
+  /// Particle diameter d, m.
+  float particleDiameter = 0.02f;
+  /// Radius of the cylinder wall and of the rough floor, d (the paper: 50 d).
+  float cylinderRadius = 50.0f;
+  /// Height of the cylinder wall, d (the paper: 100 d). Raised when the initial column is taller
+  /// (see DensePileLayout::wallRaised).
+  float cylinderHeight = 100.0f;
+  /// Lattice spacing, d. With jitter it must satisfy spacing · (1 - 2 jitter) >= 2.225 d (the
+  /// room a granule needs in any orientation, see GranuleBlock::spacing).
+  float spacing = 2.25f;
+  /// Random offset per axis, in units of the spacing; [0, 0.25].
+  float jitter = 0.005f;
+  /// Seed of the jitter and orientations: same seed, same pile.
+  std::uint64_t seed = 1;
+};
+
+/// Where the granules of a dense pile go; computed before any World exists.
+struct DensePileLayout {
+  /// Lattice columns inside the wall (one granule per column and layer).
+  std::uint32_t columns = 0;
+  /// Complete layers, and granules in the partial top layer (0 when the top layer is complete).
+  std::uint32_t fullLayers = 0;
+  std::uint32_t topLayerGranules = 0;
+  /// Centre height of the lowest layer, m.
+  float bottomLayerY = 0.0f;
+  /// Height of the highest particle surface of the initial column, m.
+  float columnTop = 0.0f;
+  /// Wall height used, d: the configured height, or higher when the column does not fit.
+  float wallHeight = 0.0f;
+  bool wallRaised = false;
+};
+
+/// The pile of `config`: its layout, the scene whose container and sizing it reuses, and the
+/// settings of a World that holds exactly it.
+class DensePile {
+ public:
+  /// Throws InvalidArgument when the lattice leaves no column inside the wall or the granules do
+  /// not fit a World.
+  explicit DensePile(const DensePileConfig& config);
+
+  const DensePileConfig& config() const { return m_config; }
+  const DensePileLayout& layout() const { return m_layout; }
+  /// The cylinder pile scene with this pile's geometry; used for its settings, container test
+  /// and pile-top measure (its build() is never called: it would drop a batch).
+  const scenes::CylinderPile& scene() const { return m_scene; }
+
+  /// Settings of the scene (material, diameter) with capacities for the floor and every granule.
+  WorldSettings settings() const;
+  /// Adds the container of CylinderPile::build and the granules to an empty `world` made from
+  /// settings().
+  void build(World& world) const;
+
+  /// Mass of one granule, kg, and the distance of its outermost particle surface from its
+  /// centre, m.
+  float granuleMass() const { return m_granuleMass; }
+  float granuleOuterRadius() const { return m_granuleOuterRadius; }
+
+ private:
+  DensePileConfig m_config;
+  DensePileLayout m_layout;
+  scenes::CylinderPile m_scene;
+  float m_granuleMass = 0.0f;
+  float m_granuleOuterRadius = 0.0f;
+};
+
+}  // namespace sandphys::bench

@@ -1,0 +1,196 @@
+#include "measure.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+
+namespace sandphys::bench {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Seconds between progress lines.
+constexpr double kProgressInterval = 15.0;
+
+PileState readPileState(World& world, const DensePile& pile, const WorldStats& stats) {
+  const double d = pile.config().particleDiameter;
+  const double granules = pile.config().granules;
+  PileState state;
+  state.simulatedSeconds = world.simulatedTime();
+  state.contacts = stats.contacts;
+  state.contactsPerGranule = stats.contacts / granules;
+  state.kineticEnergyPerGranule = stats.kineticEnergy / granules;
+  state.rmsSpeed = std::sqrt(2.0 * state.kineticEnergyPerGranule / pile.granuleMass());
+  state.maxOverlap = stats.maxOverlap / d;
+  const std::vector<BodyState> bodies = world.readBodies();
+  // The scene was never built, so pileTop measures centre heights: add the granule's reach.
+  state.pileTop = (pile.scene().pileTop(bodies) + pile.granuleOuterRadius()) / d;
+  for (const BodyState& body : bodies) {
+    if (body.alive && body.granule && !pile.scene().contains(body.position)) {
+      ++state.granulesOutside;
+    }
+  }
+  return state;
+}
+
+void accumulateKernels(std::vector<KernelStep>& totals, const std::vector<KernelTime>& times) {
+  for (const KernelTime& time : times) {
+    auto it = std::find_if(totals.begin(), totals.end(),
+                           [&](const KernelStep& k) { return k.name == time.name; });
+    if (it == totals.end()) it = totals.insert(totals.end(), KernelStep{time.name, 0.0, 0.0});
+    it->millisecondsPerStep += time.milliseconds;
+    it->dispatchesPerStep += time.dispatches;
+  }
+}
+
+double processCpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+}  // namespace
+
+double SizeResult::cundallNumber() const {
+  return wallSeconds > 0.0 ? double(granules) * steps / wallSeconds : 0.0;
+}
+
+double SizeResult::microsecondsPerGranuleStep() const {
+  const double cundall = cundallNumber();
+  return cundall > 0.0 ? 1.0e6 / cundall : 0.0;
+}
+
+double SizeResult::simulatedPerWallSecond() const {
+  return wallSeconds > 0.0 ? double(steps) * timeStep / wallSeconds : 0.0;
+}
+
+double SizeResult::wallMillisecondsPerStep() const {
+  return steps > 0 ? 1.0e3 * wallSeconds / steps : 0.0;
+}
+
+double SizeResult::kernelMillisecondsPerStep() const {
+  double sum = 0.0;
+  for (const KernelStep& kernel : kernels) sum += kernel.millisecondsPerStep;
+  return sum;
+}
+
+double loadAverage() {
+  std::ifstream file("/proc/loadavg");
+  double load = -1.0;
+  if (!(file >> load)) return -1.0;
+  return load;
+}
+
+SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan,
+                       const MeasureOptions& options) {
+  SizeResult result;
+  result.plan = plan;
+  result.loadBefore = loadAverage();
+
+  DensePileConfig config = options.pile;
+  config.granules = plan.granules;
+  const DensePile pile(config);
+  result.layout = pile.layout();
+
+  const Clock::time_point setupStart = Clock::now();
+  WorldSettings settings = pile.settings();
+  settings.profileKernels = options.kernelTimes;
+  settings.statsEachFrame = false;  // substep() is used; stats are read when needed
+  World world(gpu, settings);
+  pile.build(world);
+  result.setupSeconds = secondsSince(setupStart);
+  result.granules = world.granulesSpawned();
+  result.particles = world.particleCount();
+  result.floorParticles = result.particles - 4 * result.granules;
+  result.timeStep = world.timeStep();
+  result.gpuMemoryBytes = world.gpuMemoryBytes();
+  result.built = readPileState(world, pile, world.readStats());
+
+  char tagText[24];
+  std::snprintf(tagText, sizeof tagText, "[%u]", result.granules);
+  const auto tag = [&] { return std::string(tagText); };
+  if (options.progress) {
+    std::fprintf(stderr,
+                 "%s built in %.1f s: %u granules in %u columns x %u layers (+%u), column top "
+                 "%.1f d%s; dt %.3g s\n",
+                 tag().c_str(), result.setupSeconds, result.granules, result.layout.columns,
+                 result.layout.fullLayers, result.layout.topLayerGranules,
+                 result.layout.columnTop / config.particleDiameter,
+                 result.layout.wallRaised ? " (wall raised)" : "", double(result.timeStep));
+  }
+
+  // Settle. At least one substep: llvmpipe compiles each kernel at its first dispatch.
+  const std::uint32_t settleSteps = std::max<std::uint32_t>(plan.settleSteps, 1);
+  const Clock::time_point settleStart = Clock::now();
+  Clock::time_point lastProgress = settleStart;
+  while (result.settleSteps < settleSteps) {
+    if (options.settleBudgetSeconds > 0.0 && result.settleSteps > 0 &&
+        secondsSince(settleStart) >= options.settleBudgetSeconds) {
+      result.settleBudgetHit = true;
+      break;
+    }
+    const std::uint32_t count = std::min(options.chunk, settleSteps - result.settleSteps);
+    world.substep(count);
+    result.settleSteps += count;
+    if (options.progress && secondsSince(lastProgress) >= kProgressInterval) {
+      lastProgress = Clock::now();
+      const WorldStats stats = world.readStats();
+      std::fprintf(stderr,
+                   "%s settling: %u/%u substeps, %.0f s wall, %.4f s simulated, KE/granule "
+                   "%.3g J, contacts/granule %.2f\n",
+                   tag().c_str(), result.settleSteps, settleSteps, secondsSince(settleStart),
+                   world.simulatedTime(), stats.kineticEnergy / result.granules,
+                   double(stats.contacts) / result.granules);
+    }
+  }
+  const WorldStats settledStats = world.readStats();  // also waits for the GPU
+  result.settleWallSeconds = secondsSince(settleStart);
+  result.settled = readPileState(world, pile, settledStats);
+
+  // Measure: whole chunks of substeps, timed from a synchronised start to a synchronised end.
+  std::vector<KernelStep> kernels;
+  const Clock::time_point start = Clock::now();
+  const double cpuStart = processCpuSeconds();
+  lastProgress = start;
+  while (result.steps < plan.steps) {
+    if (options.budgetSeconds > 0.0 && result.steps > 0 &&
+        secondsSince(start) >= options.budgetSeconds) {
+      result.budgetHit = true;
+      break;
+    }
+    const std::uint32_t count = std::min(options.chunk, plan.steps - result.steps);
+    world.substep(count);
+    result.steps += count;
+    // Timer queries are collected inside substep(); this only copies the totals.
+    if (options.kernelTimes) accumulateKernels(kernels, world.kernelTimes());
+    if (options.progress && secondsSince(lastProgress) >= kProgressInterval) {
+      lastProgress = Clock::now();
+      std::fprintf(stderr, "%s measuring: %u/%u substeps, %.0f s wall\n", tag().c_str(),
+                   result.steps, plan.steps, secondsSince(start));
+    }
+  }
+  const WorldStats endStats = world.readStats();  // the sync that ends the timed span
+  result.wallSeconds = secondsSince(start);
+  result.cpuSeconds = processCpuSeconds() - cpuStart;
+  result.loadAfter = loadAverage();
+
+  result.penetrationClamps = endStats.penetrationClamps - settledStats.penetrationClamps;
+  result.velocityClamps = endStats.velocityClamps - settledStats.velocityClamps;
+  result.measured = readPileState(world, pile, endStats);
+  for (KernelStep& kernel : kernels) {
+    kernel.millisecondsPerStep /= result.steps;
+    kernel.dispatchesPerStep /= result.steps;
+  }
+  result.kernels = std::move(kernels);
+  if (options.progress) {
+    std::fprintf(stderr, "%s measured %u substeps in %.1f s: Cundall number %.3g\n",
+                 tag().c_str(), result.steps, result.wallSeconds, result.cundallNumber());
+  }
+  return result;
+}
+
+}  // namespace sandphys::bench

@@ -1,0 +1,100 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <sandphys/sandphys.h>
+
+#include "dense_pile.h"
+
+namespace sandphys::bench {
+
+/// What to run for one pile size.
+struct SizePlan {
+  std::uint32_t granules = 0;
+  /// Substeps the pile settles before it is measured (at least 1: the first dispatches compile
+  /// the kernels on llvmpipe, which must not be timed).
+  std::uint32_t settleSteps = 0;
+  /// Substeps measured.
+  std::uint32_t steps = 0;
+};
+
+/// Options shared by every size.
+struct MeasureOptions {
+  /// Pile geometry; `granules` is taken from the SizePlan.
+  DensePileConfig pile{};
+  /// Wall-time cap of the settling, s; 0 = none. Settling stops at whichever comes first.
+  double settleBudgetSeconds = 0.0;
+  /// Wall-time cap of the measurement, s; 0 = none (checked between chunks).
+  double budgetSeconds = 0.0;
+  /// Substeps per World::substep call (and per timer-query collection).
+  std::uint32_t chunk = 10;
+  /// Record per-kernel GL timer queries while measuring (WorldSettings::profileKernels).
+  bool kernelTimes = true;
+  /// Progress lines on stderr.
+  bool progress = true;
+};
+
+/// How settled the pile is at one moment (one readStats and one readBodies, both sync points).
+struct PileState {
+  double simulatedSeconds = 0.0;     ///< since the pile was built, s
+  std::uint32_t contacts = 0;        ///< particle pairs + collider contacts of the last substep
+  double contactsPerGranule = 0.0;
+  double kineticEnergyPerGranule = 0.0;  ///< J
+  double rmsSpeed = 0.0;             ///< sqrt(2 KE / (granules · granule mass)), m/s
+  double maxOverlap = 0.0;           ///< largest overlap since the previous read, d
+  double pileTop = 0.0;              ///< CylinderPile::pileTop, d
+  std::uint32_t granulesOutside = 0; ///< granule centres outside the container
+};
+
+/// Per-kernel GPU time, averaged per substep.
+struct KernelStep {
+  std::string name;
+  double millisecondsPerStep = 0.0;
+  double dispatchesPerStep = 0.0;
+};
+
+/// Everything measured for one size.
+struct SizeResult {
+  SizePlan plan{};
+  std::uint32_t granules = 0;
+  std::uint32_t particles = 0;   ///< granule particles + rough floor particles
+  std::uint32_t floorParticles = 0;
+  DensePileLayout layout{};
+  float timeStep = 0.0f;         ///< s
+  double setupSeconds = 0.0;     ///< World creation (kernel compilation) and build, wall s
+  std::uint64_t gpuMemoryBytes = 0;
+
+  std::uint32_t settleSteps = 0;  ///< substeps actually run before measuring
+  double settleWallSeconds = 0.0;
+  bool settleBudgetHit = false;
+  PileState built{};              ///< right after build
+  PileState settled{};            ///< when the measurement starts
+  PileState measured{};           ///< when it ends
+
+  std::uint32_t steps = 0;        ///< substeps measured
+  double wallSeconds = 0.0;       ///< wall time of those substeps (ends with a sync)
+  double cpuSeconds = 0.0;        ///< process CPU time over the same span (all threads)
+  bool budgetHit = false;
+  std::uint64_t penetrationClamps = 0;  ///< during the measurement
+  std::uint64_t velocityClamps = 0;     ///< during the measurement
+  std::vector<KernelStep> kernels;      ///< empty without kernel times
+  double loadBefore = -1.0;       ///< 1-minute load average before the size ran (-1: unknown)
+  double loadAfter = -1.0;
+
+  double cundallNumber() const;       ///< granule-steps per wall second
+  double microsecondsPerGranuleStep() const;
+  double simulatedPerWallSecond() const;
+  double wallMillisecondsPerStep() const;
+  double kernelMillisecondsPerStep() const;  ///< sum over kernels
+};
+
+/// Builds the pile of `plan.granules` granules in a fresh World on `gpu`, settles it and measures
+/// it. Throws sandphys::Error from World setup.
+SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const MeasureOptions& options);
+
+/// The 1-minute load average of the machine, or -1 where /proc/loadavg is missing.
+double loadAverage();
+
+}  // namespace sandphys::bench
