@@ -346,8 +346,8 @@ Divergence runBoth(OracleScene& scene, CpuOracle& oracle, std::uint32_t substeps
 // switching between sticking and sliding): ×2 per 100 substeps here. Measured after 500:
 // 4.8e-6 m, 4.6e-4 m/s, 0.028 rad/s, 4.7e-4 rad. Tolerances: about 10× that. A real model
 // difference is far above them: friction, normal damping or tangential damping 10% off gives
-// 8e-4 to 4e-3 m, 0.06 to 0.36 m/s, 3.5 to 40 rad/s, 0.03 to 0.33 rad (16× to 80× the
-// tolerances; OracleSensitivity checks friction).
+// 8e-4 to 4e-3 m, 0.06 to 0.36 m/s, 3.5 to 40 rad/s, 0.03 to 0.33 rad (7× to 80× the
+// tolerances; friction, checked by OracleSensitivity, 70× to 80× on position and velocity).
 constexpr TrajectoryTolerance kPileTolerance{.position = 5e-5,  // d/400
                                              .velocity = 5e-3,
                                              .angularVelocity = 0.3,

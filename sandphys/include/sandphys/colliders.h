@@ -13,8 +13,9 @@ struct Plane {
   SurfaceMaterial material{};
 };
 
-/// A smooth oriented box. inside = true: a container whose six walls keep grains in;
-/// inside = false: a solid obstacle that keeps grains out.
+/// A smooth oriented box. inside = true: a closed container whose six walls keep grains in (a
+/// particle found outside, e.g. pushed through a wall, is pushed back in: do not place sand
+/// outside a container box); inside = false: a solid obstacle that keeps grains out.
 struct Box {
   Vec3 center{};
   Vec3 halfExtents{0.5f, 0.5f, 0.5f};  ///< m, each > 0

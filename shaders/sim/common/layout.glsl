@@ -38,8 +38,8 @@
 #define PARTICLE_VELOCITY(access) layout(std430, binding = 9) access buffer ParticleVelocityBuffer { vec4 particleVelocity[]; };
 // xyz: contact + collider force of the last substep (N).
 #define PARTICLE_FORCE(access) layout(std430, binding = 10) access buffer ParticleForceBuffer { vec4 particleForce[]; };
-// x: contacts in the last substep; y: largest overlap since the stats were read (float bits);
-// z: penetration-guard count since creation; w: unused.
+// x: particle-particle contacts in the last substep; y: largest overlap since the stats were read
+// (float bits); z: penetration-guard count since creation; w: collider contacts in the last substep.
 #define PARTICLE_STATS(access) layout(std430, binding = 11) access buffer ParticleStatsBuffer { uvec4 particleStats[]; };
 // Particles per hash bucket; returns to zero after every scatter.
 #define CELL_COUNT(access) layout(std430, binding = 12) access buffer CellCountBuffer { uint cellCount[]; };
