@@ -27,13 +27,20 @@ class UsageError : public std::runtime_error {
 const std::vector<std::string> kDefaultSizes = {"4K", "16K", "64K", "256K"};
 constexpr std::uint32_t kDefaultSteps = 200;
 
-// Substeps of settling by default: about 0.1 s simulated for the small piles, less for the large
-// ones, whose settling alone would otherwise take most of the run on a CPU (llvmpipe).
-std::uint32_t defaultSettleSteps(std::uint32_t granules) {
+// Substeps of settling by default. A crystal is static from the start: a short settle lets the
+// column take up its elastic load. A lattice has to fall and compact: about 0.13 s simulated for
+// the small piles, less for the large ones, whose settling would otherwise take most of the run
+// on a CPU (llvmpipe); neither is enough to come to rest (the output says how far it got).
+std::uint32_t defaultSettleSteps(std::uint32_t granules, Packing packing) {
+  if (packing == Packing::Crystal) return 200;
   if (granules <= 16384) return 2000;
   if (granules <= 65536) return 1000;
   return 400;
 }
+
+// Wall-time caps per size by default, s: a full default run stays within about half an hour on
+// a two-core machine running llvmpipe, even when it is shared.
+constexpr double kDefaultBudgetSeconds = 300.0;
 
 // "4096", "16K" or "1M" (K = 1024, M = 1024²) as a positive count.
 std::uint32_t parseCount(const std::string& flag, const std::string& text, bool allowZero) {
@@ -108,7 +115,10 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
   std::vector<std::string> steps = {std::to_string(kDefaultSteps)};
   std::vector<std::string> settleSteps;
   MeasureOptions& measure = options.measure;
+  measure.budgetSeconds = kDefaultBudgetSeconds;
+  measure.settleBudgetSeconds = kDefaultBudgetSeconds;
   bool noKernelTimes = false;
+  std::string packing = std::string(packingName(measure.pile.packing));
   bool quiet = false;
 
   app.add_option("--sizes", sizes, "granule counts, comma-separated (K = 1024)")
@@ -119,7 +129,8 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
       ->capture_default_str();
   app.add_option("--settle-steps", settleSteps,
                  "substeps the pile settles before timing: one value, or one per size "
-                 "(default 2000 up to 16K granules, 1000 up to 64K, 400 above)")
+                 "(default: crystal 200; lattice 2000 up to 16K granules, 1000 up to 64K, 400 "
+                 "above)")
       ->delimiter(',');
   app.add_option("--budget-seconds", measure.budgetSeconds,
                  "wall-time cap of the timed substeps per size, s (0 = none; checked every "
@@ -130,13 +141,21 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
       ->capture_default_str();
   app.add_option("--chunk", measure.chunk, "substeps per World::substep call")
       ->capture_default_str();
+  app.add_option("--packing", packing,
+                 "initial pile: 'crystal' (aligned granules whose particles form a touching FCC "
+                 "packing on the floor: static at once, denser and more ordered than a poured "
+                 "pile) or 'lattice' (random orientations 2.25 d apart: loose, the column still "
+                 "has to fall and compact, which takes far longer than a benchmark can wait)")
+      ->check(CLI::IsMember({"lattice", "crystal"}))
+      ->capture_default_str();
   app.add_option("--spacing", measure.pile.spacing,
-                 "lattice spacing of the initial pile, d; spacing*(1-2*jitter) >= 2.225")
+                 "lattice packing: spacing, d; spacing*(1-2*jitter) >= 2.225")
       ->capture_default_str();
   app.add_option("--jitter", measure.pile.jitter,
-                 "random offset of the initial lattice per axis, units of spacing")
+                 "lattice packing: random offset per axis, units of spacing")
       ->capture_default_str();
-  app.add_option("--seed", measure.pile.seed, "seed of the jitter and orientations")
+  app.add_option("--seed", measure.pile.seed,
+                 "lattice packing: seed of the jitter and orientations")
       ->capture_default_str();
   app.add_flag("--no-kernel-times", noKernelTimes,
                "do not record per-kernel GL timer queries (to see their cost)");
@@ -154,13 +173,16 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
   }
 
   try {
+    measure.pile.packing = packing == "crystal" ? Packing::Crystal : Packing::Lattice;
     if (sizes.empty()) throw UsageError("--sizes: give at least one granule count");
     std::vector<std::uint32_t> granules;
     for (const std::string& size : sizes) granules.push_back(parseCount("--sizes", size, false));
     const std::vector<std::uint32_t> timed = perSize("--steps", steps, granules.size(), false);
     std::vector<std::uint32_t> settle;
     if (settleSteps.empty()) {
-      for (std::uint32_t n : granules) settle.push_back(defaultSettleSteps(n));
+      for (std::uint32_t n : granules) {
+        settle.push_back(defaultSettleSteps(n, measure.pile.packing));
+      }
     } else {
       settle = perSize("--settle-steps", settleSteps, granules.size(), true);
     }
@@ -168,8 +190,7 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
       options.sizes.push_back({granules[i], settle[i], timed[i]});
     }
     if (!(measure.budgetSeconds >= 0.0)) {
-      throw UsageError("--budget-seconds " + formatValue(measure.budgetSeconds) +
-                       ": must be >= 0");
+      throw UsageError("--budget-seconds " + formatValue(measure.budgetSeconds) + ": must be >= 0");
     }
     if (!(measure.settleBudgetSeconds >= 0.0)) {
       throw UsageError("--settle-budget-seconds " + formatValue(measure.settleBudgetSeconds) +

@@ -2,14 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace sandphys::bench {
 
 namespace {
 
-// A lattice column of the pile, in units of the spacing.
+// A lattice column of the pile, by its lattice indices.
 struct Site {
   std::int32_t i = 0;  // along x
   std::int32_t j = 0;  // along z
@@ -22,15 +24,19 @@ struct Run {
   std::uint32_t columns = 0;
 };
 
-// Gap left between the floor particles' tops and the lowest granule surface, d: enough that no
-// jittered granule starts touching the floor.
+// Lattice packing: gap between the floor particles' tops and the lowest granule surface, d.
 constexpr float kFloorClearance = 0.05f;
-// Room left above the initial column when the wall has to be raised, d (then rounded up to 10 d).
+// Crystal packing: relative excess of the layer spacing over √2 d, and gap above the floor, d.
+// Both far below the Hertz overlap of a granule resting under its own weight (~0.007 d), so the
+// crystal starts touching but without overlaps from rounding between layers.
+constexpr double kCrystalSlack = 1.0e-3;
+// Lattice packing: room kept above the initial column, whose granules bounce as the column
+// compacts, when the wall has to be raised, d (then rounded up to 10 d).
 constexpr float kWallHeadroom = 5.0f;
 
-// Columns whose granules stay inside the wall for any orientation and jitter, nearest the axis
+// Columns whose granules stay inside the wall (`reach` m from their centre), nearest the axis
 // first (ties by row, then column), so that a partial top layer is a centred disc.
-std::vector<Site> columnsInside(float radius, float spacing, float reach) {
+std::vector<Site> columnsInside(double radius, double spacing, double reach) {
   const double room = radius - reach;  // farthest a granule centre may be from the axis
   std::vector<Site> sites;
   if (room <= 0.0) return sites;
@@ -49,6 +55,13 @@ std::vector<Site> columnsInside(float radius, float spacing, float reach) {
   return sites;
 }
 
+// The sites of layer `layer` of a layout: every column, except in the partial top layer.
+std::vector<Site> layerSites(const std::vector<Site>& sites, const DensePileLayout& layout,
+                             std::uint32_t layer) {
+  if (layer < layout.fullLayers) return sites;
+  return {sites.begin(), sites.begin() + layout.topLayerGranules};
+}
+
 // Groups sites into runs of consecutive columns per row.
 std::vector<Run> runsOf(std::vector<Site> sites) {
   std::sort(sites.begin(), sites.end(),
@@ -64,12 +77,67 @@ std::vector<Run> runsOf(std::vector<Site> sites) {
   return runs;
 }
 
+// Particle centres of a granule in the template's own frame (tetrahedronTemplate: alternate
+// corners of a cube of side d/√2), m.
+std::vector<Vec3> granuleCorners(float d) {
+  const float h = d / (2.0f * std::numbers::sqrt2_v<float>);
+  return {{h, h, h}, {h, -h, -h}, {-h, h, -h}, {-h, -h, h}};
+}
+
+// Rotates `v` by the unit quaternion `q`.
+Vec3 rotate(const Quat& q, const Vec3& v) {
+  // v' = v + 2w (u × v) + 2 u × (u × v), u = (q.x, q.y, q.z).
+  const Vec3 t{2.0f * (q.y * v.z - q.z * v.y), 2.0f * (q.z * v.x - q.x * v.z),
+               2.0f * (q.x * v.y - q.y * v.x)};
+  return {v.x + q.w * t.x + (q.y * t.z - q.z * t.y), v.y + q.w * t.y + (q.z * t.x - q.x * t.z),
+          v.z + q.w * t.z + (q.x * t.y - q.y * t.x)};
+}
+
+// Crystal packing: every granule turned 45° about y. In the template's frame the particle
+// centres lie in two layers d/√2 apart (y = ±d/(2√2)), and the granules of a cubic lattice of
+// spacing √2 d fill each such layer as a square lattice of spacing d, diagonal to the cube axes.
+// Turned by 45° those layers line up with the rough floor's lattice (spacing d along x and z), so
+// the lowest layer sits in the floor's hollows: the floor continues the FCC packing downwards.
+const Quat kCrystalOrientation{0.92387953f, 0.0f, 0.38268343f, 0.0f};
+
+// Horizontal position (x, z) of crystal column (i, j), m: the lattice vectors √2 d (1, 0) and
+// √2 d (0, 1) turned by 45° are d (1, -1) and d (1, 1); the offset puts the lowest particles of
+// every granule on the floor's hollows (points ((m + ½) d, (n + ½) d)).
+Vec3 crystalColumn(std::int32_t i, std::int32_t j, float d) {
+  const Vec3 low = rotate(kCrystalOrientation, granuleCorners(d)[1]);  // a corner at y = -h
+  const double x = 0.5 * d - low.x + (double(i) + double(j)) * d;
+  const double z = 0.5 * d - low.z + (double(j) - double(i)) * d;
+  return {static_cast<float>(x), 0.0f, static_cast<float>(z)};
+}
+
+// Crystal columns whose granules stay inside the wall, nearest the axis first.
+std::vector<Site> crystalColumnsInside(double radius, float d, double reach) {
+  const double room = radius - reach;
+  std::vector<Site> sites;
+  if (room <= 0.0) return sites;
+  const auto half = static_cast<std::int32_t>(std::ceil(room / (std::numbers::sqrt2 * d))) + 1;
+  std::vector<std::pair<double, Site>> ranked;
+  for (std::int32_t j = -half; j <= half; ++j) {
+    for (std::int32_t i = -half; i <= half; ++i) {
+      const Vec3 p = crystalColumn(i, j, d);
+      const double r = std::hypot(double(p.x), double(p.z));
+      if (r <= room) ranked.push_back({r, Site{i, j}});
+    }
+  }
+  std::sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) {
+    if (a.first != b.first) return a.first < b.first;
+    return a.second.j != b.second.j ? a.second.j < b.second.j : a.second.i < b.second.i;
+  });
+  for (const auto& entry : ranked) sites.push_back(entry.second);
+  return sites;
+}
+
 scenes::CylinderPile::Config sceneConfig(const DensePileConfig& config, float wallHeight) {
   scenes::CylinderPile::Config scene;
   scene.particleDiameter = config.particleDiameter;
   scene.batches = 1;
   // One "batch" of one column holds every granule: the scene then sizes the world for exactly
-  // this pile (its footprint check passes trivially; the lattice is ours, see DensePile::build).
+  // this pile (its footprint check passes trivially; the layout is ours, see DensePile::build).
   scene.batch = {1, config.granules, 1};
   scene.cylinderRadius = config.cylinderRadius;
   scene.cylinderHeight = wallHeight;
@@ -79,6 +147,10 @@ scenes::CylinderPile::Config sceneConfig(const DensePileConfig& config, float wa
 
 }  // namespace
 
+std::string_view packingName(Packing packing) {
+  return packing == Packing::Crystal ? "crystal" : "lattice";
+}
+
 DensePile::DensePile(const DensePileConfig& config) : m_config(config) {
   const float d = config.particleDiameter;
   if (config.granules == 0) {
@@ -87,29 +159,43 @@ DensePile::DensePile(const DensePileConfig& config) : m_config(config) {
   // The outer radius does not depend on the density; the mass is set once the settings exist.
   m_granuleOuterRadius =
       tetrahedronTemplate(d, WorldSettings{}.material.density).boundingRadius + 0.5f * d;
+  const float radius = config.cylinderRadius * d;
+  const bool crystal = config.packing == Packing::Crystal;
 
-  const float spacing = config.spacing * d;
-  const float jitter = config.jitter * spacing;
-  // Horizontally a granule centre moves up to jitter along x and z.
-  const float reach = m_granuleOuterRadius + jitter * std::sqrt(2.0f);
-  const std::vector<Site> sites = columnsInside(config.cylinderRadius * d, spacing, reach);
+  DensePileLayout& layout = m_layout;
+  // Crystal: the layer spacing; within a layer the columns are exactly √2 d apart.
+  layout.spacing = crystal ? static_cast<float>(std::numbers::sqrt2 * d * (1.0 + kCrystalSlack))
+                           : config.spacing * d;
+  const float jitter = crystal ? 0.0f : config.jitter * layout.spacing;
+  // Horizontally a granule centre moves up to `jitter` along x and along z.
+  const std::vector<Site> sites =
+      crystal
+          ? crystalColumnsInside(radius, d, m_granuleOuterRadius)
+          : columnsInside(radius, layout.spacing, m_granuleOuterRadius + jitter * std::sqrt(2.0f));
   if (sites.empty()) {
     throw InvalidArgument("dense pile: no lattice column of spacing " +
-                          std::to_string(config.spacing) + " d fits inside a wall of radius " +
+                          std::to_string(layout.spacing / d) + " d fits inside a wall of radius " +
                           std::to_string(config.cylinderRadius) + " d");
   }
-  DensePileLayout& layout = m_layout;
   layout.columns = static_cast<std::uint32_t>(sites.size());
   layout.fullLayers = config.granules / layout.columns;
   layout.topLayerGranules = config.granules % layout.columns;
   const std::uint32_t layers = layout.fullLayers + (layout.topLayerGranules > 0 ? 1u : 0u);
-  // Floor particles are centred on y = 0 with radius d/2.
-  layout.bottomLayerY = 0.5f * d + m_granuleOuterRadius + jitter + kFloorClearance * d;
-  layout.columnTop = layout.bottomLayerY + static_cast<float>(layers - 1) * spacing + jitter +
-                     m_granuleOuterRadius;
+  if (crystal) {
+    // The lowest particles (y = -d/(2√2) in the granule) rest in the floor's hollows, d/√2 above
+    // the floor particles' centres, each touching four of them.
+    layout.bottomLayerY = static_cast<float>(
+        (std::numbers::sqrt2 / 2.0 + std::numbers::sqrt2 / 4.0 + kCrystalSlack) * d);
+  } else {
+    // Floor particles are centred on y = 0 with radius d/2.
+    layout.bottomLayerY = 0.5f * d + m_granuleOuterRadius + jitter + kFloorClearance * d;
+  }
+  layout.columnTop = layout.bottomLayerY + static_cast<float>(layers - 1) * layout.spacing +
+                     jitter + m_granuleOuterRadius;
   layout.wallHeight = config.cylinderHeight;
-  if (layout.columnTop / d + kWallHeadroom > config.cylinderHeight) {
-    layout.wallHeight = 10.0f * std::ceil((layout.columnTop / d + kWallHeadroom) / 10.0f);
+  const float headroom = crystal ? 0.0f : kWallHeadroom;  // a crystal does not move
+  if (layout.columnTop / d + headroom > config.cylinderHeight) {
+    layout.wallHeight = 10.0f * std::ceil((layout.columnTop / d + headroom) / 10.0f);
     layout.wallRaised = true;
   }
   m_scene = scenes::CylinderPile(sceneConfig(config, layout.wallHeight));
@@ -117,7 +203,9 @@ DensePile::DensePile(const DensePileConfig& config) : m_config(config) {
   m_granuleMass = tetrahedronTemplate(d, settings().material.density).mass;
 }
 
-WorldSettings DensePile::settings() const { return m_scene.settings(); }
+WorldSettings DensePile::settings() const {
+  return m_scene.settings();
+}
 
 void DensePile::build(World& world) const {
   const float d = m_config.particleDiameter;
@@ -128,12 +216,21 @@ void DensePile::build(World& world) const {
       Cylinder{.base = {0.0f, 0.0f, 0.0f}, .radius = radius, .height = m_layout.wallHeight * d});
   world.addRoughFloor(RoughFloor{.center = {0.0f, 0.0f, 0.0f}, .radius = radius, .spacing = d});
   world.addCollider(Plane{.normal = {0.0f, 1.0f, 0.0f}, .offset = -d});
+  if (m_config.packing == Packing::Crystal) {
+    addCrystal(world);
+  } else {
+    addLattice(world);
+  }
+}
 
-  const float spacing = m_config.spacing * d;
+void DensePile::addLattice(World& world) const {
+  const float d = m_config.particleDiameter;
+  const float spacing = m_layout.spacing;
   const float jitter = m_config.jitter * spacing;
-  const std::vector<Site> sites =
-      columnsInside(radius, spacing, m_granuleOuterRadius + jitter * std::sqrt(2.0f));
+  const std::vector<Site> sites = columnsInside(m_config.cylinderRadius * d, spacing,
+                                                m_granuleOuterRadius + jitter * std::sqrt(2.0f));
   std::uint64_t seed = m_config.seed * 1000003u;
+  // One GranuleBlock per row run covers all full layers; the partial top layer gets its own.
   const auto addRuns = [&](const std::vector<Site>& columns, std::uint32_t firstLayer,
                            std::uint32_t layers) {
     const float centreY = m_layout.bottomLayerY +
@@ -152,8 +249,46 @@ void DensePile::build(World& world) const {
   };
   if (m_layout.fullLayers > 0) addRuns(sites, 0, m_layout.fullLayers);
   if (m_layout.topLayerGranules > 0) {
-    const std::vector<Site> top(sites.begin(), sites.begin() + m_layout.topLayerGranules);
-    addRuns(top, m_layout.fullLayers, 1);
+    addRuns(layerSites(sites, m_layout, m_layout.fullLayers), m_layout.fullLayers, 1);
+  }
+}
+
+void DensePile::addCrystal(World& world) const {
+  const float d = m_config.particleDiameter;
+  const std::vector<Site> sites =
+      crystalColumnsInside(m_config.cylinderRadius * d, d, m_granuleOuterRadius);
+  // GranuleBlock always orients granules at random and keeps them 2.225 d apart, so the granules
+  // are added on loose lines high above the wall and then posed one by one.
+  constexpr std::uint32_t kLine = 1024;
+  const float parking = (m_layout.wallHeight + 10.0f) * d;
+  std::uint32_t first = BodyId::kInvalidIndex;
+  for (std::uint32_t added = 0; added < m_config.granules;) {
+    const std::uint32_t count = std::min(kLine, m_config.granules - added);
+    const float y = parking + static_cast<float>(added / kLine) * 3.0f * d;
+    const BodyRange range = world.addGranules(GranuleBlock{.center = {0.0f, y, 0.0f},
+                                                           .countX = count,
+                                                           .countY = 1,
+                                                           .countZ = 1,
+                                                           .spacing = 2.5f * d,
+                                                           .jitter = 0.0f,
+                                                           .seed = m_config.seed});
+    if (added == 0) first = range.first;
+    added += count;
+  }
+  const std::uint32_t layers = m_layout.fullLayers + (m_layout.topLayerGranules > 0 ? 1u : 0u);
+  std::uint32_t index = first;
+  for (std::uint32_t layer = 0; layer < layers; ++layer) {
+    std::vector<Site> layerOrder = layerSites(sites, m_layout, layer);
+    // Row by row, as the lattice packing orders its bodies (memory locality is part of the cost).
+    std::sort(layerOrder.begin(), layerOrder.end(),
+              [](const Site& a, const Site& b) { return a.j != b.j ? a.j < b.j : a.i < b.i; });
+    const float y = m_layout.bottomLayerY + static_cast<float>(layer) * m_layout.spacing;
+    for (const Site& site : layerOrder) {
+      const Vec3 column = crystalColumn(site.i, site.j, d);
+      // BodyRange carries no generations; slots of a world without removals are at generation 0.
+      world.setBodyState(BodyId{index++, 0}, BodyDesc{.position = {column.x, y, column.z},
+                                                      .orientation = kCrystalOrientation});
+    }
   }
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string_view>
 
 #include <sandphys/sandphys.h>
 
@@ -8,12 +9,28 @@
 
 namespace sandphys::bench {
 
+/// How the granules of a dense pile start.
+enum class Packing {
+  /// Randomly oriented granules on a cubic lattice (GranuleBlock) at the smallest spacing that
+  /// cannot overlap in any orientation: solid fraction ~0.18, no contacts; the column has to fall
+  /// and compact under gravity, which takes far longer than a benchmark can wait for tall piles.
+  Lattice,
+  /// Granules all in the template's orientation on a cubic lattice of spacing √2 d: their
+  /// particles form a face-centred cubic sphere packing, every sphere touching 12 others (solid
+  /// fraction 0.74, 18 granule-granule contacts per granule). Static from the first substep, but
+  /// denser and more ordered than a poured pile: an upper bound where Lattice is a lower one.
+  Crystal,
+};
+
+/// "lattice" or "crystal".
+std::string_view packingName(Packing packing);
+
 /// How to build the benchmark pile directly, without pouring batches: the cylinder pile scene's
-/// container (smooth wall, rough particle floor, safety plane) filled from just above the floor
-/// with granules on a dense lattice, which then settles under gravity.
+/// container (smooth wall, rough particle floor, safety plane) filled from just above the floor.
 struct DensePileConfig {
   /// Granules in the pile; > 0.
   std::uint32_t granules = 4096;
+  Packing packing = Packing::Crystal;
   /// Particle diameter d, m.
   float particleDiameter = 0.02f;
   /// Radius of the cylinder wall and of the rough floor, d (the paper: 50 d).
@@ -21,17 +38,19 @@ struct DensePileConfig {
   /// Height of the cylinder wall, d (the paper: 100 d). Raised when the initial column is taller
   /// (see DensePileLayout::wallRaised).
   float cylinderHeight = 100.0f;
-  /// Lattice spacing, d. With jitter it must satisfy spacing · (1 - 2 jitter) >= 2.225 d (the
-  /// room a granule needs in any orientation, see GranuleBlock::spacing).
+  /// Lattice packing: spacing, d. With jitter it must satisfy spacing · (1 - 2 jitter) >= 2.225 d
+  /// (the room a granule needs in any orientation, see GranuleBlock::spacing).
   float spacing = 2.25f;
-  /// Random offset per axis, in units of the spacing; [0, 0.25].
+  /// Lattice packing: random offset per axis, in units of the spacing; [0, 0.25].
   float jitter = 0.005f;
-  /// Seed of the jitter and orientations: same seed, same pile.
+  /// Lattice packing: seed of the jitter and orientations (same seed, same pile).
   std::uint64_t seed = 1;
 };
 
 /// Where the granules of a dense pile go; computed before any World exists.
 struct DensePileLayout {
+  /// Lattice spacing used, m.
+  float spacing = 0.0f;
   /// Lattice columns inside the wall (one granule per column and layer).
   std::uint32_t columns = 0;
   /// Complete layers, and granules in the partial top layer (0 when the top layer is complete).
@@ -50,8 +69,8 @@ struct DensePileLayout {
 /// settings of a World that holds exactly it.
 class DensePile {
  public:
-  /// Throws InvalidArgument when the lattice leaves no column inside the wall or the granules do
-  /// not fit a World.
+  /// Throws InvalidArgument when no lattice column fits inside the wall or the granules do not
+  /// fit a World.
   explicit DensePile(const DensePileConfig& config);
 
   const DensePileConfig& config() const { return m_config; }
@@ -63,7 +82,8 @@ class DensePile {
   /// Settings of the scene (material, diameter) with capacities for the floor and every granule.
   WorldSettings settings() const;
   /// Adds the container of CylinderPile::build and the granules to an empty `world` made from
-  /// settings().
+  /// settings(). Crystal packing poses every granule with World::setBodyState (a small sync per
+  /// granule: seconds for 256K granules).
   void build(World& world) const;
 
   /// Mass of one granule, kg, and the distance of its outermost particle surface from its
@@ -72,6 +92,9 @@ class DensePile {
   float granuleOuterRadius() const { return m_granuleOuterRadius; }
 
  private:
+  void addLattice(World& world) const;
+  void addCrystal(World& world) const;
+
   DensePileConfig m_config;
   DensePileLayout m_layout;
   scenes::CylinderPile m_scene;

@@ -51,7 +51,9 @@ void accumulateKernels(std::vector<KernelStep>& totals, const std::vector<Kernel
   }
 }
 
-double processCpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+double processCpuSeconds() {
+  return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
+}
 
 }  // namespace
 
@@ -72,6 +74,10 @@ double SizeResult::wallMillisecondsPerStep() const {
   return steps > 0 ? 1.0e3 * wallSeconds / steps : 0.0;
 }
 
+double SizeResult::cpuMillisecondsPerStep() const {
+  return steps > 0 ? 1.0e3 * cpuSeconds / steps : 0.0;
+}
+
 double SizeResult::kernelMillisecondsPerStep() const {
   double sum = 0.0;
   for (const KernelStep& kernel : kernels) sum += kernel.millisecondsPerStep;
@@ -85,8 +91,7 @@ double loadAverage() {
   return load;
 }
 
-SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan,
-                       const MeasureOptions& options) {
+SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const MeasureOptions& options) {
   SizeResult result;
   result.plan = plan;
   result.loadBefore = loadAverage();
@@ -187,8 +192,8 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan,
   }
   result.kernels = std::move(kernels);
   if (options.progress) {
-    std::fprintf(stderr, "%s measured %u substeps in %.1f s: Cundall number %.3g\n",
-                 tag().c_str(), result.steps, result.wallSeconds, result.cundallNumber());
+    std::fprintf(stderr, "%s measured %u substeps in %.1f s: Cundall number %.3g\n", tag().c_str(),
+                 result.steps, result.wallSeconds, result.cundallNumber());
   }
   return result;
 }

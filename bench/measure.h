@@ -38,14 +38,14 @@ struct MeasureOptions {
 
 /// How settled the pile is at one moment (one readStats and one readBodies, both sync points).
 struct PileState {
-  double simulatedSeconds = 0.0;     ///< since the pile was built, s
-  std::uint32_t contacts = 0;        ///< particle pairs + collider contacts of the last substep
+  double simulatedSeconds = 0.0;  ///< since the pile was built, s
+  std::uint32_t contacts = 0;     ///< particle pairs + collider contacts of the last substep
   double contactsPerGranule = 0.0;
   double kineticEnergyPerGranule = 0.0;  ///< J
-  double rmsSpeed = 0.0;             ///< sqrt(2 KE / (granules · granule mass)), m/s
-  double maxOverlap = 0.0;           ///< largest overlap since the previous read, d
-  double pileTop = 0.0;              ///< CylinderPile::pileTop, d
-  std::uint32_t granulesOutside = 0; ///< granule centres outside the container
+  double rmsSpeed = 0.0;                 ///< sqrt(2 KE / (granules · granule mass)), m/s
+  double maxOverlap = 0.0;               ///< largest overlap since the previous read, d
+  double pileTop = 0.0;                  ///< CylinderPile::pileTop, d
+  std::uint32_t granulesOutside = 0;     ///< granule centres outside the container
 };
 
 /// Per-kernel GPU time, averaged per substep.
@@ -59,34 +59,35 @@ struct KernelStep {
 struct SizeResult {
   SizePlan plan{};
   std::uint32_t granules = 0;
-  std::uint32_t particles = 0;   ///< granule particles + rough floor particles
+  std::uint32_t particles = 0;  ///< granule particles + rough floor particles
   std::uint32_t floorParticles = 0;
   DensePileLayout layout{};
-  float timeStep = 0.0f;         ///< s
-  double setupSeconds = 0.0;     ///< World creation (kernel compilation) and build, wall s
+  float timeStep = 0.0f;      ///< s
+  double setupSeconds = 0.0;  ///< World creation (kernel compilation) and build, wall s
   std::uint64_t gpuMemoryBytes = 0;
 
   std::uint32_t settleSteps = 0;  ///< substeps actually run before measuring
   double settleWallSeconds = 0.0;
   bool settleBudgetHit = false;
-  PileState built{};              ///< right after build
-  PileState settled{};            ///< when the measurement starts
-  PileState measured{};           ///< when it ends
+  PileState built{};     ///< right after build
+  PileState settled{};   ///< when the measurement starts
+  PileState measured{};  ///< when it ends
 
-  std::uint32_t steps = 0;        ///< substeps measured
-  double wallSeconds = 0.0;       ///< wall time of those substeps (ends with a sync)
-  double cpuSeconds = 0.0;        ///< process CPU time over the same span (all threads)
+  std::uint32_t steps = 0;   ///< substeps measured
+  double wallSeconds = 0.0;  ///< wall time of those substeps (ends with a sync)
+  double cpuSeconds = 0.0;   ///< process CPU time over the same span (all threads)
   bool budgetHit = false;
   std::uint64_t penetrationClamps = 0;  ///< during the measurement
   std::uint64_t velocityClamps = 0;     ///< during the measurement
   std::vector<KernelStep> kernels;      ///< empty without kernel times
-  double loadBefore = -1.0;       ///< 1-minute load average before the size ran (-1: unknown)
+  double loadBefore = -1.0;             ///< 1-minute load average before the size ran (-1: unknown)
   double loadAfter = -1.0;
 
-  double cundallNumber() const;       ///< granule-steps per wall second
+  double cundallNumber() const;  ///< granule-steps per wall second
   double microsecondsPerGranuleStep() const;
   double simulatedPerWallSecond() const;
   double wallMillisecondsPerStep() const;
+  double cpuMillisecondsPerStep() const;
   double kernelMillisecondsPerStep() const;  ///< sum over kernels
 };
 

@@ -56,12 +56,12 @@ nlohmann::json pileStateJson(const PileState& state) {
 nlohmann::json sizeJson(const SizeResult& size, double d) {
   nlohmann::json kernels = nlohmann::json::object();
   for (const KernelStep& kernel : size.kernels) {
-    kernels[kernel.name] = {{"ms_per_step", kernel.millisecondsPerStep},
-                            {"dispatches_per_step", kernel.dispatchesPerStep},
-                            {"share_of_kernel_time",
-                             size.kernelMillisecondsPerStep() > 0.0
-                                 ? kernel.millisecondsPerStep / size.kernelMillisecondsPerStep()
-                                 : 0.0}};
+    kernels[kernel.name] = {
+        {"ms_per_step", kernel.millisecondsPerStep},
+        {"dispatches_per_step", kernel.dispatchesPerStep},
+        {"share_of_kernel_time", size.kernelMillisecondsPerStep() > 0.0
+                                     ? kernel.millisecondsPerStep / size.kernelMillisecondsPerStep()
+                                     : 0.0}};
   }
   const double granules = size.granules;
   return {
@@ -81,6 +81,7 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
       {"budget_hit", size.budgetHit},
       {"wall_seconds", size.wallSeconds},
       {"wall_ms_per_step", size.wallMillisecondsPerStep()},
+      {"cpu_ms_per_step", size.cpuMillisecondsPerStep()},
       {"kernel_ms_per_step", kernels},
       {"kernel_sum_ms_per_step", size.kernelMillisecondsPerStep()},
       {"cpu_seconds", size.cpuSeconds},
@@ -91,7 +92,8 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
       {"velocity_clamps", size.velocityClamps},
       {"setup_seconds", size.setupSeconds},
       {"layout",
-       {{"columns", size.layout.columns},
+       {{"spacing_d", size.layout.spacing / d},
+        {"columns", size.layout.columns},
         {"full_layers", size.layout.fullLayers},
         {"top_layer_granules", size.layout.topLayerGranules},
         {"column_top_d", size.layout.columnTop / d},
@@ -126,7 +128,8 @@ nlohmann::json reportJson(const BenchOptions& options, const BenchReport& report
       {"gpu", report.gpu},
       {"hardware_threads", report.hardwareThreads},
       {"options",
-       {{"particle_diameter_m", shortest(measure.pile.particleDiameter)},
+       {{"packing", packingName(measure.pile.packing)},
+        {"particle_diameter_m", shortest(measure.pile.particleDiameter)},
         {"cylinder_radius_d", shortest(measure.pile.cylinderRadius)},
         {"cylinder_height_d", shortest(measure.pile.cylinderHeight)},
         {"spacing_d", shortest(measure.pile.spacing)},
@@ -151,22 +154,29 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
   const double d = measure.pile.particleDiameter;
   std::fprintf(out,
                "sandphys-bench: settled cylinder pile (wall radius %g d, rough particle floor, "
-               "smooth wall), d = %g m\nGPU: %s (%u hardware threads)\n\n",
-               double(measure.pile.cylinderRadius), d, report.gpu.c_str(),
+               "smooth wall), d = %g m, %s packing\nGPU: %s (%u hardware threads)\n\n",
+               double(measure.pile.cylinderRadius), d,
+               std::string(packingName(measure.pile.packing)).c_str(), report.gpu.c_str(),
                report.hardwareThreads);
 
-  std::fprintf(out, "%9s %10s %9s %12s %12s %12s %10s %10s\n", "granules", "particles",
-               "contacts", "Cundall", "us/gran-step", "sim s/wall s", "ms/step", "B/granule");
+  std::fprintf(out, "%9s %10s %9s %11s %12s %12s %9s %9s %9s\n", "granules", "particles",
+               "contacts", "Cundall", "us/gran-step", "sim s/wall s", "ms/step", "CPU ms",
+               "B/gran");
   for (const SizeResult& s : report.sizes) {
-    std::fprintf(out, "%9u %10u %9u %12.4g %12.4g %12.4g %10.2f %10.0f\n", s.granules,
+    std::fprintf(out, "%9u %10u %9u %11.4g %12.4g %12.4g %9.2f %9.2f %9.0f\n", s.granules,
                  s.particles, s.measured.contacts, s.cundallNumber(),
                  s.microsecondsPerGranuleStep(), s.simulatedPerWallSecond(),
-                 s.wallMillisecondsPerStep(), double(s.gpuMemoryBytes) / s.granules);
+                 s.wallMillisecondsPerStep(), s.cpuMillisecondsPerStep(),
+                 double(s.gpuMemoryBytes) / s.granules);
   }
+  std::fprintf(out,
+               "(ms/step: wall time per substep; CPU ms: process CPU time per substep, all "
+               "threads: on llvmpipe the GPU is the CPU, and this is less disturbed by other "
+               "load than wall time)\n");
 
   std::fprintf(out, "\nHow settled (at the start of timing -> at its end):\n");
-  std::fprintf(out, "%9s %14s %20s %22s %16s %14s\n", "granules", "settle steps",
-               "KE/granule J", "contacts/granule", "pile top d", "timed steps");
+  std::fprintf(out, "%9s %14s %20s %18s %16s %10s %14s\n", "granules", "settle steps",
+               "KE/granule J", "contacts/granule", "pile top d", "overlap d", "timed steps");
   for (const SizeResult& s : report.sizes) {
     char settle[32];
     std::snprintf(settle, sizeof settle, "%u (%.0f ms)", s.settleSteps,
@@ -182,10 +192,12 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
                   s.measured.pileTop);
     char timed[32];
     std::snprintf(timed, sizeof timed, "%u%s", s.steps, s.budgetHit ? " (budget)" : "");
-    std::fprintf(out, "%9u %14s %20s %22s %16s %14s\n", s.granules, settle, energy, contacts, top,
-                 timed);
+    std::fprintf(out, "%9u %14s %20s %18s %16s %10.3f %14s\n", s.granules, settle, energy, contacts,
+                 top, s.measured.maxOverlap, timed);
   }
-  std::fprintf(out, "(pile top: initial lattice -> start of timing -> end of timing)\n");
+  std::fprintf(out,
+               "(pile top: initial -> start of timing -> end of timing; overlap: largest "
+               "particle overlap while timing, the guard clamps at 0.1 d)\n");
 
   const std::vector<std::string> names = kernelNames(report);
   if (!names.empty()) {
@@ -213,17 +225,16 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
 
   std::fprintf(out, "\nNotes:\n");
   for (const SizeResult& s : report.sizes) {
-    std::fprintf(out,
-                 "  %u granules: dt %.3g s; %u columns x %u layers%s; wall %.0f d%s; CPU "
-                 "utilisation %.2f cores; load average %.2f -> %.2f; setup %.1f s, settle %.1f s "
-                 "wall%s\n",
-                 s.granules, double(s.timeStep), s.layout.columns, s.layout.fullLayers,
-                 s.layout.topLayerGranules > 0 ? " + partial layer" : "",
-                 double(s.layout.wallHeight),
-                 s.layout.wallRaised ? " (raised from the paper's 100 d to hold the column)" : "",
-                 s.wallSeconds > 0.0 ? s.cpuSeconds / s.wallSeconds : 0.0, s.loadBefore,
-                 s.loadAfter, s.setupSeconds, s.settleWallSeconds,
-                 s.settleBudgetHit ? " (settle budget hit)" : "");
+    std::fprintf(
+        out,
+        "  %u granules: dt %.3g s; %u columns x %u layers%s; wall %.0f d%s; CPU "
+        "utilisation %.2f cores; load average %.2f -> %.2f; setup %.1f s, settle %.1f s "
+        "wall%s\n",
+        s.granules, double(s.timeStep), s.layout.columns, s.layout.fullLayers,
+        s.layout.topLayerGranules > 0 ? " + partial layer" : "", double(s.layout.wallHeight),
+        s.layout.wallRaised ? " (raised from the paper's 100 d to hold the column)" : "",
+        s.wallSeconds > 0.0 ? s.cpuSeconds / s.wallSeconds : 0.0, s.loadBefore, s.loadAfter,
+        s.setupSeconds, s.settleWallSeconds, s.settleBudgetHit ? " (settle budget hit)" : "");
   }
   if (!measure.kernelTimes) {
     std::fprintf(out, "  kernel timer queries off (--no-kernel-times)\n");

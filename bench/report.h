@@ -13,8 +13,8 @@ namespace sandphys::bench {
 
 /// What the whole run measured, for the table and the JSON.
 struct BenchReport {
-  std::string gpu;                ///< GpuContext::description()
-  unsigned hardwareThreads = 0;   ///< std::thread::hardware_concurrency()
+  std::string gpu;               ///< GpuContext::description()
+  unsigned hardwareThreads = 0;  ///< std::thread::hardware_concurrency()
   std::vector<SizeResult> sizes;
 };
 

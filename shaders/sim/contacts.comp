@@ -73,6 +73,14 @@ void main() {
   vec4 self = texelFetch(sortedPositionTexture, int(i));
   vec4 selfVelocity = texelFetch(sortedVelocityTexture, int(i));
   uint selfBody = floatBitsToUint(self.w);
+#ifndef CONTACT_LIST
+  // Static particles (rough floors) never move: nobody needs their force. Their neighbours still
+  // see them, since the gather of a sand particle reads the floor particle, not its result.
+  if (selfVelocity.w < 0.0) {
+    particleForce[cellParticles[i]] = vec4(0.0);
+    return;
+  }
+#endif
   float radius = particleGeom.x;
   float diameter = particleGeom.y;
   float maxOverlap = particleGeom.w;
@@ -106,7 +114,7 @@ void main() {
           float dist2 = dot(d, d);
           if (dist2 >= diameter * diameter || dist2 == 0.0) continue;
           vec4 otherVelocity = texelFetch(sortedVelocityTexture, int(s));
-          float invMassSum = selfVelocity.w + otherVelocity.w;
+          float invMassSum = max(selfVelocity.w, 0.0) + max(otherVelocity.w, 0.0);
           if (invMassSum == 0.0) continue;  // two immovable bodies
           float dist = sqrt(dist2);
           vec3 n = d / dist;

@@ -168,7 +168,9 @@ std::uint32_t World::Impl::addBodies(const ParticleTemplate& shape,
         kBodyAlive | (isGranule ? kBodyGranule : 0u) | (std::uint32_t(motion) << kBodyMotionShift);
     info[i] = {std::uint32_t(firstParticle + i * perBody), std::uint32_t(perBody), flags, 0u};
     inertia[i] = toGpu(shape.principalInertia, shape.mass);
-    const float particleInvMass = dynamic ? float(perBody) / shape.mass : 0.0f;
+    // -1 marks static particles, whose force the contact kernel skips (layout.glsl).
+    const float particleInvMass =
+        dynamic ? float(perBody) / shape.mass : (motion == Motion::Static ? -1.0f : 0.0f);
     for (std::uint64_t k = 0; k < perBody; ++k) {
       local[i * perBody + k] = toGpu(shape.offsets[k], particleInvMass);
       owner[i * perBody + k] = std::uint32_t(firstBody + i);

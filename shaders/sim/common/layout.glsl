@@ -28,7 +28,8 @@
 #define BODY_INERTIA(access) layout(std430, binding = 4) access buffer BodyInertiaBuffer { vec4 bodyInertia[]; };
 // x: first particle, y: particle count, z: flags, w: velocity-guard count.
 #define BODY_INFO(access) layout(std430, binding = 5) access buffer BodyInfoBuffer { uvec4 bodyInfo[]; };
-// xyz: particle centre in the body's principal frame (m); w: particle inverse mass (1/kg).
+// xyz: particle centre in the body's principal frame (m); w: particle inverse mass (1/kg): 0 for
+// kinematic bodies, -1 for static ones (their particles need no force at all).
 #define PARTICLE_LOCAL(access) layout(std430, binding = 6) access buffer ParticleLocalBuffer { vec4 particleLocal[]; };
 // Owning body of each particle.
 #define PARTICLE_BODY(access) layout(std430, binding = 7) access buffer ParticleBodyBuffer { uint particleBody[]; };
@@ -49,7 +50,7 @@
 #define CELL_PARTICLES(access) layout(std430, binding = 14) access buffer CellParticlesBuffer { uint cellParticles[]; };
 // Bucket-ordered copies for the contact gather. xyz: position; w: owning body (uint bits).
 #define SORTED_POSITION(access) layout(std430, binding = 15) access buffer SortedPositionBuffer { vec4 sortedPosition[]; };
-// xyz: velocity; w: particle inverse mass.
+// xyz: velocity; w: particle inverse mass as in particleLocal (-1: static).
 #define SORTED_VELOCITY(access) layout(std430, binding = 16) access buffer SortedVelocityBuffer { vec4 sortedVelocity[]; };
 // Hash bucket of each particle, or INVALID_CELL for particles of dead bodies.
 #define PARTICLE_CELL(access) layout(std430, binding = 17) access buffer ParticleCellBuffer { uint particleCell[]; };
