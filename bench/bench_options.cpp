@@ -107,9 +107,9 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
       "rough particle floor, smooth wall) at several granule counts. Per size: Cundall number "
       "(granule-steps per wall second), microseconds per granule-step, simulated seconds per "
       "wall second, GPU memory per granule and GPU time per kernel.\n"
-      "The pile is built directly (granules on a dense lattice from the floor up) and settles "
-      "for --settle-steps substeps before --steps substeps are timed; the output states how "
-      "settled it is (kinetic energy and contacts per granule).",
+      "The pile is built directly (--packing) and settles for --settle-steps substeps before "
+      "--steps substeps are timed; the output states how settled it is (kinetic energy, "
+      "contacts per granule, largest overlap).",
       kProgram};
   std::vector<std::string> sizes = kDefaultSizes;
   std::vector<std::string> steps = {std::to_string(kDefaultSteps)};
@@ -142,11 +142,18 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
   app.add_option("--chunk", measure.chunk, "substeps per World::substep call")
       ->capture_default_str();
   app.add_option("--packing", packing,
-                 "initial pile: 'crystal' (aligned granules whose particles form a touching FCC "
-                 "packing on the floor: static at once, denser and more ordered than a poured "
-                 "pile) or 'lattice' (random orientations 2.25 d apart: loose, the column still "
-                 "has to fall and compact, which takes far longer than a benchmark can wait)")
+                 "initial pile: 'crystal' (aligned granules whose particles form an FCC packing "
+                 "on the floor, pressed by their weight: nearly static at once, denser and more "
+                 "ordered than a poured pile) or 'lattice' (random orientations 2.25 d apart: "
+                 "loose, the column still has to fall and compact, which takes far longer than "
+                 "a benchmark can wait)")
       ->check(CLI::IsMember({"lattice", "crystal"}))
+      ->capture_default_str();
+  app.add_option("--cylinder-radius", measure.pile.cylinderRadius,
+                 "radius of the wall and the rough floor, d (the paper: 50)")
+      ->capture_default_str();
+  app.add_option("--cylinder-height", measure.pile.cylinderHeight,
+                 "height of the wall, d (the paper: 100); raised when the initial pile is taller")
       ->capture_default_str();
   app.add_option("--spacing", measure.pile.spacing,
                  "lattice packing: spacing, d; spacing*(1-2*jitter) >= 2.225")
@@ -197,6 +204,14 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
                        ": must be >= 0");
     }
     if (measure.chunk == 0) throw UsageError("--chunk 0: must be >= 1");
+    if (!(measure.pile.cylinderRadius >= 2.0f && measure.pile.cylinderRadius <= 1.0e4f)) {
+      throw UsageError("--cylinder-radius " + formatValue(measure.pile.cylinderRadius) +
+                       ": must be in [2, 10000] d");
+    }
+    if (!(measure.pile.cylinderHeight >= 1.0f && measure.pile.cylinderHeight <= 1.0e5f)) {
+      throw UsageError("--cylinder-height " + formatValue(measure.pile.cylinderHeight) +
+                       ": must be in [1, 100000] d");
+    }
     if (!(measure.pile.jitter >= 0.0f && measure.pile.jitter <= 0.25f)) {
       throw UsageError("--jitter " + formatValue(measure.pile.jitter) + ": must be in [0, 0.25]");
     }

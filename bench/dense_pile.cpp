@@ -26,10 +26,6 @@ struct Run {
 
 // Lattice packing: gap between the floor particles' tops and the lowest granule surface, d.
 constexpr float kFloorClearance = 0.05f;
-// Crystal packing: relative excess of the layer spacing over √2 d, and gap above the floor, d.
-// Both far below the Hertz overlap of a granule resting under its own weight (~0.007 d), so the
-// crystal starts touching but without overlaps from rounding between layers.
-constexpr double kCrystalSlack = 1.0e-3;
 // Lattice packing: room kept above the initial column, whose granules bounce as the column
 // compacts, when the wall has to be raised, d (then rounded up to 10 d).
 constexpr float kWallHeadroom = 5.0f;
@@ -145,6 +141,48 @@ scenes::CylinderPile::Config sceneConfig(const DensePileConfig& config, float wa
   return scene;
 }
 
+// Centre heights (m) of the crystal's layers, in static equilibrium: the lowest particles sit in
+// the floor's hollows and every layer rests on the one below with the Hertz overlap of its load.
+// Each granule's two lowest particles touch four particles below at 45° from the vertical, so a
+// column of granules (one per layer, 2 d² of floor) carrying `load` newtons presses each of
+// these 8 contacts with load / (8 cos 45°). Starting at this overlap (0.04 d under 70 layers for
+// the default material, summing to several d over a tall pile) instead of just touching spares
+// the column a free fall and an elastic wave that take hundreds of milliseconds to die down.
+std::vector<float> crystalLayerHeights(const DensePileConfig& config,
+                                       const DensePileLayout& layout) {
+  const double d = config.particleDiameter;
+  const WorldSettings settings =
+      scenes::CylinderPile(sceneConfig(config, config.cylinderHeight)).settings();
+  const double stiffness = ContactModel::fromSettings(settings).stiffnessGrain;
+  const Vec3 g = settings.gravity;
+  const double weight =
+      tetrahedronTemplate(config.particleDiameter, settings.material.density).mass *
+      std::sqrt(double(g.x) * g.x + double(g.y) * g.y + double(g.z) * g.z);
+  const std::uint32_t layers = layout.fullLayers + (layout.topLayerGranules > 0 ? 1u : 0u);
+  // Weight of the layers from `layer` up, per column: a partial top layer is spread evenly.
+  const auto columnLoad = [&](std::uint32_t layer) {
+    const double full = layout.fullLayers > layer ? layout.fullLayers - layer : 0.0;
+    return weight * (full + double(layout.topLayerGranules) / layout.columns);
+  };
+  // Vertical distance between the centres of two touching particles d/√2 apart horizontally,
+  // pressed together by a contact force `force`.
+  const auto verticalGap = [&](double force) {
+    const double distance = d - hertzRestingOverlap(force, stiffness);
+    return std::sqrt(std::max(distance * distance - 0.5 * d * d, 0.0));
+  };
+  const double h = d / (2.0 * std::numbers::sqrt2);  // particle layers of a granule at ±h
+  std::vector<float> heights;
+  double y = 0.0;  // centre of the floor particles
+  double top = 0.0;
+  for (std::uint32_t layer = 0; layer < layers; ++layer) {
+    const double force = columnLoad(layer) / (8.0 * std::numbers::sqrt2 / 2.0);
+    y = (layer == 0 ? 0.0 : top) + verticalGap(force) + h;
+    top = y + h;
+    heights.push_back(static_cast<float>(y));
+  }
+  return heights;
+}
+
 }  // namespace
 
 std::string_view packingName(Packing packing) {
@@ -163,9 +201,9 @@ DensePile::DensePile(const DensePileConfig& config) : m_config(config) {
   const bool crystal = config.packing == Packing::Crystal;
 
   DensePileLayout& layout = m_layout;
-  // Crystal: the layer spacing; within a layer the columns are exactly √2 d apart.
-  layout.spacing = crystal ? static_cast<float>(std::numbers::sqrt2 * d * (1.0 + kCrystalSlack))
-                           : config.spacing * d;
+  // Crystal: the unloaded layer spacing (the layers are pressed closer, see below); within a
+  // layer the columns are exactly √2 d apart.
+  layout.spacing = crystal ? static_cast<float>(std::numbers::sqrt2 * d) : config.spacing * d;
   const float jitter = crystal ? 0.0f : config.jitter * layout.spacing;
   // Horizontally a granule centre moves up to `jitter` along x and along z.
   const std::vector<Site> sites =
@@ -182,18 +220,17 @@ DensePile::DensePile(const DensePileConfig& config) : m_config(config) {
   layout.topLayerGranules = config.granules % layout.columns;
   const std::uint32_t layers = layout.fullLayers + (layout.topLayerGranules > 0 ? 1u : 0u);
   if (crystal) {
-    // The lowest particles (y = -d/(2√2) in the granule) rest in the floor's hollows, d/√2 above
-    // the floor particles' centres, each touching four of them.
-    layout.bottomLayerY = static_cast<float>(
-        (std::numbers::sqrt2 / 2.0 + std::numbers::sqrt2 / 4.0 + kCrystalSlack) * d);
+    layout.layerY = crystalLayerHeights(config, layout);
   } else {
     // Floor particles are centred on y = 0 with radius d/2.
-    layout.bottomLayerY = 0.5f * d + m_granuleOuterRadius + jitter + kFloorClearance * d;
+    const float bottom = 0.5f * d + m_granuleOuterRadius + jitter + kFloorClearance * d;
+    for (std::uint32_t layer = 0; layer < layers; ++layer) {
+      layout.layerY.push_back(bottom + static_cast<float>(layer) * layout.spacing);
+    }
   }
-  layout.columnTop = layout.bottomLayerY + static_cast<float>(layers - 1) * layout.spacing +
-                     jitter + m_granuleOuterRadius;
+  layout.columnTop = layout.layerY.back() + jitter + m_granuleOuterRadius;
   layout.wallHeight = config.cylinderHeight;
-  const float headroom = crystal ? 0.0f : kWallHeadroom;  // a crystal does not move
+  const float headroom = crystal ? 0.0f : kWallHeadroom;  // a crystal hardly moves
   if (layout.columnTop / d + headroom > config.cylinderHeight) {
     layout.wallHeight = 10.0f * std::ceil((layout.columnTop / d + headroom) / 10.0f);
     layout.wallRaised = true;
@@ -233,8 +270,8 @@ void DensePile::addLattice(World& world) const {
   // One GranuleBlock per row run covers all full layers; the partial top layer gets its own.
   const auto addRuns = [&](const std::vector<Site>& columns, std::uint32_t firstLayer,
                            std::uint32_t layers) {
-    const float centreY = m_layout.bottomLayerY +
-                          (static_cast<float>(firstLayer) + 0.5f * float(layers - 1)) * spacing;
+    const float centreY =
+        m_layout.layerY[firstLayer] + 0.5f * static_cast<float>(layers - 1) * spacing;
     for (const Run& run : runsOf(columns)) {
       const float middle =
           static_cast<float>(run.firstColumn) + 0.5f * static_cast<float>(run.columns - 1);
@@ -282,7 +319,7 @@ void DensePile::addCrystal(World& world) const {
     // Row by row, as the lattice packing orders its bodies (memory locality is part of the cost).
     std::sort(layerOrder.begin(), layerOrder.end(),
               [](const Site& a, const Site& b) { return a.j != b.j ? a.j < b.j : a.i < b.i; });
-    const float y = m_layout.bottomLayerY + static_cast<float>(layer) * m_layout.spacing;
+    const float y = m_layout.layerY[layer];
     for (const Site& site : layerOrder) {
       const Vec3 column = crystalColumn(site.i, site.j, d);
       // BodyRange carries no generations; slots of a world without removals are at generation 0.

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <string_view>
+#include <vector>
 
 #include <sandphys/sandphys.h>
 
@@ -15,10 +16,11 @@ enum class Packing {
   /// cannot overlap in any orientation: solid fraction ~0.18, no contacts; the column has to fall
   /// and compact under gravity, which takes far longer than a benchmark can wait for tall piles.
   Lattice,
-  /// Granules all in the template's orientation on a cubic lattice of spacing √2 d: their
-  /// particles form a face-centred cubic sphere packing, every sphere touching 12 others (solid
-  /// fraction 0.74, 18 granule-granule contacts per granule). Static from the first substep, but
-  /// denser and more ordered than a poured pile: an upper bound where Lattice is a lower one.
+  /// Granules all in one orientation on a cubic lattice of spacing √2 d, turned 45° about y: their
+  /// particles form a face-centred cubic sphere packing that continues the rough floor's square
+  /// lattice, every sphere touching 12 others (solid fraction 0.74), the layers pressed together
+  /// by the weight they carry. Static from the first substep, but denser and more ordered than a
+  /// poured pile: an upper bound on neighbours per particle where Lattice is a lower one.
   Crystal,
 };
 
@@ -49,15 +51,15 @@ struct DensePileConfig {
 
 /// Where the granules of a dense pile go; computed before any World exists.
 struct DensePileLayout {
-  /// Lattice spacing used, m.
+  /// Lattice spacing used, m (crystal: between columns; the layers are a little closer).
   float spacing = 0.0f;
   /// Lattice columns inside the wall (one granule per column and layer).
   std::uint32_t columns = 0;
   /// Complete layers, and granules in the partial top layer (0 when the top layer is complete).
   std::uint32_t fullLayers = 0;
   std::uint32_t topLayerGranules = 0;
-  /// Centre height of the lowest layer, m.
-  float bottomLayerY = 0.0f;
+  /// Centre height of each layer, m (crystal layers are pressed together by their load).
+  std::vector<float> layerY;
   /// Height of the highest particle surface of the initial column, m.
   float columnTop = 0.0f;
   /// Wall height used, d: the configured height, or higher when the column does not fit.

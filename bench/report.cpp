@@ -170,9 +170,9 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
                  double(s.gpuMemoryBytes) / s.granules);
   }
   std::fprintf(out,
-               "(ms/step: wall time per substep; CPU ms: process CPU time per substep, all "
-               "threads: on llvmpipe the GPU is the CPU, and this is less disturbed by other "
-               "load than wall time)\n");
+               "(ms/step: wall time per substep; CPU ms: process CPU time per substep over all "
+               "threads, which on llvmpipe run the kernels; with the CPU utilisation in the notes "
+               "it shows how much of a shared machine the run got)\n");
 
   std::fprintf(out, "\nHow settled (at the start of timing -> at its end):\n");
   std::fprintf(out, "%9s %14s %20s %18s %16s %10s %14s\n", "granules", "settle steps",

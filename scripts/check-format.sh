@@ -24,13 +24,15 @@ files=()
 if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
   # Tracked files plus new ones not yet added, minus what .gitignore excludes.
   while IFS= read -r -d '' file; do
-    [[ -f "${file}" ]] && files+=("${file}")
+    if [[ -f "${file}" ]]; then files+=("${file}"); fi
   done < <(git ls-files -z --cached --others --exclude-standard -- \
     "${dirs[@]/%//*.h}" "${dirs[@]/%//*.hpp}" "${dirs[@]/%//*.cpp}" "${dirs[@]/%//*.cc}" \
     "${dirs[@]/%//*.inl}" | sort -zu)
 else
   existing=()
-  for dir in "${dirs[@]}"; do [[ -d "${dir}" ]] && existing+=("${dir}"); done
+  for dir in "${dirs[@]}"; do
+    if [[ -d "${dir}" ]]; then existing+=("${dir}"); fi
+  done
   if ((${#existing[@]} > 0)); then
     while IFS= read -r -d '' file; do files+=("${file}"); done < <(
       find "${existing[@]}" -type f \( -name '*.h' -o -name '*.hpp' -o -name '*.cpp' \
@@ -39,8 +41,9 @@ else
 fi
 
 if ((${#files[@]} == 0)); then
-  echo "check-format: no C++ files found"
-  exit 0
+  # sandphys/ alone has dozens; finding none means the listing above went wrong.
+  echo "check-format: no C++ files found under ${dirs[*]}" >&2
+  exit 1
 fi
 
 if ${fix}; then

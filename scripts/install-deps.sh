@@ -11,7 +11,7 @@ packages=()
 while IFS= read -r line; do
   line="${line%%#*}"
   line="${line//[[:space:]]/}"
-  [[ -n "${line}" ]] && packages+=("${line}")
+  if [[ -n "${line}" ]]; then packages+=("${line}"); fi
 done <"${package_list}"
 packages+=("$@")
 

@@ -28,7 +28,8 @@ TEST(CylinderPile, SixteenThousandGranulesSettle) {
   ASSERT_EQ(world.granulesSpawned(), 16384u);
 
   // Settled: mean kinetic energy per granule below that of a granule moving at 1 cm/s.
-  const double granuleMass = tetrahedronTemplate(settings.particleDiameter, settings.material.density).mass;
+  const double granuleMass =
+      tetrahedronTemplate(settings.particleDiameter, settings.material.density).mass;
   const double threshold = 16384 * 0.5 * granuleMass * 0.01 * 0.01;
   const float d = settings.particleDiameter;
   ASSERT_TRUE(settings.statsEachFrame);
@@ -41,11 +42,12 @@ TEST(CylinderPile, SixteenThousandGranulesSettle) {
     maxOverlap = std::max(maxOverlap, stats.maxOverlap);
     if (seconds > 0.2 && stats.kineticEnergy < threshold) break;
   }
-  std::printf("settled after %.2f s simulated, %llu steps: KE %.3g J (threshold %.3g J), contacts %u, "
-              "max overlap %.4f d, guards %llu/%llu\n",
-              seconds, static_cast<unsigned long long>(stats.steps), stats.kineticEnergy, threshold,
-              stats.contacts, maxOverlap / d, static_cast<unsigned long long>(stats.penetrationClamps),
-              static_cast<unsigned long long>(stats.velocityClamps));
+  std::printf(
+      "settled after %.2f s simulated, %llu steps: KE %.3g J (threshold %.3g J), contacts %u, "
+      "max overlap %.4f d, guards %llu/%llu\n",
+      seconds, static_cast<unsigned long long>(stats.steps), stats.kineticEnergy, threshold,
+      stats.contacts, maxOverlap / d, static_cast<unsigned long long>(stats.penetrationClamps),
+      static_cast<unsigned long long>(stats.velocityClamps));
   EXPECT_LT(stats.kineticEnergy, threshold);
   EXPECT_LT(maxOverlap, 0.1 * d);
   EXPECT_EQ(stats.granulesAlive, 16384u);
