@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The main job: installs what is missing, builds the `release` preset and runs the cylinder-pile
-# scene (the paper's benchmark) headless until its batch has settled, writing the run's metrics
-# (JSON) and the granules at the end (CSV) to out/.
+# scene (the paper's benchmark). With a display it opens the viewer. Without one it runs headless
+# until the batch has settled and writes the run's metrics (JSON), the granules at the end (CSV)
+# and a picture of the last frame, rendered offscreen (PNG), to out/.
 # Usage: scripts/run-sample.sh [extra sandphys-samples options]
 # Environment:
 #   FRAMES   most frames of 1/60 s to run (default 150; the run stops earlier once settled)
@@ -9,6 +10,7 @@
 #            minutes on llvmpipe with 2 cores; BATCH= uses the scene's own 32 16 32)
 #   SCENE    scene to run (default cylinder-pile; `sandphys-samples --list` shows them)
 #   OUT_DIR  where the outputs go (default out, in the repository)
+#   HEADLESS set to anything: run headless (and write the PNG) even with a display
 set -euo pipefail
 
 cd -- "$(dirname -- "${BASH_SOURCE[0]}")/.."
@@ -31,23 +33,41 @@ mkdir -p -- "${out_dir}"
 metrics="${out_dir}/${scene}.json"
 export_csv="${out_dir}/${scene}.csv"
 
-args=(--scene "${scene}" --headless --frames "${frames}" --until-done
-  --metrics "${metrics}" --export "${export_csv}")
+picture="${out_dir}/${scene}.png"
+
+# A display means a person is watching: open the viewer. Without one (a server, CI, ssh), run
+# headless and render the last frame offscreen into a PNG.
+if [[ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" && -z "${HEADLESS:-}" ]]; then
+  mode="viewer"
+  args=(--scene "${scene}")
+else
+  mode="headless"
+  args=(--scene "${scene}" --headless --frames "${frames}" --until-done
+    --metrics "${metrics}" --export "${export_csv}" --screenshot "${picture}")
+fi
 if [[ -n "${batch}" ]]; then
   read -r -a batch_counts <<<"${batch}"
   args+=(--batch "${batch_counts[@]}")
 fi
 
 echo
-echo "== ${scene}: at most ${frames} frames, headless"
+if [[ "${mode}" == "viewer" ]]; then
+  echo "== ${scene}: in a window (close it or press Esc to quit; HEADLESS=1 runs without one)"
+else
+  echo "== ${scene}: at most ${frames} frames, headless"
+fi
 build/release/samples/sandphys-samples "${args[@]}" "$@"
 
 # Paths as the user can open them, whatever directory the script was started from.
 if [[ "${out_dir}" != /* ]]; then
   metrics="${repo_root}/${metrics}"
   export_csv="${repo_root}/${export_csv}"
+  picture="${repo_root}/${picture}"
 fi
-echo
-echo "run-sample: wrote"
-echo "  metrics:   ${metrics}"
-echo "  granules:  ${export_csv}"
+if [[ "${mode}" == "headless" ]]; then
+  echo
+  echo "run-sample: wrote"
+  echo "  metrics:   ${metrics}"
+  echo "  granules:  ${export_csv}"
+  echo "  picture:   ${picture}"
+fi

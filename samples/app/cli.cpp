@@ -1,10 +1,12 @@
 #include "app/cli.h"
 
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <regex>
 #include <sstream>
 #include <stdexcept>
 
@@ -60,6 +62,40 @@ void checkWritable(const std::string& flag, const std::filesystem::path& path) {
   if (!existed) std::filesystem::remove(path, ignored);
 }
 
+// Largest side of an image or window we accept, px (a common GL_MAX_RENDERBUFFER_SIZE).
+constexpr int kMaxImageSide = 16384;
+
+ImageSize parseSize(const std::string& text) {
+  static const std::regex sizeRe(R"(^([0-9]{1,6})[xX]([0-9]{1,6})$)");
+  std::smatch match;
+  const std::string limits = ": expected WIDTHxHEIGHT in pixels, each 1.." +
+                             std::to_string(kMaxImageSide) + " (e.g. 960x540)";
+  if (!std::regex_match(text, match, sizeRe)) throw UsageError("--size " + text + limits);
+  const ImageSize size{std::stoi(match[1].str()), std::stoi(match[2].str())};
+  if (size.width < 1 || size.height < 1 || size.width > kMaxImageSide ||
+      size.height > kMaxImageSide) {
+    throw UsageError("--size " + text + limits);
+  }
+  return size;
+}
+
+bool endsWithPng(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".png";
+}
+
+// Creates the folder if needed and proves that a file can be made in it.
+void checkWritableDirectory(const std::string& flag, const std::filesystem::path& directory) {
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (!std::filesystem::is_directory(directory)) {
+    throw UsageError(flag + ": cannot create or use the folder '" + directory.string() + "'" +
+                     (error ? ": " + error.message() : std::string()));
+  }
+  checkWritable(flag, directory / ".sandphys-write-probe");
+}
+
 void applyParameter(scenes::Scene& scene, const std::string& flag, const std::string& name,
                     const std::string& value) {
   try {
@@ -82,13 +118,19 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
   std::vector<std::string> assignments;
   std::string metrics;
   std::vector<std::string> exports;
+  std::string screenshot;
+  std::optional<std::string> size;
+  std::string screenshots;
+  std::optional<std::int64_t> every;
 
   app.add_option("--scene", options.sceneName, "scene to run (see --list)")->capture_default_str();
   app.add_flag("--list", list, "list the scenes and their parameters, then exit");
   app.add_flag("--headless", options.headless,
-               "run without a window (the only mode of this build)");
-  app.add_option("--frames", frames, "frames to run (the cap with --until-done)")
-      ->capture_default_str();
+               "run without a window (always so in a build without the viewer, "
+               "SANDPHYS_VIEWER=OFF); with a window, --frames N quits after N frames");
+  CLI::Option* framesOption =
+      app.add_option("--frames", frames, "frames to run (the cap with --until-done)")
+          ->capture_default_str();
   app.add_option("--frame-dt", options.frameDt, "duration of one frame, s")->capture_default_str();
   app.add_flag("--until-done", options.untilDone,
                "stop as soon as the scene is finished (e.g. the last batch settled)");
@@ -104,6 +146,13 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
       ->expected(3);
   app.add_option("--seed", seed, "random seed of the scene's granules");
   app.add_option("--param", assignments, "set a scene parameter NAME=VALUE (see --list)");
+  app.add_option("--screenshot", screenshot,
+                 "write a PNG of the last frame to this file (headless: rendered offscreen)");
+  app.add_option("--size", size,
+                 "WIDTHxHEIGHT of screenshots and of the window, px (default 1280x720)");
+  app.add_option("--screenshots", screenshots,
+                 "write an image sequence DIR/frame_NNNNNN.png every --every frames");
+  app.add_option("--every", every, "frames between images of --screenshots (default 10)");
 
   try {
     app.parse(argc, argv);
@@ -124,6 +173,18 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
       throw UsageError("--frames " + std::to_string(frames) + ": must be 0 or more");
     }
     options.frames = static_cast<std::uint64_t>(frames);
+    options.framesGiven = framesOption->count() > 0;
+    if (size) options.size = parseSize(*size);
+    if (every) {
+      if (*every < 1) {
+        throw UsageError("--every " + std::to_string(*every) + ": must be 1 or more frames");
+      }
+      if (screenshots.empty()) {
+        throw UsageError("--every " + std::to_string(*every) +
+                         ": only means something with --screenshots DIR");
+      }
+      options.every = static_cast<std::uint64_t>(*every);
+    }
     if (!(options.frameDt > 0.0) || !(options.frameDt <= 1.0)) {
       std::ostringstream value;
       value << options.frameDt;
@@ -167,15 +228,20 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
       checkWritable("--export", path);
       options.exportPaths.emplace_back(path);
     }
+    if (!screenshot.empty()) {
+      if (!endsWithPng(screenshot)) {
+        throw UsageError("--screenshot " + screenshot + ": the file name must end in .png");
+      }
+      options.screenshotPath = screenshot;
+      checkWritable("--screenshot", options.screenshotPath);
+    }
+    if (!screenshots.empty()) {
+      options.screenshotDir = screenshots;
+      checkWritableDirectory("--screenshots", options.screenshotDir);
+    }
   } catch (const UsageError& error) {
     std::cerr << kProgram << ": error: " << error.what() << "\nRun with --help for usage.\n";
     return kExitUsage;
-  }
-
-  if (!options.headless) {
-    std::cerr << kProgram
-              << ": no --headless given, but the windowed viewer arrives with a later build "
-                 "option (SANDPHYS_VIEWER); running headless\n";
   }
   return std::nullopt;
 }

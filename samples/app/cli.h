@@ -18,16 +18,24 @@ inline constexpr int kExitFailure = 1;
 /// Exit code of a usage error (unknown flag, bad value, unknown scene, unwritable path).
 inline constexpr int kExitUsage = 2;
 
+/// Width and height of an image or a window, px.
+struct ImageSize {
+  int width = 1280;  ///< px, in 1..16384
+  int height = 720;  ///< px, in 1..16384
+};
+
 /// What the command line asked for, validated.
 struct RunOptions {
   /// Registry name of the scene.
   std::string sceneName = "cylinder-pile";
   /// The scene, made from the registry with the command line's parameters applied.
   std::unique_ptr<scenes::Scene> scene;
-  /// --headless was given (the only mode of this build).
+  /// --headless was given: no window even in a build with the viewer (SANDPHYS_VIEWER).
   bool headless = false;
   /// Frames to run (the cap with --until-done); >= 0.
   std::uint64_t frames = 300;
+  /// --frames was given explicitly: a windowed run quits after `frames` frames only then.
+  bool framesGiven = false;
   /// Duration of one frame, s; > 0.
   double frameDt = 1.0 / 60.0;
   /// Stop as soon as the scene reports it is finished.
@@ -38,11 +46,21 @@ struct RunOptions {
   std::filesystem::path metricsPath;
   /// Where to export the granules at the end (.csv or .vtk each).
   std::vector<std::filesystem::path> exportPaths;
+  /// PNG of the last frame (--screenshot); empty for none. Checked writable, ends in .png.
+  std::filesystem::path screenshotPath;
+  /// Size of screenshots and of the viewer's window (--size WxH).
+  ImageSize size;
+  /// Folder of an image sequence frame_NNNNNN.png (--screenshots); empty for none. Exists and is
+  /// writable once parsed.
+  std::filesystem::path screenshotDir;
+  /// Frames between two images of the sequence (--every); >= 1.
+  std::uint64_t every = 10;
 };
 
 /// Parses and validates the command line, and makes the scene. Returns the options to run, or an
 /// exit code when the program should stop: after --help or --list (kExitOk), or after printing a
-/// usage error that names the flag and the value to stderr (kExitUsage). Touches no GPU.
+/// usage error that names the flag and the value to stderr (kExitUsage). Touches no GPU; may
+/// create the --screenshots folder.
 std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options);
 
 }  // namespace sandphys::samples

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,8 @@ struct RunSummary {
   double frameDt = 0.0;              ///< s
   double setupSeconds = 0.0;         ///< wall time of World creation and Scene::build, s
   double wallSeconds = 0.0;          ///< wall time of the frame loop (steps + scene logic), s
+  double hookSeconds = 0.0;          ///< wall time in the frame hooks (screenshots), s; not in
+                                     ///< wallSeconds
   double granuleSteps = 0.0;         ///< sum over substeps of the granules alive
   double maxOverlap = 0.0;           ///< largest overlap seen in any frame, m
   double droppedSeconds = 0.0;       ///< frame time dropped by the substep cap, s
@@ -33,14 +36,21 @@ struct RunSummary {
   std::vector<BodyState> bodies;  ///< World::readBodies at the end (for exports)
 };
 
+/// Called by runScene with the world and the number of frames run so far: after every frame
+/// (afterFrame) or once after the loop (atEnd), e.g. to render screenshots. Its wall time is
+/// kept out of the run's simulation timing.
+using FrameHook = std::function<void(World& world, std::uint64_t frame)>;
+
 /// Runs `scene` in a new World on `gpu` for `frames` frames of `frameDt` s (stopping early when
 /// `untilDone` and the scene finishes), showing progress on `progress`. Reads the stats and the
 /// bodies once at the end (sync points); never per frame beyond what the World itself does.
 RunSummary runScene(const GpuContext& gpu, scenes::Scene& scene, std::uint64_t frames,
-                    double frameDt, bool untilDone, ProgressLine& progress);
+                    double frameDt, bool untilDone, ProgressLine& progress,
+                    const FrameHook& afterFrame = {}, const FrameHook& atEnd = {});
 
-/// Runs the scene of `options` headless and writes its metrics and exports; returns the exit
-/// code. Throws sandphys::Error and std::runtime_error (I/O) on failure.
+/// Runs the scene of `options` headless and writes its metrics, exports and screenshots (rendered
+/// offscreen in the same EGL context); returns the exit code. Throws sandphys::Error and
+/// std::runtime_error (I/O) on failure.
 int runHeadless(RunOptions& options);
 
 }  // namespace sandphys::samples

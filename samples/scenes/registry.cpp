@@ -5,6 +5,8 @@
 
 #include "scenes/box_drop.h"
 #include "scenes/cylinder_pile.h"
+#include "scenes/sand_box_pour.h"
+#include "scenes/slope_avalanche.h"
 
 namespace sandphys::scenes {
 
@@ -19,8 +21,15 @@ std::unique_ptr<Scene> make() {
 // a static library, and the linker drops object files that nothing references, together with
 // their registration.
 constexpr std::array kScenes{
+    SceneEntry{"Avalanches", "slope-avalanche",
+               "a block of sand on a tilted floor runs down the slope when its retaining wall is "
+               "removed",
+               &make<SlopeAvalanche>},
     SceneEntry{"Basics", "box-drop", "a block of granules dropped into a smooth box",
                &make<BoxDrop>},
+    SceneEntry{"Basics", "sand-box-pour",
+               "an emitter pours granules at a set rate into a smooth box, where they heap up",
+               &make<SandBoxPour>},
     SceneEntry{"Benchmark", "cylinder-pile",
                "batches of granules poured into a cylinder on a rough floor (Longmore et al. "
                "2013, section 5)",

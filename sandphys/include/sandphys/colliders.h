@@ -1,5 +1,7 @@
 #pragma once
 
+#include <variant>
+
 #include "sandphys/math.h"
 #include "sandphys/settings.h"
 
@@ -43,6 +45,10 @@ struct Funnel {
   float height = 1.0f;          ///< m, > 0
   SurfaceMaterial material{};
 };
+
+/// Any implicit collider, as given to World::addCollider or World::setCollider (see
+/// World::colliders).
+using ColliderShape = std::variant<Plane, Box, Cylinder, Funnel>;
 
 /// A rough floor: a static body of particles (diameter of the world) on a square lattice of
 /// spacing `spacing` in the plane y = center.y, inside a disc (radius > 0) or a rectangle

@@ -99,6 +99,9 @@ class World {
   double simulatedTime() const;
   /// Bytes of GPU memory held by this world's buffers.
   std::uint64_t gpuMemoryBytes() const;
+  /// Every collider as last given to addCollider/setCollider, indexed by ColliderId::index (for
+  /// renderers and debug drawing). A copy of CPU-side descriptors; no sync.
+  std::vector<ColliderShape> colliders() const;
 
   // --- Read-back (every one is a sync point) ------------------------------------------------
   std::vector<BodyState> readBodies() const;
@@ -112,6 +115,7 @@ class World {
   struct Impl;
   /// Internal: for gl_interop.h and the test suite.
   Impl& impl();
+  const Impl& impl() const;
 
  private:
   std::unique_ptr<Impl> m_impl;

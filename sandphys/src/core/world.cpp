@@ -209,8 +209,8 @@ void World::Impl::uploadBodyStates(std::uint32_t first, const std::vector<BodyDe
   buffers[kBodyAngularVelocity].upload(first * 16ull, n * 16, spin.data());
 }
 
-ColliderId World::Impl::putCollider(std::optional<std::uint32_t> slot,
-                                    const GpuCollider& collider) {
+ColliderId World::Impl::putCollider(std::optional<std::uint32_t> slot, const GpuCollider& collider,
+                                    const ColliderShape& shape) {
   gpu->makeCurrent();
   std::uint32_t index = slot ? *slot : std::uint32_t(colliders.size());
   if (!slot) {
@@ -219,10 +219,12 @@ ColliderId World::Impl::putCollider(std::optional<std::uint32_t> slot,
                              std::to_string(settings.maxColliders));
     }
     colliders.push_back(collider);
+    colliderShapes.push_back(shape);
   } else {
     if (index >= colliders.size())
       throw InvalidId("ColliderId " + std::to_string(index) + " does not exist");
     colliders[index] = collider;
+    colliderShapes[index] = shape;
   }
   std::memcpy(&colliders[index].material.w, &index, sizeof index);
   paramsDirty = true;  // uploadParams re-sorts and uploads the colliders
@@ -257,30 +259,33 @@ float World::timeStep() const {
 World::Impl& World::impl() {
   return *m_impl;
 }
+const World::Impl& World::impl() const {
+  return *m_impl;
+}
 
 ColliderId World::addCollider(const Plane& plane) {
-  return m_impl->putCollider({}, toGpu(plane));
+  return m_impl->putCollider({}, toGpu(plane), plane);
 }
 ColliderId World::addCollider(const Box& box) {
-  return m_impl->putCollider({}, toGpu(box));
+  return m_impl->putCollider({}, toGpu(box), box);
 }
 ColliderId World::addCollider(const Cylinder& c) {
-  return m_impl->putCollider({}, toGpu(c));
+  return m_impl->putCollider({}, toGpu(c), c);
 }
 ColliderId World::addCollider(const Funnel& f) {
-  return m_impl->putCollider({}, toGpu(f));
+  return m_impl->putCollider({}, toGpu(f), f);
 }
 void World::setCollider(ColliderId id, const Plane& p) {
-  m_impl->putCollider(id.index, toGpu(p));
+  m_impl->putCollider(id.index, toGpu(p), p);
 }
 void World::setCollider(ColliderId id, const Box& b) {
-  m_impl->putCollider(id.index, toGpu(b));
+  m_impl->putCollider(id.index, toGpu(b), b);
 }
 void World::setCollider(ColliderId id, const Cylinder& c) {
-  m_impl->putCollider(id.index, toGpu(c));
+  m_impl->putCollider(id.index, toGpu(c), c);
 }
 void World::setCollider(ColliderId id, const Funnel& f) {
-  m_impl->putCollider(id.index, toGpu(f));
+  m_impl->putCollider(id.index, toGpu(f), f);
 }
 
 SinkId World::addSink(const Sink& sink) {
@@ -480,6 +485,9 @@ double World::simulatedTime() const {
 }
 std::uint64_t World::gpuMemoryBytes() const {
   return m_impl->buffers.bytes();
+}
+std::vector<ColliderShape> World::colliders() const {
+  return m_impl->colliderShapes;
 }
 
 }  // namespace sandphys

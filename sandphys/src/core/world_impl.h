@@ -83,6 +83,7 @@ struct World::Impl {
   std::vector<std::uint32_t> generations;  // per body slot
   std::vector<Quat> principalRotations;    // per body slot: template frame -> principal frame
   std::vector<detail::GpuCollider> colliders;
+  std::vector<ColliderShape> colliderShapes;  // the descriptors of `colliders`, for renderers
   std::vector<detail::GpuSink> sinks;
   std::vector<std::optional<detail::EmitterState>> emitters;
 
@@ -104,7 +105,8 @@ struct World::Impl {
                           bool granule);
   void uploadBodyStates(std::uint32_t first, const std::vector<BodyDesc>& descs,
                         const ParticleTemplate& shape);
-  ColliderId putCollider(std::optional<std::uint32_t> slot, const detail::GpuCollider& collider);
+  ColliderId putCollider(std::optional<std::uint32_t> slot, const detail::GpuCollider& collider,
+                         const ColliderShape& shape);
   void requireBody(BodyId id) const;
 
   // GPU work (world_kernels.cpp)

@@ -84,7 +84,9 @@ struct Expander {
 
 }  // namespace
 
-ShaderLibrary::ShaderLibrary() {
+ShaderLibrary::ShaderLibrary() : ShaderLibrary(embeddedShaders()) {}
+
+ShaderLibrary::ShaderLibrary(std::span<const EmbeddedShader> embedded) : m_embedded(embedded) {
   if (const char* dir = std::getenv("SANDPHYS_SHADER_DIR"); dir && *dir) m_directory = dir;
 }
 
@@ -99,7 +101,7 @@ std::string ShaderLibrary::source(const std::string& name) const {
     text << file.rdbuf();
     return text.str();
   }
-  for (const auto& shader : embeddedShaders()) {
+  for (const auto& shader : m_embedded) {
     if (name == shader.name) return shader.source;
   }
   throw GpuError("shader file '" + name + "' is not among the embedded shaders (shaders/)");
@@ -149,26 +151,43 @@ std::string ShaderLibrary::mapLog(const std::string& log, const std::vector<std:
 
 GLuint ShaderLibrary::compileCompute(const std::string& name,
                                      const std::vector<std::string>& defines) const {
-  ExpandedSource expanded = expand(name, defines);
-  GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-  const char* text = expanded.text.c_str();
-  glShaderSource(shader, 1, &text, nullptr);
-  glCompileShader(shader);
-  GLint ok = GL_FALSE;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    GLint length = 0;
-    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-    std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-    glGetShaderInfoLog(shader, length, nullptr, log.data());
-    glDeleteShader(shader);
-    throw GpuError("shader 'shaders/" + name + "' failed to compile:\n" +
-                   mapLog(log.c_str(), expanded.files));
+  return compileProgram({{GL_COMPUTE_SHADER, name}}, defines);
+}
+
+GLuint ShaderLibrary::compileProgram(const std::vector<ShaderStage>& stages,
+                                     const std::vector<std::string>& defines) const {
+  std::vector<GLuint> shaders;
+  std::vector<std::string> files;  // every stage's files, for the link log
+  std::string names;
+  auto release = [&] {
+    for (GLuint shader : shaders) glDeleteShader(shader);
+  };
+  for (const ShaderStage& stage : stages) {
+    ExpandedSource expanded = expand(stage.name, defines);
+    names += (names.empty() ? "shaders/" : " + shaders/") + stage.name;
+    GLuint shader = glCreateShader(stage.type);
+    shaders.push_back(shader);
+    const char* text = expanded.text.c_str();
+    glShaderSource(shader, 1, &text, nullptr);
+    glCompileShader(shader);
+    GLint ok = GL_FALSE;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+      GLint length = 0;
+      glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+      std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+      glGetShaderInfoLog(shader, length, nullptr, log.data());
+      release();
+      throw GpuError("shader 'shaders/" + stage.name + "' failed to compile:\n" +
+                     mapLog(log.c_str(), expanded.files));
+    }
+    if (files.empty()) files = expanded.files;
   }
   GLuint program = glCreateProgram();
-  glAttachShader(program, shader);
+  for (GLuint shader : shaders) glAttachShader(program, shader);
   glLinkProgram(program);
-  glDeleteShader(shader);
+  release();
+  GLint ok = GL_FALSE;
   glGetProgramiv(program, GL_LINK_STATUS, &ok);
   if (!ok) {
     GLint length = 0;
@@ -176,8 +195,7 @@ GLuint ShaderLibrary::compileCompute(const std::string& name,
     std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
     glGetProgramInfoLog(program, length, nullptr, log.data());
     glDeleteProgram(program);
-    throw GpuError("shader 'shaders/" + name + "' failed to link:\n" +
-                   mapLog(log.c_str(), expanded.files));
+    throw GpuError("shader '" + names + "' failed to link:\n" + mapLog(log.c_str(), files));
   }
   return program;
 }

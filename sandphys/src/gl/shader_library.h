@@ -2,8 +2,11 @@
 
 #include <GL/glew.h>
 
+#include <span>
 #include <string>
 #include <vector>
+
+#include "gl/embedded_shaders.h"
 
 namespace sandphys::gl {
 
@@ -14,12 +17,21 @@ struct ExpandedSource {
   std::vector<std::string> files;
 };
 
+/// One stage of a graphics program: GL_VERTEX_SHADER, GL_FRAGMENT_SHADER, ... and its file.
+struct ShaderStage {
+  GLenum type;
+  std::string name;
+};
+
 /// Finds shader files (embedded at build time; or, when SANDPHYS_SHADER_DIR is set in the
 /// environment, read from that directory so that a viewer can hot-reload them), expands
-/// `#include "relative/path.glsl"` once per file, and compiles compute programs.
+/// `#include "relative/path.glsl"` once per file, and compiles programs.
 class ShaderLibrary {
  public:
+  /// The library's own shaders (shaders/sim).
   ShaderLibrary();
+  /// Another set embedded with sandphys_embed_shaders(... FUNCTION f) (e.g. the renderer's).
+  explicit ShaderLibrary(std::span<const EmbeddedShader> embedded);
 
   /// Source of one file relative to shaders/; throws GpuError if there is none.
   std::string source(const std::string& name) const;
@@ -29,12 +41,17 @@ class ShaderLibrary {
   /// file and line of each compiler error.
   GLuint compileCompute(const std::string& name,
                         const std::vector<std::string>& defines = {}) const;
+  /// Compiles every stage (each expanded with `defines`) and links them into one program; errors
+  /// as compileCompute's.
+  GLuint compileProgram(const std::vector<ShaderStage>& stages,
+                        const std::vector<std::string>& defines = {}) const;
 
   /// Rewrites "F:L(C): msg" driver messages with file names; exposed for tests.
   static std::string mapLog(const std::string& log, const std::vector<std::string>& files);
 
  private:
   std::string m_directory;  // empty: embedded sources
+  std::span<const EmbeddedShader> m_embedded;
 };
 
 }  // namespace sandphys::gl

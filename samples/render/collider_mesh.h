@@ -1,0 +1,23 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include <sandphys/colliders.h>
+
+namespace sandphys::render {
+
+/// One vertex of a collider mesh, as shaders/render/mesh.vert reads it.
+struct MeshVertex {
+  float x, y, z;
+  float cutaway;  ///< 1: the side facing the eye is not drawn (thin walls, container boxes)
+  float nx, ny, nz;
+  float unused;
+};
+
+/// Triangles (no index buffer) for every collider, with outward normals. A plane becomes a
+/// square of half-side `planeExtent` (m) centred on the point of the plane nearest `planeCentre`.
+std::vector<MeshVertex> buildColliderMesh(const std::vector<ColliderShape>& colliders,
+                                          const Eigen::Vector3f& planeCentre, float planeExtent);
+
+}  // namespace sandphys::render

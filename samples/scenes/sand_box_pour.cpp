@@ -1,0 +1,317 @@
+#include "scenes/sand_box_pour.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace sandphys::scenes {
+
+namespace {
+
+// Distance of a granule's particle centres from its centre, plus the particle radius, in d: a
+// tetrahedron of edge d has circumradius d·√6/4.
+constexpr float kGranuleReach = 0.6123724f + 0.5f;
+
+// Height of the bed's lowest granule centres above the floor, d: the granule's reach plus the
+// block's jitter (0.03 of 2.4 d), so that no granule starts inside the floor.
+constexpr float kBedClearance = 1.4f;
+
+// The emitter moves this much faster than its lattice strictly needs for the rate, so that float
+// rounding never makes EmitterSettings refuse the rate.
+constexpr float kEmitterSpeedMargin = 1.1f;
+// Slowest emitter, m/s: a fresh layer has to clear the rectangle before the next one starts.
+constexpr float kMinEmitterSpeed = 0.5f;
+// Fastest emitter the scene accepts, m/s: beyond it the impacts overlap the grains by well over
+// the d/10 that the penetration guard allows; a wider emitter takes the rate more gently.
+constexpr float kMaxEmitterSpeed = 3.0f;
+
+// The speed guard is the fastest impact (emitter speed plus the free fall) with this margin for
+// rebounds and the rim speed of spinning grains, and never below kMinGuardSpeed.
+constexpr float kGuardMargin = 1.25f;
+constexpr float kMinGuardSpeed = 2.0f;
+// Substeps per Hertz contact time at the guard speed. The guard is the worst impact; slower
+// contacts last longer and so get more substeps. 10 (the minimum is 8) halves the cost of the
+// default 20, which a pour of thousands of granules on llvmpipe needs, as the cylinder-pile
+// settle test does.
+constexpr float kStepsPerContact = 10.0f;
+
+// Granules slower than this (m/s) belong to the pile; the ones falling from the emitter leave it
+// at kMinEmitterSpeed or more and only speed up, so a pile measured during the pour leaves them
+// out.
+constexpr float kRestSpeed = 0.3f;
+
+// Fraction of a fall's time added before the pile may count as settled: after landing the grains
+// still slide and bounce for a while.
+constexpr double kLandingMargin = 0.5;
+
+float gravityMagnitude(const WorldSettings& settings) {
+  const Vec3 g = settings.gravity;
+  return std::sqrt(g.x * g.x + g.y * g.y + g.z * g.z);
+}
+
+// Time a body needs to fall `height` (m) starting at `speed` (m/s, downward) under gravity `g`.
+double fallTime(double height, double speed, double g) {
+  return (std::sqrt(speed * speed + 2.0 * g * std::max(height, 0.0)) - speed) / g;
+}
+
+// The value below which `fraction` of `values` lie; `values` is reordered.
+float percentile(std::vector<float>& values, double fraction) {
+  const auto rank = static_cast<std::size_t>(fraction * static_cast<double>(values.size() - 1));
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(rank),
+                   values.end());
+  return values[rank];
+}
+
+std::string text(float value) {
+  std::string s = std::to_string(value);
+  s.erase(s.find_last_not_of('0') + 1);
+  if (!s.empty() && s.back() == '.') s.pop_back();
+  return s;
+}
+
+bool atRest(const BodyState& body) {
+  const Vec3& v = body.velocity;
+  return v.x * v.x + v.y * v.y + v.z * v.z < kRestSpeed * kRestSpeed;
+}
+
+}  // namespace
+
+std::uint32_t SandBoxPour::bedGranules() const {
+  return m_config.block[0] * m_config.block[1] * m_config.block[2];
+}
+
+std::uint32_t SandBoxPour::layerGranules() const {
+  // The same lattice, with the same float and double arithmetic, as the emitter's
+  // (sandphys/src/core/emitter.cpp): one slot every kDefaultGranuleSpacing diameters across the
+  // rectangle, corners included. A width that is a whole number of spacings sits on the edge of
+  // the floor, so the rounding has to match.
+  const double spacing = kDefaultGranuleSpacing * d();
+  const auto perSide =
+      static_cast<std::uint32_t>(1 + std::floor(2.0 * emitterHalfExtent() / spacing));
+  return perSide * perSide;
+}
+
+float SandBoxPour::emitterSpeed() const {
+  // A layer of layerGranules() slots leaves every spacing / speed seconds.
+  const float needed =
+      m_config.rate * kDefaultGranuleSpacing * d() / static_cast<float>(layerGranules());
+  return std::max(kMinEmitterSpeed, kEmitterSpeedMargin * needed);
+}
+
+WorldSettings SandBoxPour::settings() const {
+  WorldSettings settings;
+  settings.particleDiameter = d();
+  settings.material.youngsModulus = m_config.youngsModulus;
+  const std::string scene = "sand-box-pour: ";
+
+  const std::uint64_t granules = static_cast<std::uint64_t>(m_config.granules) + bedGranules();
+  if (4 * granules > std::numeric_limits<std::uint32_t>::max()) {
+    throw InvalidArgument(scene + std::to_string(granules) +
+                          " granules (bed and pour) are more than a World can index");
+  }
+  const float boxWidth = m_config.boxWidth;
+  if (m_config.emitterSize + 2.0f * kGranuleReach > boxWidth) {
+    throw InvalidArgument(scene + "emitter-size " + text(m_config.emitterSize) +
+                          " d does not fit in box-width " + text(boxWidth) +
+                          " d (it needs the emitter's width plus " + text(2.0f * kGranuleReach) +
+                          " d)");
+  }
+  if (m_config.emitterHeight + kGranuleReach > m_config.boxHeight) {
+    throw InvalidArgument(scene + "emitter-height " + text(m_config.emitterHeight) +
+                          " d is not inside the box (box-height " + text(m_config.boxHeight) +
+                          " d)");
+  }
+  if (bedGranules() > 0) {
+    const float jitter = 2.0f * GranuleBlock{}.jitter * kDefaultGranuleSpacing;
+    for (int axis : {0, 2}) {
+      const float extent = static_cast<float>(m_config.block[axis] - 1) * kDefaultGranuleSpacing +
+                           jitter + 2.0f * kGranuleReach;
+      if (extent > boxWidth) {
+        throw InvalidArgument(scene + "bed (block) of " + std::to_string(m_config.block[axis]) +
+                              " granules along " + (axis == 0 ? "x" : "z") + " is " + text(extent) +
+                              " d wide, more than box-width " + text(boxWidth) + " d");
+      }
+    }
+    const float bedTop = kBedClearance +
+                         static_cast<float>(m_config.block[1] - 1) * kDefaultGranuleSpacing +
+                         kGranuleReach;
+    if (bedTop + kGranuleReach > m_config.emitterHeight) {
+      throw InvalidArgument(scene + "bed (block) of " + std::to_string(m_config.block[1]) +
+                            " layers reaches " + text(bedTop) + " d, into the emitter at " +
+                            text(m_config.emitterHeight) + " d");
+    }
+  }
+  const float speed = emitterSpeed();
+  if (speed > kMaxEmitterSpeed) {
+    throw InvalidArgument(scene + "rate " + text(m_config.rate) +
+                          " granules/s needs the emitter's " + std::to_string(layerGranules()) +
+                          " slots to move at " + text(speed) + " m/s, more than " +
+                          text(kMaxEmitterSpeed) + " m/s; lower the rate or widen emitter-size");
+  }
+
+  settings.maxBodies = static_cast<std::uint32_t>(granules);
+  settings.maxParticles = static_cast<std::uint32_t>(4 * granules);
+  const float impact =
+      std::sqrt(speed * speed + 2.0f * gravityMagnitude(settings) * m_config.emitterHeight * d());
+  settings.maxSpeed = std::max(kMinGuardSpeed, kGuardMargin * impact);
+  settings.stepsPerContact = kStepsPerContact;
+  return settings;
+}
+
+void SandBoxPour::build(World& world) {
+  m_poured = 0;
+  m_pourStart = -1.0;
+  m_pourEnd = -1.0;
+  m_finished = false;
+  m_granuleMass = tetrahedronTemplate(d(), world.settings().material.density).mass;
+
+  const float height = m_config.boxHeight * d();
+  world.addCollider(Box{.center = {0.0f, 0.5f * height, 0.0f},
+                        .halfExtents = {halfWidth(), 0.5f * height, halfWidth()},
+                        .inside = true});
+  m_bedDropTime = world.simulatedTime();
+  if (bedGranules() == 0) {
+    startPour(world, world.simulatedTime());
+    return;
+  }
+  const float spacing = kDefaultGranuleSpacing * d();
+  const float bedHeight = static_cast<float>(m_config.block[1] - 1) * spacing;
+  world.addGranules(GranuleBlock{.center = {0.0f, kBedClearance * d() + 0.5f * bedHeight, 0.0f},
+                                 .countX = m_config.block[0],
+                                 .countY = m_config.block[1],
+                                 .countZ = m_config.block[2],
+                                 .spacing = spacing,
+                                 // Not the emitter's seed: the bed and the pour differ.
+                                 .seed = m_config.seed * 1000003u + 1u});
+  // The lattice collapses onto the floor: its top layer falls about its own height.
+  const double g = gravityMagnitude(world.settings());
+  m_minSettleTime = (1.0 + kLandingMargin) * fallTime(bedHeight + kBedClearance * d(), 0.0, g);
+}
+
+void SandBoxPour::startPour(World& world, double simTime) {
+  const float half = emitterHalfExtent();
+  world.addEmitter(EmitterSettings{.center = {0.0f, m_config.emitterHeight * d(), 0.0f},
+                                   .halfExtentX = half,
+                                   .halfExtentZ = half,
+                                   .rate = m_config.rate,
+                                   .velocity = {0.0f, -emitterSpeed(), 0.0f},
+                                   .maxGranules = m_config.granules,
+                                   .seed = m_config.seed});
+  m_pourStart = simTime;
+}
+
+void SandBoxPour::update(World& world, const StepReport& report, double simTime) {
+  if (m_finished) return;
+  const double settleEnergy = 0.5 * m_granuleMass * m_config.settleSpeed * m_config.settleSpeed;
+  // Without per-frame stats only the time limits apply.
+  auto calm = [&](std::uint32_t granules) {
+    return report.hasStats && granules > 0 && report.stats.kineticEnergy / granules < settleEnergy;
+  };
+
+  if (m_pourStart < 0.0) {
+    const double sinceDrop = simTime - m_bedDropTime;
+    if (sinceDrop < m_minSettleTime) return;
+    if (!calm(bedGranules()) && sinceDrop < m_config.maxSettleSeconds) return;
+    startPour(world, simTime);
+    return;
+  }
+
+  m_poured = world.granulesSpawned() - bedGranules();
+  if (m_poured < m_config.granules) return;
+  if (m_pourEnd < 0.0) {
+    m_pourEnd = simTime;
+    // The last granule left the emitter during this frame and still has to fall onto the pile.
+    const double g = gravityMagnitude(world.settings());
+    m_minSettleTime =
+        (1.0 + kLandingMargin) * fallTime(m_config.emitterHeight * d(), emitterSpeed(), g);
+  }
+  const double sincePour = simTime - m_pourEnd;
+  if (sincePour < m_minSettleTime) return;
+  if (!calm(m_config.granules + bedGranules()) && sincePour < m_config.maxSettleSeconds) return;
+  m_finished = true;
+}
+
+std::string SandBoxPour::status() const {
+  if (m_pourStart < 0.0) return "bed settling";
+  std::string line = "poured " + std::to_string(m_poured) + "/" + std::to_string(m_config.granules);
+  if (m_finished) line += " settled";
+  return line;
+}
+
+bool SandBoxPour::contains(const Vec3& centre) const {
+  const float half = halfWidth();
+  return centre.y >= 0.0f && centre.y <= m_config.boxHeight * d() && std::abs(centre.x) <= half &&
+         std::abs(centre.z) <= half;
+}
+
+float SandBoxPour::pileHeight(std::span<const BodyState> bodies) const {
+  std::vector<float> heights;
+  heights.reserve(bodies.size());
+  for (const BodyState& body : bodies) {
+    if (body.alive && body.granule && atRest(body) && contains(body.position)) {
+      heights.push_back(body.position.y);
+    }
+  }
+  if (heights.empty()) return 0.0f;
+  return percentile(heights, 0.99) + kGranuleReach * d();
+}
+
+float SandBoxPour::footprintRadius(std::span<const BodyState> bodies) const {
+  std::vector<float> radii;
+  radii.reserve(bodies.size());
+  for (const BodyState& body : bodies) {
+    if (body.alive && body.granule && atRest(body) && contains(body.position)) {
+      radii.push_back(std::hypot(body.position.x, body.position.z));
+    }
+  }
+  if (radii.empty()) return 0.0f;
+  return percentile(radii, 0.99) + kGranuleReach * d();
+}
+
+std::vector<SceneMetric> SandBoxPour::metrics(std::span<const BodyState> bodies) const {
+  const double height = pileHeight(bodies);
+  const double radius = footprintRadius(bodies);
+  return {
+      {"granules_poured", static_cast<double>(m_poured)},
+      {"granules_budget", static_cast<double>(m_config.granules)},
+      {"bed_granules", static_cast<double>(bedGranules())},
+      {"pour_rate_per_s", m_config.rate},
+      {"pour_seconds", m_pourEnd >= 0.0 ? m_pourEnd - m_pourStart : 0.0},
+      {"emitter_speed_m_per_s", emitterSpeed()},
+      {"pile_height_m", height},
+      {"pile_height_d", height / d()},
+      {"footprint_radius_m", radius},
+      {"footprint_radius_d", radius / d()},
+      {"box_half_width_m", halfWidth()},
+  };
+}
+
+std::vector<SceneParameter> SandBoxPour::parameters() {
+  return {
+      {"rate", "pour rate, granules/s", &m_config.rate, 1.0, 1e5},
+      {"granules", "granules poured in total (the emitter's budget)", &m_config.granules, 1, 1e8},
+      {"box-width", "inner width of the box along x and z, d", &m_config.boxWidth, 4.0, 1e4},
+      {"box-height", "inner height of the box, d", &m_config.boxHeight, 4.0, 1e4},
+      {"emitter-height", "height of the emitting rectangle above the floor, d",
+       &m_config.emitterHeight, 2.0, 1e4},
+      {"emitter-size", "width of the square emitting rectangle, d", &m_config.emitterSize, 0.5,
+       1e4},
+      {"block", "bed of granules on the floor before the pour, x, y (layers), z; 0,0,0 for none",
+       &m_config.block, 0, 1024},
+      {"settle-speed", "the pile has settled below this rms speed, m/s", &m_config.settleSpeed, 0.0,
+       10.0},
+      {"max-settle-seconds", "longest wait for the bed or the pile to settle, s",
+       &m_config.maxSettleSeconds, 0.0, 1e6},
+      {"youngs-modulus", "Young's modulus of the grains, Pa", &m_config.youngsModulus, 1e4, 1e12},
+      {"seed", "random seed of the emitter and the bed", &m_config.seed, 0, 1.8446744073709552e19},
+      {"diameter", "particle diameter d, m", &m_config.particleDiameter, 1e-4, 1.0},
+  };
+}
+
+SceneBounds SandBoxPour::bounds() const {
+  const float half = halfWidth();
+  return {{-half, 0.0f, -half}, {half, m_config.boxHeight * d(), half}};
+}
+
+}  // namespace sandphys::scenes

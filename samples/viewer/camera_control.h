@@ -1,0 +1,43 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+
+#include "render/camera.h"
+
+namespace sandphys::viewer {
+
+/// A half-line in world space, m.
+struct Ray {
+  Eigen::Vector3f origin = Eigen::Vector3f::Zero();
+  Eigen::Vector3f direction = -Eigen::Vector3f::UnitZ();  ///< unit
+};
+
+/// Where `ray` meets the horizontal plane at height `y` (m), or nothing when it points away from
+/// it or runs parallel to it.
+std::optional<Eigen::Vector3f> hitHorizontalPlane(const Ray& ray, float y);
+
+/// How the mouse moves the renderer's orbit camera. Drags are in window pixels (the unit of GLFW
+/// cursor positions), not framebuffer pixels, so that high-DPI screens feel the same.
+namespace camera_control {
+
+/// Elevation limit, rad: just short of the poles, where yaw would spin the view.
+inline constexpr float kMaxPitch = 1.55f;
+/// Distance limits, m.
+inline constexpr float kMinDistance = 0.01f;
+inline constexpr float kMaxDistance = 1.0e4f;
+
+/// Turns the camera about its target by a drag of (dx, dy) pixels.
+void orbit(render::Camera& camera, float dx, float dy);
+/// Moves the target so that the scene follows a drag of (dx, dy) pixels in a window
+/// `windowHeight` pixels high (the point under the cursor at the target's depth stays under it).
+void pan(render::Camera& camera, float dx, float dy, float windowHeight);
+/// Moves towards the target by `steps` wheel notches (negative: away).
+void zoom(render::Camera& camera, float steps);
+/// The ray from the eye through window point (x, y), pixels from the top left, of a window of
+/// `width` × `height` pixels.
+Ray rayThrough(const render::Camera& camera, float x, float y, float width, float height);
+
+}  // namespace camera_control
+
+}  // namespace sandphys::viewer

@@ -1,0 +1,227 @@
+#include "viewer/panel.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <type_traits>
+
+namespace sandphys::viewer {
+
+namespace {
+
+template <typename T>
+void clampTo(T& value, double min, double max) {
+  value = static_cast<T>(std::clamp(static_cast<double>(value), min, max));
+}
+
+// Edits one scene parameter in place; true when the value changed.
+bool editParameter(const scenes::SceneParameter& parameter) {
+  const char* label = parameter.name.c_str();
+  bool changed = false;
+  std::visit(
+      [&](auto* value) {
+        using T = std::remove_pointer_t<decltype(value)>;
+        if constexpr (std::is_same_v<T, std::uint32_t>) {
+          changed = ImGui::InputScalar(label, ImGuiDataType_U32, value);
+          clampTo(*value, parameter.min, parameter.max);
+        } else if constexpr (std::is_same_v<T, std::uint64_t>) {
+          changed = ImGui::InputScalar(label, ImGuiDataType_U64, value);
+          clampTo(*value, parameter.min, parameter.max);
+        } else if constexpr (std::is_same_v<T, float>) {
+          changed = ImGui::InputFloat(label, value, 0.0f, 0.0f, "%.4g");
+          clampTo(*value, parameter.min, parameter.max);
+        } else {
+          changed = ImGui::InputScalarN(label, ImGuiDataType_U32, value->data(), 3);
+          for (std::uint32_t& count : *value) clampTo(count, parameter.min, parameter.max);
+        }
+      },
+      parameter.value);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", parameter.help.c_str());
+  return changed;
+}
+
+void plot(const char* label, const PlotHistory& history, const char* format) {
+  char overlay[64];
+  std::snprintf(overlay, sizeof overlay, format, static_cast<double>(history.latest()));
+  ImGui::PlotLines(label, history.data(), history.size(), 0, overlay, 0.0f,
+                   std::max(history.max() * 1.1f, 1e-12f), ImVec2(0.0f, 48.0f));
+}
+
+}  // namespace
+
+PanelRequests Panel::draw(Session& session, const FrameStats& stats, const StatsHistory& history,
+                          const PanelView& view) {
+  PanelRequests requests;
+  ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(430.0f, 0.0f), ImGuiCond_FirstUseEver);
+  ImGui::Begin("sandphys");
+  // Fields leave room on their right for labels as long as "Young's modulus, Pa".
+  ImGui::PushItemWidth(-170.0f);
+  drawScene(session, view, requests);
+  if (ImGui::CollapsingHeader("Scene parameters", ImGuiTreeNodeFlags_DefaultOpen)) {
+    drawParameters(session);
+  }
+  if (ImGui::CollapsingHeader("Material and time step", ImGuiTreeNodeFlags_DefaultOpen)) {
+    drawControls(session);
+  }
+  if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) {
+    drawStats(session, stats, history);
+  }
+  if (ImGui::CollapsingHeader("Controls")) drawHelp();
+  ImGui::PopItemWidth();
+  ImGui::End();
+  return requests;
+}
+
+void Panel::drawScene(Session& session, const PanelView& view, PanelRequests& requests) {
+  const std::string_view current = session.scene().name();
+  if (ImGui::BeginCombo("scene", std::string(current).c_str())) {
+    std::string_view category;
+    for (const scenes::SceneEntry& entry : scenes::sceneRegistry()) {
+      if (entry.category != category) {
+        category = entry.category;
+        ImGui::TextDisabled("%.*s", static_cast<int>(category.size()), category.data());
+      }
+      const std::string name(entry.name);
+      if (ImGui::Selectable(("  " + name).c_str(), entry.name == current)) {
+        requests.switchTo = &entry;
+      }
+      if (ImGui::IsItemHovered()) {
+        ImGui::SetTooltip("%.*s", static_cast<int>(entry.description.size()),
+                          entry.description.data());
+      }
+    }
+    ImGui::EndCombo();
+  }
+  const std::string status = session.scene().status();
+  ImGui::Text("t = %.3f s  %s", session.world().simulatedTime(), status.c_str());
+
+  if (ImGui::Button(view.paused ? "Run (Space)" : "Pause (Space)")) requests.togglePause = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Step (S)")) requests.step = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Restart (R)")) requests.restart = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Screenshot (F)")) requests.screenshot = true;
+  bool vsync = view.vsync;
+  if (ImGui::Checkbox("vsync", &vsync)) requests.toggleVsync = true;
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  ImGui::TextWrapped("%s", view.gpu.c_str());
+  ImGui::PopStyleColor();
+  if (!view.lastScreenshot.empty()) ImGui::TextWrapped("saved %s", view.lastScreenshot.c_str());
+  if (!view.message.empty()) {
+    ImGui::TextColored(ImVec4(1.0f, 0.5f, 0.3f, 1.0f), "%s", view.message.c_str());
+  }
+}
+
+void Panel::drawParameters(Session& session) {
+  scenes::Scene& scene = session.scene();
+  ImGui::TextDisabled("applied on restart (R)");
+  for (const scenes::SceneParameter& parameter : scene.parameters()) {
+    const std::string before = scenes::formatSceneParameter(parameter);
+    if (!editParameter(parameter)) continue;
+    // The scene checks its parameters together (capacity limits, a batch inside its
+    // container); a value it refuses is put back, so that Restart always works.
+    try {
+      (void)scene.settings();
+      m_parameterError.clear();
+    } catch (const Error& error) {
+      m_parameterError = error.what();
+      scenes::setSceneParameter(scene, parameter.name, before);
+    }
+  }
+  if (!m_parameterError.empty()) {
+    ImGui::TextColored(ImVec4(1.0f, 0.5f, 0.3f, 1.0f), "refused: %s", m_parameterError.c_str());
+  }
+}
+
+void Panel::drawControls(Session& session) {
+  SimulationControls& controls = session.controls();
+  const SimulationControls& applied = session.applied();
+  const bool pending =
+      controls.youngsModulus != applied.youngsModulus || controls.friction != applied.friction ||
+      controls.restitution != applied.restitution ||
+      controls.stepsPerContact != applied.stepsPerContact || controls.frameDt != applied.frameDt ||
+      controls.profileKernels != applied.profileKernels;
+  if (pending) {
+    ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "changed: applied on restart (R)");
+  } else {
+    ImGui::TextDisabled("applied on restart (R)");
+  }
+  if (ImGui::InputFloat("Young's modulus, Pa", &controls.youngsModulus, 0.0f, 0.0f, "%.3g")) {
+    clampTo(controls.youngsModulus, 1.0e3, 1.0e11);
+  }
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip("stiffer sand needs a smaller time step: dt ~ E^(-2/5)");
+  }
+  ImGui::SliderFloat("friction", &controls.friction, 0.0f, 1.5f, "%.2f");
+  ImGui::SliderFloat("restitution", &controls.restitution, 0.05f, 1.0f, "%.2f");
+  ImGui::SliderFloat("steps per contact", &controls.stepsPerContact, kMinStepsPerContact, 100.0f,
+                     "%.0f");
+  float frameMs = static_cast<float>(controls.frameDt * 1e3);
+  if (ImGui::SliderFloat("frame dt, ms", &frameMs, 1.0f, 50.0f, "%.2f")) {
+    controls.frameDt = frameMs * 1e-3;
+  }
+  ImGui::Checkbox("profile kernels", &controls.profileKernels);
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip("GL timer queries around every kernel; on llvmpipe they slow the step down");
+  }
+  if (!session.lastError().empty()) {
+    ImGui::TextColored(ImVec4(1.0f, 0.5f, 0.3f, 1.0f), "refused, scene defaults used: %s",
+                       session.lastError().c_str());
+  }
+}
+
+void Panel::drawStats(const Session& session, const FrameStats& stats,
+                      const StatsHistory& history) {
+  const World& world = session.world();
+  const ContactModel& model = world.contactModel();
+  const WorldStats& s = stats.report.stats;
+  const bool have = stats.report.hasStats;
+  ImGui::Text("granules %u  particles %u", have ? s.granulesAlive : world.granulesSpawned(),
+              stats.particles);
+  ImGui::Text("contacts %u  substeps/frame %u", have ? s.contacts : 0u, stats.report.substeps);
+  ImGui::Text("dt %.3g s = %.3f t_n  (t_n %.3g s)", static_cast<double>(model.timeStep),
+              static_cast<double>(model.timeStep / model.contactTime),
+              static_cast<double>(model.contactTime));
+  ImGui::Text("Cundall %.3g granule steps/s", stats.cundall);
+  ImGui::Text("simulated / wall %.3f", stats.simPerWall);
+  ImGui::Text("max overlap %.4f d  (guard at 0.1 d)", stats.maxOverlapOverD);
+  ImGui::Text("guards: penetration %llu  velocity %llu",
+              static_cast<unsigned long long>(s.penetrationClamps),
+              static_cast<unsigned long long>(s.velocityClamps));
+  ImGui::Text("dropped %.3f s%s", stats.droppedSeconds,
+              stats.report.emitterBlocked ? "  emitter blocked (capacity)" : "");
+  ImGui::Text("poured %u of %u", session.tools().poured(), SandTools::kPourGranules);
+  ImGui::Text("step %.2f ms  render %.2f ms  frame %.2f ms", stats.stepMilliseconds,
+              stats.renderMilliseconds, stats.frameMilliseconds);
+  if (stats.kernels.empty()) {
+    ImGui::TextDisabled("kernel times: tick 'profile kernels' and restart");
+  } else if (ImGui::TreeNode("kernels")) {
+    double total = 0.0;
+    for (const KernelTime& kernel : stats.kernels) {
+      ImGui::Text("%-22s %7.3f ms  x%u", kernel.name.c_str(), kernel.milliseconds,
+                  kernel.dispatches);
+      total += kernel.milliseconds;
+    }
+    ImGui::Text("%-22s %7.3f ms", "total", total);
+    ImGui::TreePop();
+  }
+  plot("kinetic energy", history.kineticEnergy, "%.3g J");
+  plot("contacts", history.contacts, "%.0f");
+  plot("frame", history.frameMs, "%.1f ms");
+}
+
+void Panel::drawHelp() {
+  ImGui::TextUnformatted(
+      "left drag: orbit    middle or Shift+left drag: pan\n"
+      "wheel: zoom\n"
+      "right button or P held: pour sand under the cursor\n"
+      "Ctrl+left button or B held: push sand with a sphere\n"
+      "Space: pause    S: step    R: restart\n"
+      "F: screenshot of the scene (no panel)   Esc: quit");
+}
+
+}  // namespace sandphys::viewer

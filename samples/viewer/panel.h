@@ -1,0 +1,49 @@
+#pragma once
+
+#include <string>
+
+#include "scenes/registry.h"
+#include "viewer/frame_stats.h"
+#include "viewer/session.h"
+
+namespace sandphys::viewer {
+
+/// What the viewer state looks like to the panel this frame.
+struct PanelView {
+  bool paused = false;
+  bool vsync = true;
+  std::string gpu;             ///< GpuContext::description
+  std::string lastScreenshot;  ///< path of the last PNG written, or empty
+  std::string message;         ///< one line of feedback (e.g. a failed screenshot), or empty
+};
+
+/// What the user asked for in the panel this frame; the app applies it after the frame.
+struct PanelRequests {
+  const scenes::SceneEntry* switchTo = nullptr;
+  bool restart = false;
+  bool togglePause = false;
+  bool step = false;
+  bool screenshot = false;
+  bool toggleVsync = false;
+};
+
+/// The Dear ImGui panel: scene menu and parameters, material and time step (applied on restart),
+/// statistics and live plots. Edits to the scene's parameters and the controls go straight into
+/// the session and take effect at the next restart.
+class Panel {
+ public:
+  /// Draws the panel inside the current ImGui frame.
+  PanelRequests draw(Session& session, const FrameStats& stats, const StatsHistory& history,
+                     const PanelView& view);
+
+ private:
+  void drawScene(Session& session, const PanelView& view, PanelRequests& requests);
+  void drawParameters(Session& session);
+  void drawControls(Session& session);
+  void drawStats(const Session& session, const FrameStats& stats, const StatsHistory& history);
+  void drawHelp();
+
+  std::string m_parameterError;
+};
+
+}  // namespace sandphys::viewer

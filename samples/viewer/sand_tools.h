@@ -1,0 +1,61 @@
+#pragma once
+
+#include <cstdint>
+#include <optional>
+
+#include <sandphys/sandphys.h>
+
+#include "scenes/scene.h"
+#include "viewer/camera_control.h"
+
+namespace sandphys::viewer {
+
+/// The viewer's hands in the sand: pours granules from an Emitter above the point under the
+/// cursor, and pushes sand with a kinematic sphere of particles that follows the cursor along the
+/// floor. Both work on the horizontal plane at the bottom of the scene's bounds.
+class SandTools {
+ public:
+  /// Granules the viewer may pour on top of what the scene asks for.
+  static constexpr std::uint32_t kPourGranules = 4096;
+  /// Radius of the pushing sphere, in particle diameters.
+  static constexpr float kSphereRadius = 6.0f;
+
+  /// `settings` with room for the pour budget and the sphere. World::reserve is an explicit,
+  /// reallocating call, so the capacity is taken up front instead of when a tool starts.
+  static WorldSettings withToolCapacity(WorldSettings settings);
+
+  /// Prepares for `world`, freshly built from `scene`. The sphere joins the world at its first
+  /// push (its particles cost time in every substep), and is parked above the sand after it.
+  void attach(const World& world, const scenes::Scene& scene);
+
+  /// Call once per frame before World::step: `pour` / `push` say whether the tools are held,
+  /// `cursorRay` the ray under the cursor, `frameDt` the frame's simulated duration, s.
+  void update(World& world, bool pour, bool push, const Ray& cursorRay, float frameDt);
+
+  /// Granules poured since attach().
+  std::uint32_t poured() const { return m_poured; }
+  /// Whether the pour budget is used up.
+  bool pourBudgetSpent() const { return m_poured >= kPourGranules; }
+  /// Counts what an emitter added this frame (from StepReport::granulesEmitted).
+  void countEmitted(std::uint32_t granules) { m_poured += granules; }
+
+ private:
+  void updatePour(World& world, bool pour);
+  void updatePush(World& world, bool push, float frameDt);
+  Eigen::Vector3f clampToScene(Eigen::Vector3f point, float margin) const;
+  void addSphere(World& world);
+
+  scenes::SceneBounds m_bounds{};
+  float m_diameter = 0.02f;
+  float m_maxSpeed = 10.0f;
+  std::optional<Eigen::Vector3f> m_floorPoint;
+  EmitterId m_emitter{};
+  Eigen::Vector3f m_emitterCentre = Eigen::Vector3f::Zero();
+  std::uint32_t m_poured = 0;
+  BodyId m_sphere{};
+  Eigen::Vector3f m_parkedAt = Eigen::Vector3f::Zero();
+  Eigen::Vector3f m_spherePosition = Eigen::Vector3f::Zero();
+  bool m_pushing = false;
+};
+
+}  // namespace sandphys::viewer

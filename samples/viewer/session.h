@@ -1,0 +1,74 @@
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <sandphys/sandphys.h>
+
+#include "scenes/registry.h"
+#include "scenes/scene.h"
+#include "viewer/frame_stats.h"
+#include "viewer/sand_tools.h"
+
+namespace sandphys::viewer {
+
+/// Material and time-step values the panel edits. They apply at the next restart, because they
+/// set the World's contact law and time step, which are fixed at creation.
+struct SimulationControls {
+  float youngsModulus = 5.0e6f;   ///< Pa
+  float friction = 0.5f;          ///< Coulomb μ between grains
+  float restitution = 0.5f;       ///< grain-grain
+  float stepsPerContact = 20.0f;  ///< substeps per Hertz contact duration t_n
+  double frameDt = 1.0 / 60.0;    ///< simulated seconds per viewer frame
+  /// GL timer queries around every kernel (World::kernelTimes). Off by default: on llvmpipe the
+  /// queries about double the cost of a substep.
+  bool profileKernels = false;
+
+  /// The values `settings` (a scene's) and `frameDt` give.
+  static SimulationControls from(const WorldSettings& settings, double frameDt);
+  /// `settings` with these values in place.
+  WorldSettings applyTo(WorldSettings settings) const;
+};
+
+/// One scene running in a World on the viewer's context, with the sand tools attached. A restart
+/// builds the scene again on a fresh World.
+class Session {
+ public:
+  /// Starts `scene` (already configured, e.g. by the command line) at `frameDt` s per frame.
+  Session(const GpuContext& gpu, std::unique_ptr<scenes::Scene> scene, double frameDt);
+
+  /// Rebuilds the scene on a fresh World with the controls applied. When the controls make an
+  /// invalid World, the error is kept for the panel (lastError) and the scene's own settings are
+  /// used instead.
+  void restart();
+  /// Replaces the scene by a new one of `entry` with its default parameters, resets the controls
+  /// to that scene's values and restarts.
+  void switchScene(const scenes::SceneEntry& entry);
+
+  /// Runs one frame: the tools, World::step(frameDt), the scene's update; fills `stats`.
+  void stepFrame(bool pour, bool push, const Ray& cursorRay, FrameStats& stats);
+
+  World& world() { return *m_world; }
+  const World& world() const { return *m_world; }
+  scenes::Scene& scene() { return *m_scene; }
+  const scenes::Scene& scene() const { return *m_scene; }
+  SimulationControls& controls() { return m_controls; }
+  /// The controls the running World was built with.
+  const SimulationControls& applied() const { return m_applied; }
+  const SandTools& tools() const { return m_tools; }
+  const std::string& lastError() const { return m_lastError; }
+  /// Frame time dropped by the substep cap since the restart, s.
+  double droppedSeconds() const { return m_droppedSeconds; }
+
+ private:
+  const GpuContext& m_gpu;
+  std::unique_ptr<scenes::Scene> m_scene;
+  std::unique_ptr<World> m_world;
+  SandTools m_tools;
+  SimulationControls m_controls;
+  SimulationControls m_applied;
+  std::string m_lastError;
+  double m_droppedSeconds = 0.0;
+};
+
+}  // namespace sandphys::viewer

@@ -1,0 +1,243 @@
+// The viewer's frame loop: input, simulation, drawing, panel, screenshots. The pieces live in
+// their own files (window, input, camera control, sand tools, session, panel, gui, screenshot).
+#include "viewer/viewer.h"
+
+#include <GL/glew.h>
+// GLEW must come before GLFW, which would otherwise pull in the system GL header.
+#include <GLFW/glfw3.h>
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+
+#include "render/renderer.h"
+#include "viewer/camera_control.h"
+#include "viewer/frame_stats.h"
+#include "viewer/gui.h"
+#include "viewer/input.h"
+#include "viewer/panel.h"
+#include "viewer/screenshot.h"
+#include "viewer/session.h"
+#include "viewer/window.h"
+
+namespace sandphys::samples {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using namespace sandphys::viewer;
+
+Extent windowExtent(const RunOptions& options) {
+  return {options.size.width, options.size.height};
+}
+
+std::string windowTitle(const Session& session) {
+  return "sandphys - " + std::string(session.scene().name());
+}
+
+// F writes <scene>-<frame>.png into the --screenshots folder when one was given, else into the
+// working directory.
+std::filesystem::path keyScreenshotPath(const RunOptions& options, std::string_view scene,
+                                        std::uint64_t frame) {
+  char name[96];
+  std::snprintf(name, sizeof name, "%.*s-%06llu.png", static_cast<int>(scene.size()), scene.data(),
+                static_cast<unsigned long long>(frame));
+  return options.screenshotDir.empty() ? std::filesystem::path(name) : options.screenshotDir / name;
+}
+
+// The image sequence of --screenshots/--every, named like the headless runner's.
+std::filesystem::path sequencePath(const RunOptions& options, std::uint64_t frame) {
+  char name[64];
+  std::snprintf(name, sizeof name, "frame_%06llu.png", static_cast<unsigned long long>(frame));
+  return options.screenshotDir / name;
+}
+
+render::Camera framingCamera(Session& session, Extent framebuffer) {
+  const float aspect = framebuffer.height > 0 ? static_cast<float>(framebuffer.width) /
+                                                    static_cast<float>(framebuffer.height)
+                                              : 16.0f / 9.0f;
+  return render::Camera::framing(session.scene().bounds(), aspect);
+}
+
+// The viewer's state between frames and the frame itself.
+class ViewerLoop {
+ public:
+  ViewerLoop(RunOptions& options, Window& window)
+      : m_options(options),
+        m_window(window),
+        m_gpu(GpuContext::fromCurrentContext()),
+        m_input(window.handle()),
+        m_gui(window.handle()),
+        m_script(KeyScript::fromEnvironment()),
+        m_session(m_gpu, std::move(options.scene), options.frameDt) {
+    m_view.gpu = m_gpu.description();
+    if (!m_options.quiet) std::cerr << "sandphys-samples: viewer on " << m_view.gpu << '\n';
+    m_camera = framingCamera(m_session, m_window.framebufferSize());
+    m_window.setTitle(windowTitle(m_session));
+    if (!m_script.empty()) {
+      // Scripted runs (tests) act on the middle of the window wherever the pointer was.
+      const Extent size = m_window.windowSize();
+      glfwSetCursorPos(m_window.handle(), 0.5 * size.width, 0.5 * size.height);
+      m_input.onCursor(0.5 * size.width, 0.5 * size.height);
+    }
+  }
+
+  /// Whether a screenshot could not be written.
+  bool screenshotFailed() const { return m_screenshotFailed; }
+
+  int run() {
+    if (m_options.framesGiven && m_options.frames == 0) return kExitOk;
+    Clock::time_point frameStart = Clock::now();
+    for (std::uint64_t frame = 0;; ++frame) {
+      const bool last = runFrame(frame);
+      const Clock::time_point now = Clock::now();
+      m_stats.frameMilliseconds =
+          std::chrono::duration<double, std::milli>(now - frameStart).count();
+      m_stats.simPerWall = m_stats.stepped ? m_stats.report.simulatedTime /
+                                                 std::max(m_stats.frameMilliseconds * 1e-3, 1e-9)
+                                           : 0.0;
+      frameStart = now;
+      m_history.push(m_stats);
+      if (last) return kExitOk;
+    }
+  }
+
+ private:
+  // One frame; true when it was the last.
+  bool runFrame(std::uint64_t frame) {
+    glfwPollEvents();
+    m_script.apply(frame, m_input);
+    m_input.setPanelCapture(m_gui.wantsMouse(), m_gui.wantsKeyboard());
+    const FrameInput input = m_input.takeFrame();
+
+    bool quit = m_window.shouldClose();
+    bool screenshot = m_pendingScreenshot;
+    bool step = m_pendingStep;
+    m_pendingScreenshot = m_pendingStep = false;
+    for (const Command command : input.commands) {
+      switch (command) {
+        case Command::TogglePause:
+          m_paused = !m_paused;
+          break;
+        case Command::Step:
+          step = true;
+          break;
+        case Command::Restart:
+          restart();
+          break;
+        case Command::Screenshot:
+          screenshot = true;
+          break;
+        case Command::Quit:
+          quit = true;
+          break;
+      }
+    }
+    camera_control::orbit(m_camera, input.orbitX, input.orbitY);
+    const Extent windowSize = m_window.windowSize();
+    camera_control::pan(m_camera, input.panX, input.panY, static_cast<float>(windowSize.height));
+    camera_control::zoom(m_camera, input.zoomSteps);
+
+    m_stats.stepped = false;
+    if (!m_paused || step) {
+      const Ray ray = camera_control::rayThrough(m_camera, input.cursorX, input.cursorY,
+                                                 static_cast<float>(windowSize.width),
+                                                 static_cast<float>(windowSize.height));
+      m_session.stepFrame(input.pour, input.push, ray, m_stats);
+    }
+
+    const Extent size = m_window.framebufferSize();
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, size.width, size.height);
+    if (size.width > 0 && size.height > 0) {
+      m_renderer.draw(m_session.world(), m_camera, m_session.scene().bounds(), size.width,
+                      size.height);
+    }
+    m_stats.renderMilliseconds = m_renderer.stats().totalMs;
+
+    const bool last = quit || (m_options.framesGiven && frame + 1 >= m_options.frames);
+    // Screenshots show the scene without the panel.
+    if (screenshot) {
+      saveScreenshot(keyScreenshotPath(m_options, m_session.scene().name(), frame), size);
+    }
+    // Frames count from 1 here: image k·every shows the world after k·every frames.
+    if (!m_options.screenshotDir.empty() && m_options.every > 0 &&
+        (frame + 1) % m_options.every == 0) {
+      saveScreenshot(sequencePath(m_options, frame + 1), size);
+    }
+    if (last && !m_options.screenshotPath.empty()) saveScreenshot(m_options.screenshotPath, size);
+
+    m_gui.beginFrame();
+    m_view.paused = m_paused;
+    m_view.vsync = m_window.vsync();
+    const PanelRequests requests = m_panel.draw(m_session, m_stats, m_history, m_view);
+    m_gui.render();
+    m_window.swapBuffers();
+    apply(requests);
+    return last;
+  }
+
+  void restart() {
+    m_session.restart();
+    m_history.clear();
+    m_view.message.clear();
+  }
+
+  void apply(const PanelRequests& requests) {
+    if (requests.switchTo) {
+      m_session.switchScene(*requests.switchTo);
+      m_camera = framingCamera(m_session, m_window.framebufferSize());
+      m_window.setTitle(windowTitle(m_session));
+      m_history.clear();
+      m_view.message.clear();
+    }
+    if (requests.restart) restart();
+    if (requests.togglePause) m_paused = !m_paused;
+    if (requests.step) m_pendingStep = true;
+    if (requests.screenshot) m_pendingScreenshot = true;
+    if (requests.toggleVsync) m_window.setVsync(!m_window.vsync());
+  }
+
+  void saveScreenshot(const std::filesystem::path& path, Extent size) {
+    try {
+      writeBackBufferPng(path, size.width, size.height);
+      m_view.lastScreenshot = path.string();
+      if (!m_options.quiet) std::cerr << "sandphys-samples: wrote " << path.string() << '\n';
+    } catch (const Error& error) {
+      // A failed screenshot should not end an interactive session; the panel shows why.
+      m_view.message = error.what();
+      std::cerr << "sandphys-samples: " << error.what() << '\n';
+      m_screenshotFailed = true;
+    }
+  }
+
+  RunOptions& m_options;
+  Window& m_window;
+  GpuContext m_gpu;
+  Input m_input;
+  Gui m_gui;
+  KeyScript m_script;
+  Session m_session;
+  render::Renderer m_renderer;
+  render::Camera m_camera;
+  Panel m_panel;
+  FrameStats m_stats;
+  StatsHistory m_history;
+  PanelView m_view;
+  bool m_paused = false;
+  bool m_pendingStep = false;
+  bool m_pendingScreenshot = false;
+  bool m_screenshotFailed = false;
+};
+
+}  // namespace
+
+int runViewer(RunOptions& options) {
+  Window window(windowExtent(options), "sandphys - " + options.sceneName);
+  ViewerLoop loop(options, window);
+  const int status = loop.run();
+  // A run asked to write a screenshot fails when it could not, as the headless runner does.
+  return status == kExitOk && loop.screenshotFailed() ? kExitFailure : status;
+}
+
+}  // namespace sandphys::samples
