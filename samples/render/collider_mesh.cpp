@@ -11,6 +11,8 @@ namespace {
 
 // Segments around a wall of revolution: smooth enough at the sizes a sample shows.
 constexpr int kSegments = 96;
+// MeshVertex::cutaway of a plane: seen only from its free side.
+constexpr float kOneSided = 2.0f;
 
 struct MeshBuilder {
   std::vector<MeshVertex>& out;
@@ -35,7 +37,10 @@ struct MeshBuilder {
         n.cross(std::abs(n.y()) < 0.9f ? Eigen::Vector3f::UnitY() : Eigen::Vector3f::UnitX());
     u = u.normalized() * planeExtent;
     const Eigen::Vector3f v = n.cross(u);
+    // The normal points into the free half-space, where the sand and usually the eye are.
+    cutaway = kOneSided;
     quad({centre - u - v, centre + u - v, centre + u + v, centre - u + v}, {n, n, n, n});
+    cutaway = 0.0f;
   }
 
   void operator()(const Box& box) {

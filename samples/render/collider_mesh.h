@@ -10,7 +10,10 @@ namespace sandphys::render {
 /// One vertex of a collider mesh, as shaders/render/mesh.vert reads it.
 struct MeshVertex {
   float x, y, z;
-  float cutaway;  ///< 1: the side facing the eye is not drawn (thin walls, container boxes)
+  /// 0: drawn from both sides; 1 (cutaway): the side facing the eye is not drawn (thin walls,
+  /// container boxes); 2 (one-sided): drawn only from the side the normal points to (a plane
+  /// seen from inside its solid half-space would hide the whole scene).
+  float cutaway;
   float nx, ny, nz;
   float unused;
 };

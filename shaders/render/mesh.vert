@@ -3,7 +3,7 @@
 // and a cutaway flag (thin walls and containers, whose side facing the eye is not drawn).
 #include "common/frame.glsl"
 
-layout(location = 0) in vec4 inPosition;  // xyz world; w: 1 = cutaway
+layout(location = 0) in vec4 inPosition;  // xyz world; w: 1 = cutaway, 2 = one-sided
 layout(location = 1) in vec4 inNormal;    // xyz outward normal (world)
 
 out vec3 vWorld;

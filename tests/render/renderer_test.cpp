@@ -355,6 +355,30 @@ TEST_F(RenderScene, InteropExposesTheWorldsBuffersAndColliders) {
   EXPECT_FALSE(box->inside);
 }
 
+// Adds a collider to the shared world, so it comes after every other test of the fixture
+// (GoogleTest runs them in the order of this file). A plane is solid on one side; a camera inside
+// the solid (the avalanche scene's moved-away retaining wall, say) must still see the scene through
+// it.
+TEST_F(RenderScene, PlaneSeenFromItsSolidSideHidesNothing) {
+  const render::RenderSettings settings = lowSun();
+  const auto countSand = [](const Image& image) {
+    int sand = 0;
+    for (int y = 0; y < kHeight; ++y) {
+      for (int x = 0; x < kWidth; ++x) sand += sandColoured(pixelAt(image, x, y));
+    }
+    return sand;
+  };
+  const int before = countSand(drawImage(settings));
+  ASSERT_GT(before, 2000);
+  // Solid where z > 0.6 m: the eye (z = 0.94 m) is inside, the pile (|z| < 0.3 m) is not.
+  const Eigen::Vector3f eye = camera().eye();
+  ASSERT_GT(eye.z(), 0.6f);
+  world->addCollider(Plane{.normal = {0.0f, 0.0f, -1.0f}, .offset = -0.6f});
+  const int after = countSand(drawImage(settings));
+  EXPECT_GT(after, 0.9 * before) << "sand pixels " << after << " with the plane, " << before
+                                 << " without";
+}
+
 TEST(RenderPng, UnwritablePathThrowsNamingIt) {
   const Image pixels(4 * 4 * 4, 128);
   const std::string path = "/nonexistent-sandphys-dir/shot.png";
