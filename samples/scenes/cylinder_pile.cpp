@@ -13,15 +13,6 @@ namespace {
 // the grains still slide and bounce for a while before the energy test means anything.
 constexpr double kLandingMargin = 0.5;
 
-// Distance of a granule's particle centres from its centre, plus the particle radius, in d: a
-// tetrahedron of edge d has circumradius d·√6/4.
-constexpr double kGranuleReach = 0.6123724356957945 + 0.5;
-
-float gravityMagnitude(const WorldSettings& settings) {
-  const Vec3 g = settings.gravity;
-  return std::sqrt(g.x * g.x + g.y * g.y + g.z * g.z);
-}
-
 }  // namespace
 
 std::uint32_t CylinderPile::batchGranules() const {
@@ -210,11 +201,8 @@ float CylinderPile::pileTop(std::span<const BodyState> bodies) const {
     if (body.alive && body.granule && contains(body.position)) heights.push_back(body.position.y);
   }
   if (heights.empty()) return 0.0f;
-  const auto rank = static_cast<std::size_t>(0.99 * static_cast<double>(heights.size() - 1));
-  std::nth_element(heights.begin(), heights.begin() + static_cast<std::ptrdiff_t>(rank),
-                   heights.end());
   // The outer radius is only known after build(); before it the centre height has to do.
-  return heights[rank] + m_granuleOuterRadius;
+  return percentile(heights, 0.99) + m_granuleOuterRadius;
 }
 
 std::vector<SceneMetric> CylinderPile::metrics(std::span<const BodyState> bodies) const {

@@ -9,9 +9,8 @@ namespace sandphys::scenes {
 
 namespace {
 
-// Distance of a granule's particle centres from its centre, plus the particle radius, in d: a
-// tetrahedron of edge d has circumradius d·√6/4.
-constexpr float kGranuleReach = 0.6123724f + 0.5f;
+// kGranuleReach in float, as the scene's geometry is computed.
+constexpr float kReach = static_cast<float>(kGranuleReach);
 
 // Height of the bed's lowest granule centres above the floor, d: the granule's reach plus the
 // block's jitter (0.03 of 2.4 d), so that no granule starts inside the floor.
@@ -45,22 +44,9 @@ constexpr float kRestSpeed = 0.3f;
 // still slide and bounce for a while.
 constexpr double kLandingMargin = 0.5;
 
-float gravityMagnitude(const WorldSettings& settings) {
-  const Vec3 g = settings.gravity;
-  return std::sqrt(g.x * g.x + g.y * g.y + g.z * g.z);
-}
-
 // Time a body needs to fall `height` (m) starting at `speed` (m/s, downward) under gravity `g`.
 double fallTime(double height, double speed, double g) {
   return (std::sqrt(speed * speed + 2.0 * g * std::max(height, 0.0)) - speed) / g;
-}
-
-// The value below which `fraction` of `values` lie; `values` is reordered.
-float percentile(std::vector<float>& values, double fraction) {
-  const auto rank = static_cast<std::size_t>(fraction * static_cast<double>(values.size() - 1));
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(rank),
-                   values.end());
-  return values[rank];
 }
 
 std::string text(float value) {
@@ -111,13 +97,12 @@ WorldSettings SandBoxPour::settings() const {
                           " granules (bed and pour) are more than a World can index");
   }
   const float boxWidth = m_config.boxWidth;
-  if (m_config.emitterSize + 2.0f * kGranuleReach > boxWidth) {
+  if (m_config.emitterSize + 2.0f * kReach > boxWidth) {
     throw InvalidArgument(scene + "emitter-size " + text(m_config.emitterSize) +
                           " d does not fit in box-width " + text(boxWidth) +
-                          " d (it needs the emitter's width plus " + text(2.0f * kGranuleReach) +
-                          " d)");
+                          " d (it needs the emitter's width plus " + text(2.0f * kReach) + " d)");
   }
-  if (m_config.emitterHeight + kGranuleReach > m_config.boxHeight) {
+  if (m_config.emitterHeight + kReach > m_config.boxHeight) {
     throw InvalidArgument(scene + "emitter-height " + text(m_config.emitterHeight) +
                           " d is not inside the box (box-height " + text(m_config.boxHeight) +
                           " d)");
@@ -126,17 +111,16 @@ WorldSettings SandBoxPour::settings() const {
     const float jitter = 2.0f * GranuleBlock{}.jitter * kDefaultGranuleSpacing;
     for (int axis : {0, 2}) {
       const float extent = static_cast<float>(m_config.block[axis] - 1) * kDefaultGranuleSpacing +
-                           jitter + 2.0f * kGranuleReach;
+                           jitter + 2.0f * kReach;
       if (extent > boxWidth) {
         throw InvalidArgument(scene + "bed (block) of " + std::to_string(m_config.block[axis]) +
                               " granules along " + (axis == 0 ? "x" : "z") + " is " + text(extent) +
                               " d wide, more than box-width " + text(boxWidth) + " d");
       }
     }
-    const float bedTop = kBedClearance +
-                         static_cast<float>(m_config.block[1] - 1) * kDefaultGranuleSpacing +
-                         kGranuleReach;
-    if (bedTop + kGranuleReach > m_config.emitterHeight) {
+    const float bedTop =
+        kBedClearance + static_cast<float>(m_config.block[1] - 1) * kDefaultGranuleSpacing + kReach;
+    if (bedTop + kReach > m_config.emitterHeight) {
       throw InvalidArgument(scene + "bed (block) of " + std::to_string(m_config.block[1]) +
                             " layers reaches " + text(bedTop) + " d, into the emitter at " +
                             text(m_config.emitterHeight) + " d");
@@ -254,7 +238,7 @@ float SandBoxPour::pileHeight(std::span<const BodyState> bodies) const {
     }
   }
   if (heights.empty()) return 0.0f;
-  return percentile(heights, 0.99) + kGranuleReach * d();
+  return percentile(heights, 0.99) + kReach * d();
 }
 
 float SandBoxPour::footprintRadius(std::span<const BodyState> bodies) const {
@@ -266,7 +250,7 @@ float SandBoxPour::footprintRadius(std::span<const BodyState> bodies) const {
     }
   }
   if (radii.empty()) return 0.0f;
-  return percentile(radii, 0.99) + kGranuleReach * d();
+  return percentile(radii, 0.99) + kReach * d();
 }
 
 std::vector<SceneMetric> SandBoxPour::metrics(std::span<const BodyState> bodies) const {

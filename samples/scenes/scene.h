@@ -100,6 +100,13 @@ class Scene {
   virtual SceneBounds bounds() const = 0;
 };
 
+/// Length of the world's gravity vector, m/s².
+float gravityMagnitude(const WorldSettings& settings);
+
+/// The value below which `fraction` (in [0, 1]) of `values` lie; `values` must not be empty and
+/// is reordered.
+float percentile(std::vector<float>& values, double fraction);
+
 /// Sets the parameter named `name` of `scene` from text ("12", "0.5", "8,8,4" or "8 8 4").
 /// Throws InvalidArgument naming the parameter, the value and the valid range when the name is
 /// unknown, the text does not parse or the value is out of range.

@@ -10,9 +10,8 @@ namespace sandphys::scenes {
 
 namespace {
 
-// Distance of a granule's particle centres from its centre, plus the particle radius, in d: a
-// tetrahedron of edge d has circumradius d·√6/4.
-constexpr float kGranuleReach = 0.6123724f + 0.5f;
+// kGranuleReach in float, as the scene's geometry is computed.
+constexpr float kReach = static_cast<float>(kGranuleReach);
 // Largest jitter of a block granule per axis, d (GranuleBlock::jitter of the default spacing).
 const float kJitter = GranuleBlock{}.jitter * kDefaultGranuleSpacing;
 // Gap between a wall and the nearest lattice centres, d: the reach and the jitter, with room.
@@ -32,11 +31,6 @@ constexpr float kStepsPerContact = 10.0f;
 // After the release the sand needs a moment to pick up speed; before it, a calm world only means
 // "not started yet", s.
 constexpr double kMinRunSeconds = 0.25;
-
-float gravityMagnitude(const WorldSettings& settings) {
-  const Vec3 g = settings.gravity;
-  return std::sqrt(g.x * g.x + g.y * g.y + g.z * g.z);
-}
 
 float radians(float degrees) {
   return degrees * std::numbers::pi_v<float> / 180.0f;
@@ -58,11 +52,11 @@ Vec3 SlopeAvalanche::downSlope() const {
 }
 
 float SlopeAvalanche::columnLift() const {
-  // The lowest particle of a granule is at most kGranuleReach from its centre, measured normal to
+  // The lowest particle of a granule is at most kReach from its centre, measured normal to
   // the slope, which is cos(angle) of the vertical gap; the jitter moves a centre vertically and
   // along the slope (where the surface is tan(angle) higher per unit of x).
   const float cosAngle = std::cos(radians(m_config.slopeAngle));
-  return (kGranuleReach / cosAngle + kJitter * (1.0f + tanAngle()) + 0.15f) * d();
+  return (kReach / cosAngle + kJitter * (1.0f + tanAngle()) + 0.15f) * d();
 }
 
 float SlopeAvalanche::columnX(std::uint32_t i) const {
@@ -77,7 +71,7 @@ SlopeAvalanche::Channel SlopeAvalanche::channel() const {
       (0.5f * static_cast<float>(m_config.block[2] - 1) * kDefaultGranuleSpacing + kWallGap) * d();
   c.floor = -m_config.slopeLength * d() * tanAngle();
   const float blockHeight = static_cast<float>(m_config.block[1] - 1) * kDefaultGranuleSpacing;
-  c.top = -c.back * tanAngle() + columnLift() + (blockHeight + kGranuleReach + kHeadroom) * d();
+  c.top = -c.back * tanAngle() + columnLift() + (blockHeight + kReach + kHeadroom) * d();
   return c;
 }
 

@@ -10,6 +10,10 @@ namespace sandphys {
 /// the room that random orientations need so that no two granules start overlapping.
 inline constexpr float kDefaultGranuleSpacing = 2.4f;
 
+/// Distance from a tetrahedral granule's centre to the far side of its farthest particle, in
+/// particle diameters: the circumradius √6/4 of a unit tetrahedron plus a particle's radius.
+inline constexpr double kGranuleReach = 0.6123724356957945 + 0.5;
+
 /// A block of granules on a lattice, each with a small random offset and a random orientation.
 struct GranuleBlock {
   Vec3 center{};             ///< centre of the block, m

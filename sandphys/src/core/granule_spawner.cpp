@@ -38,11 +38,11 @@ std::vector<GranuleSpawn> layoutGranuleBlock(const GranuleBlock& block, float pa
       block.spacing > 0.0f ? block.spacing : kDefaultGranuleSpacing * particleDiameter;
   // A granule's particles reach d·√6/4 + d/2 = 1.1124 d from its centre; in random orientations
   // two granules closer than twice that may start overlapping.
-  const double reach = std::sqrt(6.0) / 4.0 + 0.5;
-  require(spacing * (1.0 - 2.0 * block.jitter) >= 2.0 * reach * particleDiameter,
+  require(spacing * (1.0 - 2.0 * block.jitter) >= 2.0 * kGranuleReach * particleDiameter,
           "GranuleBlock.spacing", spacing,
           "less twice the jitter must be >= 2.225 particle diameters (" +
-              formatValue(2.0 * reach * particleDiameter) + " m), or granules start overlapping");
+              formatValue(2.0 * kGranuleReach * particleDiameter) +
+              " m), or granules start overlapping");
 
   std::mt19937_64 rng(block.seed);
   std::vector<GranuleSpawn> spawns;
