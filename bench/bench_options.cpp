@@ -120,6 +120,7 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
   bool noKernelTimes = false;
   std::string packing = std::string(packingName(measure.pile.packing));
   bool quiet = false;
+  std::vector<int> renderSize;
 
   app.add_option("--sizes", sizes, "granule counts, comma-separated (K = 1024)")
       ->delimiter(',')
@@ -166,6 +167,13 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
       ->capture_default_str();
   app.add_flag("--no-kernel-times", noKernelTimes,
                "do not record per-kernel GL timer queries (to see their cost)");
+  app.add_option("--render", renderSize,
+                 "also time the renderer's passes (shadow, scene, composite) on each measured "
+                 "pile at WIDTH HEIGHT px, once per quality preset (low, medium, high)")
+      ->expected(2);
+  app.add_option("--render-frames", measure.render.frames,
+                 "frames timed per quality preset with --render")
+      ->capture_default_str();
   app.add_option("--json", options.jsonPath, "write the results to this JSON file");
   app.add_flag("--quiet", quiet, "no progress lines on stderr");
 
@@ -221,6 +229,17 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
                        formatValue(measure.pile.jitter) +
                        ": spacing*(1-2*jitter) must be >= 2.225 d, or granules start overlapping");
     }
+    if (!renderSize.empty()) {
+      for (const int side : renderSize) {
+        if (side < 16 || side > 16384) {
+          throw UsageError("--render " + std::to_string(renderSize[0]) + " " +
+                           std::to_string(renderSize[1]) + ": each side must be in [16, 16384] px");
+        }
+      }
+      measure.render.width = renderSize[0];
+      measure.render.height = renderSize[1];
+    }
+    if (measure.render.frames == 0) throw UsageError("--render-frames 0: must be >= 1");
     measure.kernelTimes = !noKernelTimes;
     measure.progress = !quiet;
     if (!options.jsonPath.empty()) checkWritable("--json", options.jsonPath);

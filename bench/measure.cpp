@@ -195,6 +195,15 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
     std::fprintf(stderr, "%s measured %u substeps in %.1f s: Cundall number %.3g\n", tag().c_str(),
                  result.steps, result.wallSeconds, result.cundallNumber());
   }
+  // After the timed span, so that drawing never shares the machine with the substeps measured.
+  const float r = config.cylinderRadius * config.particleDiameter;
+  const scenes::SceneBounds pileBounds{{-r, -config.particleDiameter, -r},
+                                       {r, result.layout.columnTop, r}};
+  result.renders = measureRender(world, pileBounds, options.render);
+  if (options.progress && !result.renders.empty()) {
+    std::fprintf(stderr, "%s rendered %dx%d at %zu quality presets\n", tag().c_str(),
+                 options.render.width, options.render.height, result.renders.size());
+  }
   return result;
 }
 

@@ -7,6 +7,7 @@
 #include <sandphys/sandphys.h>
 
 #include "dense_pile.h"
+#include "render_measure.h"
 
 namespace sandphys::bench {
 
@@ -34,6 +35,8 @@ struct MeasureOptions {
   bool kernelTimes = true;
   /// Progress lines on stderr.
   bool progress = true;
+  /// Time the renderer on the measured pile (off unless a size is given).
+  RenderOptions render{};
 };
 
 /// How settled the pile is at one moment (one readStats and one readBodies, both sync points).
@@ -80,6 +83,7 @@ struct SizeResult {
   std::uint64_t penetrationClamps = 0;  ///< during the measurement
   std::uint64_t velocityClamps = 0;     ///< during the measurement
   std::vector<KernelStep> kernels;      ///< empty without kernel times
+  std::vector<RenderTiming> renders;    ///< one per quality preset; empty without --render
   double loadBefore = -1.0;             ///< 1-minute load average before the size ran (-1: unknown)
   double loadAfter = -1.0;
 

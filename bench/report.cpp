@@ -53,7 +53,24 @@ nlohmann::json pileStateJson(const PileState& state) {
   };
 }
 
+nlohmann::json renderJson(const RenderTiming& timing) {
+  return {
+      {"quality", timing.quality},
+      {"render_width", timing.renderWidth},
+      {"render_height", timing.renderHeight},
+      {"shadow_map_size", timing.shadowMapSize},
+      {"ao_samples", timing.aoSamples},
+      {"shadow_ms", timing.shadowMs},
+      {"scene_ms", timing.sceneMs},
+      {"composite_ms", timing.compositeMs},
+      {"gpu_ms", timing.totalMs},
+      {"wall_ms", timing.wallMs},
+  };
+}
+
 nlohmann::json sizeJson(const SizeResult& size, double d) {
+  nlohmann::json renders = nlohmann::json::array();
+  for (const RenderTiming& timing : size.renders) renders.push_back(renderJson(timing));
   nlohmann::json kernels = nlohmann::json::object();
   for (const KernelStep& kernel : size.kernels) {
     kernels[kernel.name] = {
@@ -84,6 +101,7 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
       {"cpu_ms_per_step", size.cpuMillisecondsPerStep()},
       {"kernel_ms_per_step", kernels},
       {"kernel_sum_ms_per_step", size.kernelMillisecondsPerStep()},
+      {"render", renders},
       {"cpu_seconds", size.cpuSeconds},
       {"cpu_utilisation", size.wallSeconds > 0.0 ? size.cpuSeconds / size.wallSeconds : 0.0},
       {"load_average_before", size.loadBefore},
@@ -221,6 +239,25 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
       std::fprintf(out, " %10.3f", s.wallMillisecondsPerStep());
     }
     std::fprintf(out, "\n");
+  }
+
+  if (measure.render.width > 0) {
+    std::fprintf(out,
+                 "\nRendering, ms per frame at %dx%d (GL timestamps per pass; wall: draw to "
+                 "finished frame), beside the simulation's wall ms per substep:\n",
+                 measure.render.width, measure.render.height);
+    std::fprintf(out, "%10s %-7s %9s %6s %3s %8s %8s %9s %8s %8s %11s\n", "granules", "quality",
+                 "lit at", "shadow", "AO", "shadow", "scene", "composite", "gpu", "wall",
+                 "sim/substep");
+    for (const SizeResult& s : report.sizes) {
+      for (const RenderTiming& r : s.renders) {
+        char litAt[24];
+        std::snprintf(litAt, sizeof litAt, "%dx%d", r.renderWidth, r.renderHeight);
+        std::fprintf(out, "%10u %-7s %9s %6d %3d %8.1f %8.1f %9.1f %8.1f %8.1f %11.1f\n",
+                     s.granules, r.quality.c_str(), litAt, r.shadowMapSize, r.aoSamples, r.shadowMs,
+                     r.sceneMs, r.compositeMs, r.totalMs, r.wallMs, s.wallMillisecondsPerStep());
+      }
+    }
   }
 
   std::fprintf(out, "\nNotes:\n");

@@ -64,11 +64,16 @@ struct Renderer::Impl {
   RenderSettings settings;
   RenderStats stats;
 
+  // Point sprites for every particle that fits one; quads for the ones too large (close-ups).
+  GLuint pointsShadow = 0;
+  GLuint pointsScene = 0;
   GLuint particlesShadow = 0;
   GLuint particlesScene = 0;
+  float maxPointSize = 1.0f;  // px
   GLuint meshShadow = 0;
   GLuint meshScene = 0;
   GLuint composite = 0;
+  GLuint upscale = 0;
   GLint compositeAoSamples = -1;
   GLint compositeBackground = -1;
 
@@ -86,12 +91,17 @@ struct Renderer::Impl {
   int height = 0;
   GLuint sceneFramebuffer = 0;
   GLuint sceneTextures[4] = {};  // direct, ambient, normal, depth
+  // The composite of a scaled frame (renderScale < 1), before it is scaled up.
+  GLuint scaledFramebuffer = 0;
+  GLuint scaledTextures[2] = {};  // colour, depth
 
   // Two sets of timestamps, used in turn, so that reading a frame's times never waits.
   GLuint queries[2][kStamps] = {};
   bool pending[2] = {false, false};
   std::uint64_t pendingFrame[2] = {0, 0};
   std::uint32_t pendingParticles[2] = {0, 0};
+  int pendingWidth[2] = {0, 0};
+  int pendingHeight[2] = {0, 0};
   int nextSet = 0;
   int lastSet = 0;
   std::uint64_t frames = 0;
@@ -110,12 +120,22 @@ struct Renderer::Impl {
                                                     {GL_FRAGMENT_SHADER, "render/particles.frag"}};
     const std::vector<gl::ShaderStage> mesh = {{GL_VERTEX_SHADER, "render/mesh.vert"},
                                                {GL_FRAGMENT_SHADER, "render/mesh.frag"}};
+    pointsShadow = library.compileProgram(particles, {"SHADOW_PASS 1", "POINT_SPRITES 1"});
+    pointsScene = library.compileProgram(particles, {"POINT_SPRITES 1"});
     particlesShadow = library.compileProgram(particles, {"SHADOW_PASS 1"});
     particlesScene = library.compileProgram(particles);
+    GLfloat pointRange[2] = {1.0f, 1.0f};
+    glGetFloatv(GL_POINT_SIZE_RANGE, pointRange);
+    maxPointSize = std::max(pointRange[1], 1.0f);
+    for (GLuint program : {pointsShadow, pointsScene, particlesShadow, particlesScene}) {
+      glProgramUniform1f(program, glGetUniformLocation(program, "maxPointSize"), maxPointSize);
+    }
     meshShadow = library.compileProgram(mesh, {"SHADOW_PASS 1"});
     meshScene = library.compileProgram(mesh);
     composite = library.compileProgram({{GL_VERTEX_SHADER, "render/fullscreen.vert"},
                                         {GL_FRAGMENT_SHADER, "render/composite.frag"}});
+    upscale = library.compileProgram({{GL_VERTEX_SHADER, "render/fullscreen.vert"},
+                                      {GL_FRAGMENT_SHADER, "render/upscale.frag"}});
     compositeAoSamples = glGetUniformLocation(composite, "aoSamples");
     compositeBackground = glGetUniformLocation(composite, "background");
 
@@ -129,7 +149,8 @@ struct Renderer::Impl {
   }
 
   ~Impl() {
-    for (GLuint program : {particlesShadow, particlesScene, meshShadow, meshScene, composite}) {
+    for (GLuint program : {pointsShadow, pointsScene, particlesShadow, particlesScene, meshShadow,
+                           meshScene, composite, upscale}) {
       glDeleteProgram(program);
     }
     glDeleteVertexArrays(1, &emptyVao);
@@ -151,9 +172,21 @@ struct Renderer::Impl {
   void releaseSceneTargets() {
     glDeleteFramebuffers(1, &sceneFramebuffer);
     glDeleteTextures(4, sceneTextures);
-    sceneFramebuffer = 0;
+    glDeleteFramebuffers(1, &scaledFramebuffer);
+    glDeleteTextures(2, scaledTextures);
+    sceneFramebuffer = scaledFramebuffer = 0;
     std::fill(std::begin(sceneTextures), std::end(sceneTextures), 0u);
+    std::fill(std::begin(scaledTextures), std::end(scaledTextures), 0u);
     width = height = 0;
+  }
+
+  static void makeTexture(GLuint& texture, GLenum format, int w, int h, GLenum filter) {
+    glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+    glTextureStorage2D(texture, 1, format, w, h);
+    glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GLint(filter));
+    glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GLint(filter));
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   }
 
   void ensureShadowMap(int size) {
@@ -179,15 +212,10 @@ struct Renderer::Impl {
   void ensureSceneTargets(int w, int h) {
     if (w == width && h == height) return;
     releaseSceneTargets();
-    glCreateTextures(GL_TEXTURE_2D, 4, sceneTextures);
     const GLenum formats[4] = {GL_RGBA16F, GL_RGBA16F, GL_RGBA8, GL_DEPTH_COMPONENT32F};
     glCreateFramebuffers(1, &sceneFramebuffer);
     for (int i = 0; i < 4; ++i) {
-      glTextureStorage2D(sceneTextures[i], 1, formats[i], w, h);
-      glTextureParameteri(sceneTextures[i], GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-      glTextureParameteri(sceneTextures[i], GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-      glTextureParameteri(sceneTextures[i], GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-      glTextureParameteri(sceneTextures[i], GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+      makeTexture(sceneTextures[i], formats[i], w, h, GL_NEAREST);
       glNamedFramebufferTexture(sceneFramebuffer,
                                 i < 3 ? GLenum(GL_COLOR_ATTACHMENT0 + i) : GL_DEPTH_ATTACHMENT,
                                 sceneTextures[i], 0);
@@ -196,6 +224,14 @@ struct Renderer::Impl {
                                    GL_COLOR_ATTACHMENT2};
     glNamedFramebufferDrawBuffers(sceneFramebuffer, 3, drawBuffers);
     checkComplete(sceneFramebuffer, "scene targets");
+    // Made with the scene targets even at full scale: a few bytes per pixel, and a quality
+    // change never reallocates in the middle of an interaction.
+    makeTexture(scaledTextures[0], GL_RGBA8, w, h, GL_LINEAR);
+    makeTexture(scaledTextures[1], GL_DEPTH_COMPONENT32F, w, h, GL_NEAREST);
+    glCreateFramebuffers(1, &scaledFramebuffer);
+    glNamedFramebufferTexture(scaledFramebuffer, GL_COLOR_ATTACHMENT0, scaledTextures[0], 0);
+    glNamedFramebufferTexture(scaledFramebuffer, GL_DEPTH_ATTACHMENT, scaledTextures[1], 0);
+    checkComplete(scaledFramebuffer, "scaled composite");
     width = w;
     height = h;
   }
@@ -247,8 +283,24 @@ struct Renderer::Impl {
     stats.compositeMs = ms(2, 3);
     stats.totalMs = ms(0, 3);
     stats.particles = pendingParticles[set];
+    stats.renderWidth = pendingWidth[set];
+    stats.renderHeight = pendingHeight[set];
     stats.frame = pendingFrame[set];
     pending[set] = false;
+  }
+
+  // Points for every particle that fits one, then (when `quads` is a program) quads for the rest.
+  void drawParticles(GLsizei count, GLuint points, GLuint quads) const {
+    if (count <= 0) return;
+    glBindVertexArray(emptyVao);
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    glUseProgram(points);
+    glDrawArrays(GL_POINTS, 0, count);
+    glDisable(GL_PROGRAM_POINT_SIZE);
+    if (quads != 0) {
+      glUseProgram(quads);
+      glDrawArrays(GL_TRIANGLES, 0, 6 * count);
+    }
   }
 
   void draw(const World& world, const Camera& camera, const scenes::SceneBounds& bounds, int w,
@@ -262,10 +314,16 @@ void Renderer::Impl::draw(const World& world, const Camera& camera,
                           ": each side must be >= 1");
   }
   const int mapSize = std::clamp(settings.shadowMapSize, 16, 8192);
+  const float scale =
+      settings.renderScale > 0.0f ? std::clamp(settings.renderScale, 0.25f, 1.0f) : 1.0f;
+  const bool scaled = scale < 1.0f;
+  // The size the scene is lit and composited at.
+  const int sw = scaled ? std::max(1, int(std::lround(float(w) * scale))) : w;
+  const int sh = scaled ? std::max(1, int(std::lround(float(h) * scale))) : h;
   GLint target = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
   ensureShadowMap(mapSize);
-  ensureSceneTargets(w, h);
+  ensureSceneTargets(sw, sh);
   const int set = nextSet;
   nextSet = 1 - nextSet;
   // The set about to be reused is two frames old (waits only if that frame is still running);
@@ -309,10 +367,10 @@ void Renderer::Impl::draw(const World& world, const Camera& camera,
   eye.params[1] = 1.0f / float(mapSize);
   eye.params[2] = settings.shadows ? 1.0f : 0.0f;
   eye.params[3] = std::max(settings.aoRadius, 0.01f) * buffers.particleDiameter;
-  eye.viewport[0] = float(w);
-  eye.viewport[1] = float(h);
-  eye.viewport[2] = 1.0f / float(w);
-  eye.viewport[3] = 1.0f / float(h);
+  eye.viewport[0] = float(sw);
+  eye.viewport[1] = float(sh);
+  eye.viewport[2] = 1.0f / float(sw);
+  eye.viewport[3] = 1.0f / float(sh);
   copyVector(eye.cameraPosition, camera.eye(), 1.0f);
   FrameParams light = eye;
   copyMatrix(light.view, lightView);
@@ -320,6 +378,8 @@ void Renderer::Impl::draw(const World& world, const Camera& camera,
   copyMatrix(light.inverseView, lightView.inverse());
   copyMatrix(light.inverseProjection, lightProjection.inverse());
   light.lightDirection[3] = 1.0f;  // orthographic pass
+  light.viewport[0] = light.viewport[1] = float(mapSize);
+  light.viewport[2] = light.viewport[3] = 1.0f / float(mapSize);
   glNamedBufferSubData(frameParams[0], 0, sizeof light, &light);
   glNamedBufferSubData(frameParams[1], 0, sizeof eye, &eye);
 
@@ -337,7 +397,20 @@ void Renderer::Impl::draw(const World& world, const Camera& camera,
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBodyInfoBinding, buffers.bodyInfo);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kParticleLocalBinding, buffers.particleLocal);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kParticleBodyBinding, buffers.particleBody);
-  const GLsizei particleVertices = GLsizei(6u * buffers.particleCount);
+  const GLsizei particles = GLsizei(buffers.particleCount);
+  // Whether some particle may need a larger square than a point sprite allows, so that the quad
+  // draw must follow the points. From the light: every particle has the same size. From the
+  // eye: the nearest a particle inside the scene's bounds can come, with a factor 2 for the
+  // stretch of off-axis spheres in a wide view.
+  const float lightSpritePx = 2.0f * radius * float(mapSize) / (2.0f * sceneRadius);
+  const bool lightNeedsQuads = lightSpritePx + 1.0f > maxPointSize;
+  const Eigen::Vector3f eyePosition = camera.eye();
+  const Eigen::Vector3f nearestInBounds = eyePosition.cwiseMax(lo).cwiseMin(hi);
+  const float nearest = (eyePosition - nearestInBounds).norm();
+  const float focalPx = projection(1, 1) * 0.5f * float(sh);
+  const bool eyeNeedsQuads =
+      nearest <= 1.5f * radius ||
+      2.0f * 2.0f * radius * focalPx / (nearest - radius) + 1.0f > maxPointSize;
 
   glQueryCounter(queries[set][0], GL_TIMESTAMP);
   glEnable(GL_DEPTH_TEST);
@@ -353,11 +426,7 @@ void Renderer::Impl::draw(const World& world, const Camera& camera,
     const float one = 1.0f;
     glClearNamedFramebufferfv(shadowFramebuffer, GL_DEPTH, 0, &one);
     glBindBufferBase(GL_UNIFORM_BUFFER, kFrameParamsBinding, frameParams[0]);
-    if (particleVertices > 0) {
-      glUseProgram(particlesShadow);
-      glBindVertexArray(emptyVao);
-      glDrawArrays(GL_TRIANGLES, 0, particleVertices);
-    }
+    drawParticles(particles, pointsShadow, lightNeedsQuads ? particlesShadow : 0);
     if (!mesh.empty()) {
       glEnable(GL_POLYGON_OFFSET_FILL);
       glPolygonOffset(2.0f, 4.0f);
@@ -371,18 +440,14 @@ void Renderer::Impl::draw(const World& world, const Camera& camera,
 
   // --- 2. Scene: lit impostors and colliders into the renderer's targets -----------------------
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, sceneFramebuffer);
-  glViewport(0, 0, w, h);
+  glViewport(0, 0, sw, sh);
   const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   const float one = 1.0f;
   for (GLint i = 0; i < 3; ++i) glClearNamedFramebufferfv(sceneFramebuffer, GL_COLOR, i, zero);
   glClearNamedFramebufferfv(sceneFramebuffer, GL_DEPTH, 0, &one);
   glBindBufferBase(GL_UNIFORM_BUFFER, kFrameParamsBinding, frameParams[1]);
   glBindTextureUnit(0, shadowDepth);
-  if (particleVertices > 0) {
-    glUseProgram(particlesScene);
-    glBindVertexArray(emptyVao);
-    glDrawArrays(GL_TRIANGLES, 0, particleVertices);
-  }
+  drawParticles(particles, pointsScene, eyeNeedsQuads ? particlesScene : 0);
   if (!mesh.empty()) {
     glUseProgram(meshScene);
     glBindVertexArray(meshVao);
@@ -391,8 +456,9 @@ void Renderer::Impl::draw(const World& world, const Camera& camera,
   glQueryCounter(queries[set][2], GL_TIMESTAMP);
 
   // --- 3. Composite: ambient occlusion, tone, sRGB, depth into the caller's framebuffer --------
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(target));
-  glViewport(0, 0, w, h);
+  // (through the scaled target and a scale-up when the frame is lit below full size).
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, scaled ? scaledFramebuffer : GLuint(target));
+  glViewport(0, 0, sw, sh);
   glDepthFunc(GL_ALWAYS);
   glUseProgram(composite);
   glProgramUniform1i(composite, compositeAoSamples, std::max(settings.aoSamples, 0));
@@ -401,6 +467,14 @@ void Renderer::Impl::draw(const World& world, const Camera& camera,
   for (GLuint i = 0; i < 4; ++i) glBindTextureUnit(1 + i, sceneTextures[i]);
   glBindVertexArray(emptyVao);
   glDrawArrays(GL_TRIANGLES, 0, 3);
+  if (scaled) {
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(target));
+    glViewport(0, 0, w, h);
+    glUseProgram(upscale);
+    glBindTextureUnit(1, scaledTextures[0]);
+    glBindTextureUnit(2, scaledTextures[1]);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
   glDepthFunc(GL_LESS);
   glQueryCounter(queries[set][3], GL_TIMESTAMP);
 
@@ -410,6 +484,8 @@ void Renderer::Impl::draw(const World& world, const Camera& camera,
   pending[set] = true;
   pendingFrame[set] = frames;
   pendingParticles[set] = buffers.particleCount;
+  pendingWidth[set] = sw;
+  pendingHeight[set] = sh;
   lastSet = set;
 }
 

@@ -29,6 +29,9 @@ struct RenderSettings {
   Light light;
   /// Colour where nothing is drawn, sRGB in [0, 1].
   Eigen::Vector3f background{0.70f, 0.76f, 0.82f};
+  /// Fraction of the viewport's width and height at which the scene is lit and composited, in
+  /// [0.25, 1]; below 1 the result is scaled up to the viewport (cheaper, softer).
+  float renderScale = 1.0f;
   /// Side of the square shadow map, texels; in 16..8192.
   int shadowMapSize = 2048;
   /// Direct light is shadowed (granules shadow themselves, each other and the colliders).
@@ -45,10 +48,12 @@ struct RenderSettings {
 /// GPU time of the last frame whose timer queries were ready, measured with GL_TIMESTAMP
 /// (llvmpipe reports 0 for GL_TIME_ELAPSED). Separate from the simulation's kernel times.
 struct RenderStats {
-  double shadowMs = 0.0;        ///< depth of impostors and colliders from the light
-  double sceneMs = 0.0;         ///< lit impostors and colliders into the renderer's own targets
-  double compositeMs = 0.0;     ///< ambient occlusion and final colour into the bound framebuffer
-  double totalMs = 0.0;         ///< the three passes
+  double shadowMs = 0.0;     ///< depth of impostors and colliders from the light
+  double sceneMs = 0.0;      ///< lit impostors and colliders into the renderer's own targets
+  double compositeMs = 0.0;  ///< ambient occlusion and final colour (and the scale-up, if any)
+  double totalMs = 0.0;      ///< the three passes
+  int renderWidth = 0;       ///< size the scene was lit at (the viewport times renderScale), px
+  int renderHeight = 0;
   std::uint32_t particles = 0;  ///< particles drawn (of alive and dead bodies)
   std::uint64_t frame = 0;      ///< draws completed so far when these times were taken
 };

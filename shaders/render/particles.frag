@@ -1,20 +1,27 @@
 #version 450
 // Ray-cast sphere: exact silhouette, normal and depth, so that spheres intersect correctly with
-// each other and with meshes. SHADOW_PASS: depth only, from the light.
+// each other and with meshes. The ray comes from the pixel itself, so the same code serves point
+// sprites and quads. SHADOW_PASS: depth only, from the light.
 #include "common/frame.glsl"
 
 flat in vec3 vCentre;
 flat in vec3 vAlbedo;
-in vec3 vPosition;
 
 #ifndef SHADOW_PASS
 #include "common/lighting.glsl"
 #endif
 
+// The ray hits the sphere at or behind the sprite's own depth (its nearest point), which lets the
+// depth test run before this shader where the implementation supports it.
+layout(depth_greater) out float gl_FragDepth;
+
 void main() {
   float r = params.x;
-  vec3 origin = orthographicPass() ? vec3(vPosition.xy, 0.0) : vec3(0.0);
-  vec3 direction = orthographicPass() ? vec3(0.0, 0.0, -1.0) : normalize(vPosition);
+  vec2 ndc = gl_FragCoord.xy * viewport.zw * 2.0 - 1.0;
+  vec4 onFarPlane = inverseProjection * vec4(ndc, 1.0, 1.0);
+  vec3 pixel = onFarPlane.xyz / onFarPlane.w;
+  vec3 origin = orthographicPass() ? vec3(pixel.xy, 0.0) : vec3(0.0);
+  vec3 direction = orthographicPass() ? vec3(0.0, 0.0, -1.0) : normalize(pixel);
   vec3 oc = origin - vCentre;
   float b = dot(oc, direction);
   float c = dot(oc, oc) - r * r;

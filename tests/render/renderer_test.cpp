@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <sandphys/gl_interop.h>
@@ -20,6 +21,7 @@
 #include "render/camera.h"
 #include "render/offscreen_target.h"
 #include "render/png.h"
+#include "render/render_quality.h"
 #include "render/renderer.h"
 #include "support/test_world.h"
 
@@ -107,12 +109,13 @@ class RenderScene : public ::testing::Test {
 
   // Renders with `settings` into a fresh offscreen target and reads the pixels back.
   static Image drawImage(const render::RenderSettings& settings,
-                         render::RenderStats* stats = nullptr, const char* pngName = nullptr) {
+                         render::RenderStats* stats = nullptr, const char* pngName = nullptr,
+                         const render::Camera& view = camera()) {
     render::OffscreenTarget target(kWidth, kHeight);
     render::Renderer renderer;
     renderer.settings() = settings;
     target.bind();
-    renderer.draw(*world, camera(), bounds(), kWidth, kHeight);
+    renderer.draw(*world, view, bounds(), kWidth, kHeight);
     Image image = target.readRgba();
     if (stats) *stats = renderer.finishStats();
     if (pngName) {
@@ -317,6 +320,104 @@ TEST_F(RenderScene, StatsMeasureTheRenderPassesSeparately) {
   EXPECT_NEAR(stats.totalMs, stats.shadowMs + stats.sceneMs + stats.compositeMs, 1e-3);
   std::printf("render %dx%d of %u particles: shadow %.1f ms, scene %.1f ms, composite %.1f ms\n",
               kWidth, kHeight, stats.particles, stats.shadowMs, stats.sceneMs, stats.compositeMs);
+}
+
+// The cost presets trade resolution, shadow-map texels and AO samples for time; each must still
+// draw the same pile with its shadow, at the size it says.
+TEST_F(RenderScene, EveryQualityShowsThePileAndItsShadowAtItsScale) {
+  const float r = 1.3f * pileRadius();
+  render::RenderSettings high = lowSun();
+  render::applyRenderQuality(render::RenderQuality::High, high);
+  const Image reference = drawImage(high);
+  for (const render::RenderQuality quality :
+       {render::RenderQuality::Low, render::RenderQuality::Medium, render::RenderQuality::High}) {
+    const std::string name(render::renderQualityName(quality));
+    render::RenderSettings settings = lowSun();
+    render::applyRenderQuality(quality, settings);
+    render::RenderStats stats;
+    const Image image = drawImage(settings, &stats, ("quality_" + name + ".png").c_str());
+    EXPECT_EQ(stats.renderWidth, int(std::lround(kWidth * settings.renderScale))) << name;
+    EXPECT_EQ(stats.renderHeight, int(std::lround(kHeight * settings.renderScale))) << name;
+    const double dark = floorLuminance(image, -r, 0.0f);
+    const double lit = floorLuminance(image, 0.0f, r);
+    EXPECT_GT(lit, 1.6 * dark) << name << ": lit floor " << lit << ", behind the pile " << dark;
+    // Same picture as the best preset: compared in blocks of 8x8 pixels, because a grain a few
+    // pixels wide is necessarily softer when lit at half the resolution.
+    constexpr int kBlock = 8;
+    double difference = 0.0;
+    for (int by = 0; by < kHeight / kBlock; ++by) {
+      for (int bx = 0; bx < kWidth / kBlock; ++bx) {
+        double a = 0.0, b = 0.0;
+        for (int y = by * kBlock; y < (by + 1) * kBlock; ++y) {
+          for (int x = bx * kBlock; x < (bx + 1) * kBlock; ++x) {
+            a += luminance(pixelAt(image, x, y));
+            b += luminance(pixelAt(reference, x, y));
+          }
+        }
+        difference += std::abs(a - b) / (kBlock * kBlock);
+      }
+    }
+    difference /= double(kWidth / kBlock) * (kHeight / kBlock);
+    EXPECT_LT(difference, 4.0) << name << ": mean luminance difference from high, 8x8 blocks";
+    std::printf(
+        "%-6s %dx%d, shadow map %d, AO %d: shadow %.1f ms, scene %.1f ms, composite %.1f ms, "
+        "mean |dL| from high %.2f\n",
+        name.c_str(), stats.renderWidth, stats.renderHeight, settings.shadowMapSize,
+        settings.aoSamples, stats.shadowMs, stats.sceneMs, stats.compositeMs, difference);
+  }
+}
+
+// Particles are point sprites, which GL limits in size (255 px on llvmpipe); a close-up needs
+// larger squares, drawn as quads. Looking down at the highest particle through a narrow lens, it
+// and its neighbours are several hundred pixels wide: the middle of the image must be that sand
+// grain, not the floor far below it or the background.
+TEST_F(RenderScene, CloseUpDrawsGrainsLargerThanAPointSprite) {
+  const std::vector<ParticleState> particles = world->readParticles();
+  const ParticleState* top = nullptr;
+  for (const ParticleState& p : particles) {
+    if (!top || p.position.y > top->position.y) top = &p;
+  }
+  ASSERT_NE(top, nullptr);
+  render::Camera close;
+  close.target = {top->position.x, top->position.y, top->position.z};
+  close.distance = 4.0f * kD;
+  close.pitch = 1.3f;
+  close.yaw = 0.3f;
+  close.fovY = 0.1f;
+  // Diameter on screen of a grain at the target: about 600 px, more than any point sprite.
+  const float focalPx = 0.5f * kHeight / std::tan(0.5f * close.fovY);
+  ASSERT_GT(kD * focalPx / close.distance, 300.0f);
+  const Image image = drawImage(render::RenderSettings{}, nullptr, "close_up.png", close);
+  int sand = 0, total = 0;
+  for (int y = kHeight / 2 - 20; y < kHeight / 2 + 20; ++y) {
+    for (int x = kWidth / 2 - 20; x < kWidth / 2 + 20; ++x) {
+      sand += sandColoured(pixelAt(image, x, y));
+      ++total;
+    }
+  }
+  EXPECT_EQ(sand, total) << "the middle of a close-up of the highest grain is not all sand";
+}
+
+TEST(RenderQuality, NamesParseBackAndStepsSaturate) {
+  for (const render::RenderQuality quality :
+       {render::RenderQuality::Low, render::RenderQuality::Medium, render::RenderQuality::High}) {
+    EXPECT_EQ(render::parseRenderQuality(render::renderQualityName(quality)), quality);
+  }
+  EXPECT_FALSE(render::parseRenderQuality("ultra").has_value());
+  EXPECT_EQ(render::lowerQuality(render::RenderQuality::Low), render::RenderQuality::Low);
+  EXPECT_EQ(render::higherQuality(render::RenderQuality::High), render::RenderQuality::High);
+  EXPECT_EQ(render::higherQuality(render::RenderQuality::Low), render::RenderQuality::Medium);
+  // Cheaper presets never cost more on any axis.
+  render::RenderSettings low, medium, high;
+  render::applyRenderQuality(render::RenderQuality::Low, low);
+  render::applyRenderQuality(render::RenderQuality::Medium, medium);
+  render::applyRenderQuality(render::RenderQuality::High, high);
+  EXPECT_LT(low.renderScale, medium.renderScale);
+  EXPECT_LT(medium.renderScale, high.renderScale);
+  EXPECT_LE(low.shadowMapSize, medium.shadowMapSize);
+  EXPECT_LE(medium.shadowMapSize, high.shadowMapSize);
+  EXPECT_LT(low.aoSamples, medium.aoSamples);
+  EXPECT_LT(medium.aoSamples, high.aoSamples);
 }
 
 TEST_F(RenderScene, PngHoldsExactlyTheRenderedPixels) {
