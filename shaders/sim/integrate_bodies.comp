@@ -1,9 +1,7 @@
 #version 450
-// Pass 6. Bodies: one thread per body sums its particles' forces and torques r x F (paper eq. 2,
-// 3) in particle order (fixed, so deterministic), then integrates with semi-implicit Euler: the
-// velocity first, then the position with the new velocity; the spin in the principal frame with
-// the gyroscopic term (eq. 4, 6), and the orientation by the quaternion update (eq. 5),
-// renormalised. Applies the speed guard and the sinks.
+// Pass 6. Granules: one thread per body sums its particles' forces and torques r x F (paper eq.
+// 2, 3) in particle order (fixed, so deterministic), then integrates (common/rigid_motion.glsl).
+// Bodies flagged BODY_LARGE (every body that is not a granule) are left to pass 6b.
 #include "common/layout.glsl"
 #include "common/quaternion.glsl"
 
@@ -20,70 +18,26 @@ PARTICLE_FORCE(readonly)
 SINKS(readonly)
 COUNTERS(coherent)
 
+#include "common/rigid_motion.glsl"
+
 void main() {
   uint b = threadIndex();
   if (b >= counts.y) return;
   uvec4 info = bodyInfo[b];
   if ((info.z & BODY_ALIVE) == 0u) return;
+  // Bodies that are not granules are summed and moved by integrate_large_bodies.comp.
+  if ((info.z & BODY_LARGE) != 0u) return;
   uint motion = (info.z & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT;
   if (motion == MOTION_STATIC) return;
-  float dt = gravityDt.w;
-  vec4 position = bodyPosition[b];
-  vec4 q = bodyOrientation[b];
-  vec3 v = bodyVelocity[b].xyz;
-  vec4 spin = bodyAngularVelocity[b];
-  vec3 omega = spin.xyz;
-
+  vec3 centre = bodyPosition[b].xyz;
+  vec3 force = vec3(0.0);
+  vec3 torque = vec3(0.0);
   if (motion == MOTION_DYNAMIC) {
-    vec3 force = vec3(0.0);
-    vec3 torque = vec3(0.0);
     for (uint k = info.x; k < info.x + info.y; ++k) {
       vec3 f = particleForce[k].xyz;
       force += f;
-      torque += cross(particlePosition[k].xyz - position.xyz, f);
-    }
-    v += dt * (force * position.w + gravityDt.xyz);
-    // Euler's equations in the principal frame: I w' = T - w x (I w).
-    vec3 inertia = bodyInertia[b].xyz;
-    vec3 omegaLocal = quatRotateInverse(q, omega);
-    vec3 torqueLocal = quatRotateInverse(q, torque);
-    omegaLocal += dt * (torqueLocal - cross(omegaLocal, inertia * omegaLocal)) / inertia;
-    omega = quatRotate(q, omegaLocal);
-
-    // Speed guard (paper: CFL velocity clamp), counted per body.
-    float maxSpeed = wallContact.y;
-    float speed = length(v);
-    if (speed > maxSpeed) {
-      v *= maxSpeed / speed;
-      info.w += 1u;
-    }
-    float rimSpeed = length(omega) * spin.w;
-    if (rimSpeed > maxSpeed) {
-      omega *= maxSpeed / rimSpeed;
-      info.w += 1u;
+      torque += cross(particlePosition[k].xyz - centre, f);
     }
   }
-
-  position.xyz += dt * v;
-  q += 0.5 * dt * quatMultiply(vec4(omega, 0.0), q);
-  q = normalize(q);
-
-  if ((info.z & BODY_GRANULE) != 0u) {
-    for (uint k = 0u; k < counts2.x; ++k) {
-      if (all(greaterThanEqual(position.xyz, sinks[k].lo.xyz)) &&
-          all(lessThanEqual(position.xyz, sinks[k].hi.xyz))) {
-        info.z &= ~BODY_ALIVE;
-        atomicAdd(counters[COUNTER_KILLED], 1u);
-        v = vec3(0.0);
-        omega = vec3(0.0);
-        break;
-      }
-    }
-  }
-
-  bodyPosition[b] = position;
-  bodyOrientation[b] = q;
-  bodyVelocity[b] = vec4(v, 0.0);
-  bodyAngularVelocity[b] = vec4(omega, spin.w);
-  bodyInfo[b] = info;
+  integrateBody(b, info, force, torque);
 }

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 
+#include "sandphys/ids.h"
 #include "sandphys/math.h"
 
 namespace sandphys {
@@ -39,6 +40,19 @@ struct ContactRecord {
   float normalForce = 0.0f;        ///< F_n on A, N (>= 0)
   Vec3 tangentialForce{};          ///< F_s on A, N
   float overlap = 0.0f;            ///< ξ, m
+};
+
+/// The sand's push on one body that is not a granule (a sampled mesh, a body coupled to another
+/// engine, a tool): contact forces from granules and colliders, summed on the GPU over every
+/// substep since the previous World::takeBodyForces. Gravity is not included.
+struct BodyForce {
+  BodyId body;
+  Vec3 force{};   ///< sum over the substeps of the contact force, N
+  Vec3 torque{};  ///< sum over the substeps of the torque about the centre of mass, N m
+  std::uint32_t substeps = 0;  ///< substeps summed
+  /// Mean force and torque over those substeps (zero when there were none).
+  Vec3 meanForce() const;
+  Vec3 meanTorque() const;
 };
 
 /// Totals over the world, reduced on the GPU (World::readStats, a sync point).

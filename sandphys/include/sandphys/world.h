@@ -109,6 +109,11 @@ class World {
   std::vector<ParticleState> readParticles() const;
   std::vector<ContactRecord> readContacts() const;
   WorldStats readStats();
+  /// The sand's force and torque on every body that is neither a granule nor static, summed over
+  /// the substeps since the previous call (or the body's creation), in the order the bodies were
+  /// added; the sums restart at zero. Sync point: 32 bytes per such body, meant once per frame
+  /// (e.g. by an engine bridge that applies them to its own bodies).
+  std::vector<BodyForce> takeBodyForces();
   /// Per-kernel GPU times of the last step (empty unless profileKernels). Sync point.
   std::vector<KernelTime> kernelTimes() const;
 

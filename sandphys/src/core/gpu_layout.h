@@ -34,7 +34,9 @@ enum Binding : unsigned {
   kCounters = 21,
   kStatsPartials = 22,
   kContactList = 23,
-  kBindingCount = 24,
+  kLargeBodies = 24,
+  kLargeBodyForces = 25,
+  kBindingCount = 26,
 };
 
 inline constexpr unsigned kSimParamsBinding = 0;
@@ -47,7 +49,11 @@ inline constexpr std::uint32_t kCounterCount = 4;
 // bodyInfo.z flags
 inline constexpr std::uint32_t kBodyAlive = 1u;
 inline constexpr std::uint32_t kBodyGranule = 2u;
+inline constexpr std::uint32_t kBodyLarge = 8u;  // not a granule: integrate_large_bodies.comp
 inline constexpr std::uint32_t kBodyMotionShift = 4u;
+/// Bodies that are not granules (and not static), each summed by a workgroup; the fixed size of
+/// the two buffers that list them and hold their force sums.
+inline constexpr std::uint32_t kMaxLargeBodies = 4096;
 
 struct alignas(16) GpuVec4 {
   float x, y, z, w;

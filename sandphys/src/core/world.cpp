@@ -1,5 +1,6 @@
 #include "sandphys/world.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -153,6 +154,15 @@ std::uint32_t World::Impl::addBodies(const ParticleTemplate& shape,
         " exceeds WorldSettings.maxParticles = " + std::to_string(particleCapacity) +
         " (grow it with World::reserve)");
   }
+  // Every body that is not a granule (and not static) gets a workgroup and a force sum of its
+  // own (integrate_large_bodies.comp), from a fixed-size list.
+  auto isLarge = [&](const BodyDesc& d) { return !isGranule && d.motion != Motion::Static; };
+  const auto large = std::uint64_t(std::count_if(descs.begin(), descs.end(), isLarge));
+  if (largeBodies.size() + large > kMaxLargeBodies) {
+    throw CapacityExceeded("adding " + std::to_string(large) + " bodies that are not granules to " +
+                           std::to_string(largeBodies.size()) + " exceeds the limit of " +
+                           std::to_string(kMaxLargeBodies) + " such bodies per World");
+  }
   gpu->makeCurrent();
   const std::uint32_t firstBody = bodyCount;
   const std::uint32_t firstParticle = particleCount;
@@ -164,8 +174,9 @@ std::uint32_t World::Impl::addBodies(const ParticleTemplate& shape,
   for (std::uint64_t i = 0; i < n; ++i) {
     const Motion motion = descs[i].motion;
     const bool dynamic = motion == Motion::Dynamic;
-    const std::uint32_t flags =
-        kBodyAlive | (isGranule ? kBodyGranule : 0u) | (std::uint32_t(motion) << kBodyMotionShift);
+    const std::uint32_t flags = kBodyAlive | (isGranule ? kBodyGranule : 0u) |
+                                (isLarge(descs[i]) ? kBodyLarge : 0u) |
+                                (std::uint32_t(motion) << kBodyMotionShift);
     info[i] = {std::uint32_t(firstParticle + i * perBody), std::uint32_t(perBody), flags, 0u};
     inertia[i] = toGpu(shape.principalInertia, shape.mass);
     // -1 marks static particles, whose force the contact kernel skips (layout.glsl).
@@ -180,10 +191,22 @@ std::uint32_t World::Impl::addBodies(const ParticleTemplate& shape,
   buffers[kBodyInertia].upload(firstBody * 16ull, n * 16, inertia.data());
   buffers[kParticleLocal].upload(firstParticle * 16ull, local.size() * 16, local.data());
   buffers[kParticleBody].upload(firstParticle * 4ull, owner.size() * 4, owner.data());
+  for (std::uint64_t i = 0; i < n; ++i) {
+    if (!isLarge(descs[i])) continue;
+    const auto entry = std::uint32_t(largeBodies.size());
+    const auto slot = std::uint32_t(firstBody + i);
+    const GpuVec4 zeros[2] = {};
+    buffers[kLargeBodies].upload(entry * 4ull, 4, &slot);
+    buffers[kLargeBodyForces].upload(entry * 32ull, 32, zeros);
+    largeBodies.push_back(slot);
+  }
   bodyCount += std::uint32_t(n);
   particleCount += std::uint32_t(n * perBody);
   generations.resize(bodyCount, 0);
   principalRotations.resize(bodyCount, shape.principalRotation);
+  for (const BodyDesc& d : descs) bodyMotions.push_back(d.motion);
+  bodyMasses.resize(bodyCount, shape.mass);
+  boundingRadii.resize(bodyCount, shape.boundingRadius);
   uploadBodyStates(firstBody, descs, shape);
   if (isGranule) granulesSpawned += std::uint32_t(n);
   paramsDirty = true;
@@ -385,15 +408,19 @@ void World::setBodyState(BodyId id, const BodyDesc& state) {
   BodyDesc d = state;
   d.orientation = normalised(state.orientation, "BodyDesc.orientation");
   Impl& w = *m_impl;
+  const Motion added = w.bodyMotions[id.index];
+  if (state.motion != added) {
+    throw InvalidArgument("BodyDesc.motion = " + std::to_string(unsigned(state.motion)) +
+                          " for body " + std::to_string(id.index) +
+                          ": a body keeps the motion it was added with (" +
+                          std::to_string(unsigned(added)) + "; 0 dynamic, 1 kinematic, 2 static)");
+  }
   w.gpu->makeCurrent();
-  // Keep the body's mass data: read its inertia row (a small sync, setup-time call).
-  GpuVec4 inertia{};
-  w.buffers[kBodyInertia].download(id.index * 16ull, 16, &inertia);
-  GpuVec4 spin{};
-  w.buffers[kBodyAngularVelocity].download(id.index * 16ull, 16, &spin);
+  // The body's mass data stay as they were (kept on the CPU: no sync, so a bridge can call this
+  // every frame).
   ParticleTemplate massOnly;
-  massOnly.mass = inertia.w;
-  massOnly.boundingRadius = spin.w;
+  massOnly.mass = w.bodyMasses[id.index];
+  massOnly.boundingRadius = w.boundingRadii[id.index];
   w.uploadBodyStates(id.index, {d}, massOnly);
 }
 

@@ -42,6 +42,8 @@ constexpr BufferSpec kSpecs[kBindingCount] = {
     {"counters", 4 * kCounterCount, SizedBy::Fixed},
     {"statsPartials", sizeof(GpuStatsPartial) * kStatsWorkgroups, SizedBy::Fixed},
     {"contactList", 16, SizedBy::Fixed},
+    {"largeBodies", 4 * kMaxLargeBodies, SizedBy::Fixed},
+    {"largeBodyForces", 32 * kMaxLargeBodies, SizedBy::Fixed},
 };
 
 }  // namespace
@@ -157,12 +159,13 @@ void WorldKernels::compile() {
   contacts = library.compileCompute("sim/contacts.comp");
   contactList = library.compileCompute("sim/contacts.comp", {"CONTACT_LIST 1"});
   integrateBodies = library.compileCompute("sim/integrate_bodies.comp");
+  integrateLargeBodies = library.compileCompute("sim/integrate_large_bodies.comp");
   statsReduce = library.compileCompute("sim/stats_reduce.comp");
 }
 
 void WorldKernels::release() {
   for (GLuint p : {bodiesToParticles, scanBlocks, scanBlockSums, scanAdd, gridScatter, gridSort,
-                   contacts, contactList, integrateBodies, statsReduce}) {
+                   contacts, contactList, integrateBodies, integrateLargeBodies, statsReduce}) {
     if (p) glDeleteProgram(p);
   }
   *this = {};

@@ -51,6 +51,7 @@ struct WorldKernels {
   GLuint contacts = 0;
   GLuint contactList = 0;
   GLuint integrateBodies = 0;
+  GLuint integrateLargeBodies = 0;
   GLuint statsReduce = 0;
 
   void compile();
@@ -82,6 +83,10 @@ struct World::Impl {
   std::uint32_t granulesSpawned = 0;
   std::vector<std::uint32_t> generations;  // per body slot
   std::vector<Quat> principalRotations;    // per body slot: template frame -> principal frame
+  std::vector<Motion> bodyMotions;         // per body slot, as added
+  std::vector<float> bodyMasses;           // per body slot, kg
+  std::vector<float> boundingRadii;        // per body slot, m
+  std::vector<std::uint32_t> largeBodies;  // body slots flagged kBodyLarge (layout.glsl)
   std::vector<detail::GpuCollider> colliders;
   std::vector<ColliderShape> colliderShapes;  // the descriptors of `colliders`, for renderers
   std::vector<detail::GpuSink> sinks;

@@ -67,6 +67,11 @@ void World::Impl::runSubstep() {
   dispatch(kernels.contacts, "contacts", particleCount, kWorkgroupSize);
   // 6. Body sums (eq. 2, 3) and integration (eq. 4-6), guards, sinks.
   dispatch(kernels.integrateBodies, "integrate_bodies", bodyCount, kWorkgroupSize);
+  // 6b. Every other body: a workgroup each (force sums for read-back, then the same integration).
+  if (!largeBodies.empty()) {
+    dispatch(kernels.integrateLargeBodies, "integrate_large_bodies",
+             std::uint32_t(largeBodies.size()) * kWorkgroupSize, kWorkgroupSize);
+  }
   ++steps;
   simTime += model.timeStep;
 }

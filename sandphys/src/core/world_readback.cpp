@@ -1,6 +1,7 @@
 // Read-back: every function here waits for the GPU (a sync point) and is meant for analysis,
 // tests and debugging, never for every substep.
 #include <algorithm>
+#include <cmath>
 
 #include "core/world_impl.h"
 #include "gl/gl_check.h"
@@ -131,6 +132,33 @@ std::vector<ContactRecord> World::readContacts() const {
 WorldStats World::readStats() {
   m_impl->gpu->makeCurrent();
   return m_impl->reduceStats();
+}
+
+Vec3 BodyForce::meanForce() const {
+  const float n = substeps > 0 ? float(substeps) : 1.0f;
+  return {force.x / n, force.y / n, force.z / n};
+}
+
+Vec3 BodyForce::meanTorque() const {
+  const float n = substeps > 0 ? float(substeps) : 1.0f;
+  return {torque.x / n, torque.y / n, torque.z / n};
+}
+
+std::vector<BodyForce> World::takeBodyForces() {
+  Impl& w = *m_impl;
+  std::vector<BodyForce> out;
+  if (w.largeBodies.empty()) return out;
+  w.gpu->makeCurrent();
+  const auto count = std::uint32_t(w.largeBodies.size());
+  const std::vector<GpuVec4> sums = download<GpuVec4>(w.buffers[kLargeBodyForces], 2 * count);
+  w.buffers[kLargeBodyForces].zero();
+  out.reserve(count);
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const std::uint32_t slot = w.largeBodies[i];
+    out.push_back({BodyId{slot, w.generations[slot]}, xyz(sums[2 * i]), xyz(sums[2 * i + 1]),
+                   std::uint32_t(std::lround(sums[2 * i].w))});
+  }
+  return out;
 }
 
 std::vector<KernelTime> World::kernelTimes() const {

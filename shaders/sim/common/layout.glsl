@@ -8,6 +8,8 @@
 // Body flags (bodyInfo.z).
 #define BODY_ALIVE 1u
 #define BODY_GRANULE 2u
+// Every body that is not a granule: summed and moved by integrate_large_bodies.comp.
+#define BODY_LARGE 8u
 #define BODY_MOTION_SHIFT 4u
 #define BODY_MOTION_MASK 0x30u
 #define MOTION_DYNAMIC 0u
@@ -89,6 +91,13 @@ struct StatsPartial {
 #define STATS_PARTIALS(access) layout(std430, binding = 22) access buffer StatsPartialsBuffer { StatsPartial statsPartials[]; };
 // Contact list for read-back: 16 floats per record (see contact_list.comp).
 #define CONTACT_LIST_BUFFER(access) layout(std430, binding = 23) access buffer ContactListBuffer { uint contactListCount; uint contactListCapacity; uint pad0; uint pad1; vec4 contactList[]; };
+
+// Body slot of each body flagged BODY_LARGE, in the order they were added.
+#define LARGE_BODIES(access) layout(std430, binding = 24) access buffer LargeBodiesBuffer { uint largeBodies[]; };
+// Per entry of largeBodies, two vec4: the contact force on the body (xyz, N) and its torque
+// about the centre of mass (xyz, N m), each summed over the substeps since World last read them;
+// the force's w counts those substeps.
+#define LARGE_BODY_FORCES(access) layout(std430, binding = 25) access buffer LargeBodyForcesBuffer { vec4 largeBodyForces[]; };
 
 // Constant for the whole step; set by World when settings or counts change.
 layout(std140, binding = 0) uniform SimParams {

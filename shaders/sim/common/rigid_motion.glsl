@@ -1,0 +1,66 @@
+// One substep of rigid-body motion, shared by integrate_bodies.comp (granules, a thread each) and
+// integrate_large_bodies.comp (every other body, a workgroup each): semi-implicit Euler, the
+// velocity first, then the position with the new velocity; the spin in the principal frame with
+// the gyroscopic term (paper eq. 4, 6), and the orientation by the quaternion update (eq. 5),
+// renormalised. Applies the speed guard and, to granules, the sinks. The includer declares
+// BODY_POSITION, BODY_ORIENTATION, BODY_VELOCITY, BODY_ANGULAR_VELOCITY, BODY_INFO (coherent),
+// BODY_INERTIA, SINKS (readonly) and COUNTERS, and includes quaternion.glsl.
+
+// Advances body `b` (alive, not static) by one substep under the sum of its particles' contact
+// forces `force` and their torque about its centre of mass `torque`; kinematic bodies keep their
+// velocities and only move.
+void integrateBody(uint b, uvec4 info, vec3 force, vec3 torque) {
+  uint motion = (info.z & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT;
+  float dt = gravityDt.w;
+  vec4 position = bodyPosition[b];
+  vec4 q = bodyOrientation[b];
+  vec3 v = bodyVelocity[b].xyz;
+  vec4 spin = bodyAngularVelocity[b];
+  vec3 omega = spin.xyz;
+
+  if (motion == MOTION_DYNAMIC) {
+    v += dt * (force * position.w + gravityDt.xyz);
+    // Euler's equations in the principal frame: I w' = T - w x (I w).
+    vec3 inertia = bodyInertia[b].xyz;
+    vec3 omegaLocal = quatRotateInverse(q, omega);
+    vec3 torqueLocal = quatRotateInverse(q, torque);
+    omegaLocal += dt * (torqueLocal - cross(omegaLocal, inertia * omegaLocal)) / inertia;
+    omega = quatRotate(q, omegaLocal);
+
+    // Speed guard (paper: CFL velocity clamp), counted per body.
+    float maxSpeed = wallContact.y;
+    float speed = length(v);
+    if (speed > maxSpeed) {
+      v *= maxSpeed / speed;
+      info.w += 1u;
+    }
+    float rimSpeed = length(omega) * spin.w;
+    if (rimSpeed > maxSpeed) {
+      omega *= maxSpeed / rimSpeed;
+      info.w += 1u;
+    }
+  }
+
+  position.xyz += dt * v;
+  q += 0.5 * dt * quatMultiply(vec4(omega, 0.0), q);
+  q = normalize(q);
+
+  if ((info.z & BODY_GRANULE) != 0u) {
+    for (uint k = 0u; k < counts2.x; ++k) {
+      if (all(greaterThanEqual(position.xyz, sinks[k].lo.xyz)) &&
+          all(lessThanEqual(position.xyz, sinks[k].hi.xyz))) {
+        info.z &= ~BODY_ALIVE;
+        atomicAdd(counters[COUNTER_KILLED], 1u);
+        v = vec3(0.0);
+        omega = vec3(0.0);
+        break;
+      }
+    }
+  }
+
+  bodyPosition[b] = position;
+  bodyOrientation[b] = q;
+  bodyVelocity[b] = vec4(v, 0.0);
+  bodyAngularVelocity[b] = vec4(omega, spin.w);
+  bodyInfo[b] = info;
+}
