@@ -2,7 +2,9 @@
 
 #include <cctype>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iostream>
@@ -79,6 +81,36 @@ ImageSize parseSize(const std::string& text) {
   return size;
 }
 
+double parseFrameBudget(const std::string& text) {
+  std::ostringstream limits;
+  limits << ": expected a frame budget in milliseconds, 0.." << kMaxFrameBudgetMs
+         << " (0 turns pacing off)";
+  // strtod alone would take "nan", "inf" and hexadecimal; a budget is a plain decimal number.
+  static const std::regex numberRe(R"(^[0-9]+(\.[0-9]*)?$|^\.[0-9]+$)");
+  if (!std::regex_match(text, numberRe)) throw UsageError("--frame-budget " + text + limits.str());
+  const double milliseconds = std::strtod(text.c_str(), nullptr);
+  if (!std::isfinite(milliseconds) || milliseconds > kMaxFrameBudgetMs) {
+    throw UsageError("--frame-budget " + text + limits.str());
+  }
+  return milliseconds;
+}
+
+// "auto" is the empty optional.
+std::optional<render::RenderQuality> parseQuality(const std::string& text, bool headless) {
+  if (text == "auto") {
+    if (headless) {
+      throw UsageError(
+          "--quality auto: a headless run has no frame times to adapt to; use low, medium or "
+          "high (the default)");
+    }
+    return std::nullopt;
+  }
+  if (const std::optional<render::RenderQuality> quality = render::parseRenderQuality(text)) {
+    return quality;
+  }
+  throw UsageError("--quality " + text + ": expected auto, low, medium or high");
+}
+
 bool endsWithPng(const std::filesystem::path& path) {
   std::string extension = path.extension().string();
   for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
@@ -122,6 +154,8 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
   std::optional<std::string> size;
   std::string screenshots;
   std::optional<std::int64_t> every;
+  std::optional<std::string> frameBudget;
+  std::optional<std::string> quality;
 
   app.add_option("--scene", options.sceneName, "scene to run (see --list)")->capture_default_str();
   app.add_flag("--list", list, "list the scenes and their parameters, then exit");
@@ -153,6 +187,19 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
   app.add_option("--screenshots", screenshots,
                  "write an image sequence DIR/frame_NNNNNN.png every --every frames");
   app.add_option("--every", every, "frames between images of --screenshots (default 10)");
+  app.add_option("--frame-budget", frameBudget,
+                 "window: wall-clock time one frame may take, ms (default 50, 0..10000). Each "
+                 "frame runs as many substeps as fit beside the rendering, in slow motion when "
+                 "that is less than --frame-dt; 0 = off: every frame simulates all of --frame-dt")
+      ->type_name("MS");
+  app.add_option("--quality", quality,
+                 "render quality: auto, low, medium or high (render scale, shadow map, AO "
+                 "samples). Window: default auto, which picks it from the render time and the "
+                 "frame budget; headless: default high, auto refused")
+      ->type_name("QUALITY");
+  app.add_flag("--panel-in-screenshots", options.panelInScreenshots,
+               "window: screenshots (F, --screenshot, --screenshots) show the whole window with "
+               "the panel, not the scene alone");
 
   try {
     app.parse(argc, argv);
@@ -184,6 +231,18 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
                          ": only means something with --screenshots DIR");
       }
       options.every = static_cast<std::uint64_t>(*every);
+    }
+    if (frameBudget) {
+      options.frameBudgetMs = parseFrameBudget(*frameBudget);
+      if (options.headless) {
+        throw UsageError("--frame-budget " + *frameBudget +
+                         ": only means something in the window, not with --headless");
+      }
+    }
+    if (quality) options.quality = parseQuality(*quality, options.headless);
+    if (options.panelInScreenshots && options.headless) {
+      throw UsageError(
+          "--panel-in-screenshots: only means something in the window, not with --headless");
     }
     if (!(options.frameDt > 0.0) || !(options.frameDt <= 1.0)) {
       std::ostringstream value;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "render/render_quality.h"
 #include "scenes/scene.h"
 
 namespace sandphys::samples {
@@ -17,6 +18,9 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;
 /// Exit code of a usage error (unknown flag, bad value, unknown scene, unwritable path).
 inline constexpr int kExitUsage = 2;
+
+/// Largest --frame-budget accepted, ms (ten seconds a frame is no longer a viewer).
+inline constexpr double kMaxFrameBudgetMs = 10000.0;
 
 /// Width and height of an image or a window, px.
 struct ImageSize {
@@ -55,6 +59,16 @@ struct RunOptions {
   std::filesystem::path screenshotDir;
   /// Frames between two images of the sequence (--every); >= 1.
   std::uint64_t every = 10;
+  /// Wall-clock time one viewer frame may take, ms, in [0, kMaxFrameBudgetMs] (--frame-budget).
+  /// The viewer runs as many substeps as fit (slow motion when that is less than a frame dt);
+  /// 0 = off: every frame simulates its whole frame dt, however long that takes. Window only.
+  double frameBudgetMs = 50.0;
+  /// Render quality preset (--quality); empty = auto: the viewer picks it from its measured
+  /// render times, a headless run draws high.
+  std::optional<render::RenderQuality> quality;
+  /// A windowed run's screenshots show the whole window, panel included, instead of the scene
+  /// alone (--panel-in-screenshots).
+  bool panelInScreenshots = false;
 };
 
 /// Parses and validates the command line, and makes the scene. Returns the options to run, or an

@@ -9,6 +9,7 @@
 #include "app/metrics.h"
 #include "render/offscreen_target.h"
 #include "render/png.h"
+#include "render/render_quality.h"
 #include "render/renderer.h"
 
 namespace sandphys::samples {
@@ -39,8 +40,10 @@ std::string progressText(std::uint64_t frame, std::uint64_t frames, const World&
 // Headless screenshots: one renderer and one offscreen target for the whole run.
 class Screenshots {
  public:
-  Screenshots(const scenes::Scene& scene, ImageSize size)
-      : m_scene(scene), m_size(size), m_target(size.width, size.height) {}
+  Screenshots(const scenes::Scene& scene, ImageSize size, render::RenderQuality quality)
+      : m_scene(scene), m_size(size), m_target(size.width, size.height) {
+    render::applyRenderQuality(quality, m_renderer.settings());
+  }
 
   void write(World& world, const std::filesystem::path& path) {
     const scenes::SceneBounds bounds = contentBounds(world);
@@ -157,7 +160,8 @@ int runHeadless(RunOptions& options) {
   ProgressLine progress(!options.quiet);
   std::unique_ptr<Screenshots> screenshots;
   if (!options.screenshotPath.empty() || !options.screenshotDir.empty()) {
-    screenshots = std::make_unique<Screenshots>(*options.scene, options.size);
+    screenshots = std::make_unique<Screenshots>(*options.scene, options.size,
+                                                options.quality.value_or(render::kHighestQuality));
   }
   FrameHook afterFrame;
   if (!options.screenshotDir.empty()) {

@@ -6,6 +6,8 @@
 
 #include <sandphys/sandphys.h>
 
+#include "render/renderer.h"
+
 namespace sandphys::viewer {
 
 /// The last kLength values of one number per frame, oldest first, contiguous as
@@ -30,9 +32,17 @@ struct FrameStats {
   bool stepped = false;  ///< the world stepped this frame (not paused)
   StepReport report{};
   std::uint32_t particles = 0;
+  /// Substeps a whole frame dt takes (frameDt / timeStep, at most maxSubstepsPerFrame); the frame
+  /// pacer may run fewer (report.substeps).
+  std::uint32_t fullSubsteps = 0;
+  /// The frame ran fewer substeps than a whole frame dt to stay within the frame budget.
+  bool slowMotion = false;
+  /// Simulated seconds of this frame / frame dt: about 1 in real time, below in slow motion.
+  double timeScale = 0.0;
   double stepMilliseconds = 0.0;   ///< wall time of World::step and the scene's update
   double frameMilliseconds = 0.0;  ///< wall time of the whole previous frame
-  double renderMilliseconds = 0.0;
+  /// The renderer's newest per-pass GPU times and the size it lit the scene at.
+  render::RenderStats render{};
   double cundall = 0.0;          ///< granule updates per wall second of stepping
   double simPerWall = 0.0;       ///< simulated seconds per wall second of the whole frame
   double maxOverlapOverD = 0.0;  ///< largest overlap of the frame / particle diameter

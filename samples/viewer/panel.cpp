@@ -5,7 +5,11 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <optional>
+#include <string>
 #include <type_traits>
+
+#include "render/render_quality.h"
 
 namespace sandphys::viewer {
 
@@ -60,6 +64,9 @@ PanelRequests Panel::draw(Session& session, const FrameStats& stats, const Stats
   // Fields leave room on their right for labels as long as "Young's modulus, Pa".
   ImGui::PushItemWidth(-170.0f);
   drawScene(session, view, requests);
+  if (ImGui::CollapsingHeader("Pacing and rendering", ImGuiTreeNodeFlags_DefaultOpen)) {
+    drawPacing(session, stats);
+  }
   if (ImGui::CollapsingHeader("Scene parameters", ImGuiTreeNodeFlags_DefaultOpen)) {
     drawParameters(session);
   }
@@ -69,7 +76,7 @@ PanelRequests Panel::draw(Session& session, const FrameStats& stats, const Stats
   if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) {
     drawStats(session, stats, history);
   }
-  if (ImGui::CollapsingHeader("Controls")) drawHelp();
+  if (ImGui::CollapsingHeader("Controls")) drawHelp(view);
   ImGui::PopItemWidth();
   ImGui::End();
   return requests;
@@ -114,6 +121,55 @@ void Panel::drawScene(Session& session, const PanelView& view, PanelRequests& re
   if (!view.message.empty()) {
     ImGui::TextColored(ImVec4(1.0f, 0.5f, 0.3f, 1.0f), "%s", view.message.c_str());
   }
+}
+
+void Panel::drawPacing(Session& session, const FrameStats& stats) {
+  FramePacer& pacer = session.pacer();
+  float budget = static_cast<float>(pacer.budgetMs());
+  // The slider's end is a practical one; Ctrl+click types any budget in.
+  if (ImGui::SliderFloat("frame budget", &budget, 0.0f, 250.0f,
+                         budget > 0.0f ? "%.0f ms" : "off")) {
+    pacer.setBudgetMs(std::max(budget, 0.0f));
+  }
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip(
+        "wall-clock time a frame may take: each frame runs the substeps that fit beside the\n"
+        "rendering (slow motion when fewer than a frame dt needs); off: every frame simulates\n"
+        "its whole frame dt however long that takes");
+  }
+
+  const std::optional<render::RenderQuality> fixed = pacer.fixedQuality();
+  const std::string effective(render::renderQualityName(pacer.quality()));
+  const std::string preview = fixed ? effective : "auto: " + effective;
+  if (ImGui::BeginCombo("render quality", preview.c_str())) {
+    if (ImGui::Selectable("auto", !fixed)) pacer.setFixedQuality(std::nullopt);
+    for (render::RenderQuality quality = render::kLowestQuality;;
+         quality = render::higherQuality(quality)) {
+      const std::string name(render::renderQualityName(quality));
+      if (ImGui::Selectable(name.c_str(), fixed == quality)) pacer.setFixedQuality(quality);
+      if (quality == render::kHighestQuality) break;
+    }
+    ImGui::EndCombo();
+  }
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip(
+        "render scale, shadow map and AO samples; auto lowers the preset when rendering takes\n"
+        "over half the frame budget, and raises it when rendering takes well under it");
+  }
+
+  const render::RenderStats& render = stats.render;
+  ImGui::Text("render %dx%d: %.1f ms GPU", render.renderWidth, render.renderHeight, render.totalMs);
+  ImGui::Text("  shadow %.1f + scene %.1f + composite %.1f ms", render.shadowMs, render.sceneMs,
+              render.compositeMs);
+  if (!stats.stepped) {
+    ImGui::TextDisabled("paused: no substeps this frame");
+  } else if (stats.slowMotion) {
+    ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "slow motion x%.3g, %u of %u substeps",
+                       stats.timeScale, stats.report.substeps, stats.fullSubsteps);
+  } else {
+    ImGui::Text("real time, %u of %u substeps", stats.report.substeps, stats.fullSubsteps);
+  }
+  ImGui::Text("step %.2f ms per substep (smoothed)", pacer.msPerSubstep());
 }
 
 void Panel::drawParameters(Session& session) {
@@ -187,7 +243,8 @@ void Panel::drawStats(const Session& session, const FrameStats& stats,
               static_cast<double>(model.timeStep / model.contactTime),
               static_cast<double>(model.contactTime));
   ImGui::Text("Cundall %.3g granule steps/s", stats.cundall);
-  ImGui::Text("simulated / wall %.3f", stats.simPerWall);
+  // %.3g: in slow motion on a CPU the ratio is a few 1e-4, which %.3f would show as 0.
+  ImGui::Text("simulated / wall %.3g", stats.simPerWall);
   ImGui::Text("max overlap %.4f d  (guard at 0.1 d)", stats.maxOverlapOverD);
   ImGui::Text("guards: penetration %llu  velocity %llu",
               static_cast<unsigned long long>(s.penetrationClamps),
@@ -196,7 +253,7 @@ void Panel::drawStats(const Session& session, const FrameStats& stats,
               stats.report.emitterBlocked ? "  emitter blocked (capacity)" : "");
   ImGui::Text("poured %u of %u", session.tools().poured(), SandTools::kPourGranules);
   ImGui::Text("step %.2f ms  render %.2f ms  frame %.2f ms", stats.stepMilliseconds,
-              stats.renderMilliseconds, stats.frameMilliseconds);
+              stats.render.totalMs, stats.frameMilliseconds);
   if (stats.kernels.empty()) {
     ImGui::TextDisabled("kernel times: tick 'profile kernels' and restart");
   } else if (ImGui::TreeNode("kernels")) {
@@ -214,14 +271,16 @@ void Panel::drawStats(const Session& session, const FrameStats& stats,
   plot("frame", history.frameMs, "%.1f ms");
 }
 
-void Panel::drawHelp() {
+void Panel::drawHelp(const PanelView& view) {
   ImGui::TextUnformatted(
       "left drag: orbit    middle or Shift+left drag: pan\n"
       "wheel: zoom\n"
       "right button or P held: pour sand under the cursor\n"
       "Ctrl+left button or B held: push sand with a sphere\n"
-      "Space: pause    S: step    R: restart\n"
-      "F: screenshot of the scene (no panel)   Esc: quit");
+      "Space: pause    S: step    R: restart    Esc: quit");
+  ImGui::TextUnformatted(view.panelInScreenshots
+                             ? "F: screenshot of the window, panel included"
+                             : "F: screenshot of the scene (no panel; --panel-in-screenshots)");
 }
 
 }  // namespace sandphys::viewer

@@ -12,9 +12,10 @@ namespace sandphys::viewer {
 struct PanelView {
   bool paused = false;
   bool vsync = true;
-  std::string gpu;             ///< GpuContext::description
-  std::string lastScreenshot;  ///< path of the last PNG written, or empty
-  std::string message;         ///< one line of feedback (e.g. a failed screenshot), or empty
+  bool panelInScreenshots = false;  ///< screenshots show the panel too
+  std::string gpu;                  ///< GpuContext::description
+  std::string lastScreenshot;       ///< path of the last PNG written, or empty
+  std::string message;              ///< one line of feedback (e.g. a failed screenshot), or empty
 };
 
 /// What the user asked for in the panel this frame; the app applies it after the frame.
@@ -27,9 +28,10 @@ struct PanelRequests {
   bool toggleVsync = false;
 };
 
-/// The Dear ImGui panel: scene menu and parameters, material and time step (applied on restart),
-/// statistics and live plots. Edits to the scene's parameters and the controls go straight into
-/// the session and take effect at the next restart.
+/// The Dear ImGui panel: scene menu and parameters, frame budget and render quality (applied at
+/// once), material and time step (applied on restart), statistics and live plots. Edits to the
+/// scene's parameters and the controls go straight into the session and take effect at the next
+/// restart.
 class Panel {
  public:
   /// Draws the panel inside the current ImGui frame.
@@ -38,10 +40,11 @@ class Panel {
 
  private:
   void drawScene(Session& session, const PanelView& view, PanelRequests& requests);
+  void drawPacing(Session& session, const FrameStats& stats);
   void drawParameters(Session& session);
   void drawControls(Session& session);
   void drawStats(const Session& session, const FrameStats& stats, const StatsHistory& history);
-  void drawHelp();
+  void drawHelp(const PanelView& view);
 
   std::string m_parameterError;
 };

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 
 namespace sandphys::viewer {
 
@@ -11,6 +13,18 @@ using Clock = std::chrono::steady_clock;
 
 double millisecondsSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// The duration of `substeps` substeps as World::step takes it. A float product may fall a hair
+// short of the double one the World divides by, and would then run one substep less; rounding
+// up makes the World run exactly `substeps` from an empty accumulator.
+float substepsDuration(std::uint32_t substeps, float timeStep) {
+  const double exact = static_cast<double>(substeps) * static_cast<double>(timeStep);
+  float duration = static_cast<float>(exact);
+  if (static_cast<double>(duration) < exact) {
+    duration = std::nextafter(duration, std::numeric_limits<float>::max());
+  }
+  return duration;
 }
 
 }  // namespace
@@ -33,8 +47,9 @@ WorldSettings SimulationControls::applyTo(WorldSettings settings) const {
   return settings;
 }
 
-Session::Session(const GpuContext& gpu, std::unique_ptr<scenes::Scene> scene, double frameDt)
-    : m_gpu(gpu), m_scene(std::move(scene)) {
+Session::Session(const GpuContext& gpu, std::unique_ptr<scenes::Scene> scene, double frameDt,
+                 FramePacer pacer)
+    : m_gpu(gpu), m_scene(std::move(scene)), m_pacer(pacer) {
   m_controls = SimulationControls::from(m_scene->settings(), frameDt);
   restart();
 }
@@ -44,6 +59,7 @@ void Session::restart() {
   m_world.reset();
   m_lastError.clear();
   m_droppedSeconds = 0.0;
+  m_pacer.forgetStepCost();
   WorldSettings settings = SandTools::withToolCapacity(m_scene->settings());
   settings.profileKernels = m_controls.profileKernels;
   try {
@@ -64,8 +80,21 @@ void Session::switchScene(const scenes::SceneEntry& entry) {
   restart();
 }
 
+std::uint32_t Session::fullSubsteps() const {
+  const double substeps = std::round(m_applied.frameDt / static_cast<double>(m_world->timeStep()));
+  return static_cast<std::uint32_t>(
+      std::clamp(substeps, 1.0, static_cast<double>(m_world->settings().maxSubstepsPerFrame)));
+}
+
 void Session::stepFrame(bool pour, bool push, const Ray& cursorRay, FrameStats& stats) {
-  const float frameDt = static_cast<float>(m_applied.frameDt);
+  const std::uint32_t full = fullSubsteps();
+  const std::uint32_t substeps = m_pacer.substepsFor(full);
+  stats.fullSubsteps = full;
+  stats.slowMotion = substeps < full;
+  // The whole frame dt, not full · timeStep, when it fits: then the frame ticks in real time
+  // whatever remainder frameDt / timeStep leaves.
+  const float frameDt = stats.slowMotion ? substepsDuration(substeps, m_world->timeStep())
+                                         : static_cast<float>(m_applied.frameDt);
   const Clock::time_point start = Clock::now();
   m_tools.update(*m_world, pour, push, cursorRay, frameDt);
   stats.report = m_world->step(frameDt);
@@ -73,6 +102,8 @@ void Session::stepFrame(bool pour, bool push, const Ray& cursorRay, FrameStats& 
   m_scene->update(*m_world, stats.report, m_world->simulatedTime());
   stats.stepMilliseconds = millisecondsSince(start);
   stats.stepped = true;
+  stats.timeScale = stats.report.simulatedTime / m_applied.frameDt;
+  m_pacer.recordStep(stats.stepMilliseconds, stats.report.substeps);
 
   m_droppedSeconds += stats.report.droppedTime;
   stats.droppedSeconds = m_droppedSeconds;

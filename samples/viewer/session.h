@@ -7,6 +7,7 @@
 
 #include "scenes/registry.h"
 #include "scenes/scene.h"
+#include "viewer/frame_pacer.h"
 #include "viewer/frame_stats.h"
 #include "viewer/sand_tools.h"
 
@@ -30,12 +31,14 @@ struct SimulationControls {
   WorldSettings applyTo(WorldSettings settings) const;
 };
 
-/// One scene running in a World on the viewer's context, with the sand tools attached. A restart
-/// builds the scene again on a fresh World.
+/// One scene running in a World on the viewer's context, with the sand tools attached, paced
+/// by a FramePacer. A restart builds the scene again on a fresh World.
 class Session {
  public:
-  /// Starts `scene` (already configured, e.g. by the command line) at `frameDt` s per frame.
-  Session(const GpuContext& gpu, std::unique_ptr<scenes::Scene> scene, double frameDt);
+  /// Starts `scene` (already configured, e.g. by the command line) at `frameDt` s per frame,
+  /// stepped as `pacer` decides.
+  Session(const GpuContext& gpu, std::unique_ptr<scenes::Scene> scene, double frameDt,
+          FramePacer pacer = {});
 
   /// Rebuilds the scene on a fresh World with the controls applied. When the controls make an
   /// invalid World, the error is kept for the panel (lastError) and the scene's own settings are
@@ -45,13 +48,20 @@ class Session {
   /// to that scene's values and restarts.
   void switchScene(const scenes::SceneEntry& entry);
 
-  /// Runs one frame: the tools, World::step(frameDt), the scene's update; fills `stats`.
+  /// Runs one frame: the tools, World::step, the scene's update; fills `stats`. Steps the whole
+  /// frame dt, or, when the pacer says fewer substeps fit in the frame budget, only those (slow
+  /// motion); the World's accumulator carries what a float duration rounds off.
   void stepFrame(bool pour, bool push, const Ray& cursorRay, FrameStats& stats);
+  /// Substeps one whole frame dt takes with the running World, in 1..maxSubstepsPerFrame.
+  std::uint32_t fullSubsteps() const;
 
   World& world() { return *m_world; }
   const World& world() const { return *m_world; }
   scenes::Scene& scene() { return *m_scene; }
   const scenes::Scene& scene() const { return *m_scene; }
+  /// Frame budget and render quality; edits apply from the next frame.
+  FramePacer& pacer() { return m_pacer; }
+  const FramePacer& pacer() const { return m_pacer; }
   SimulationControls& controls() { return m_controls; }
   /// The controls the running World was built with.
   const SimulationControls& applied() const { return m_applied; }
@@ -65,6 +75,7 @@ class Session {
   std::unique_ptr<scenes::Scene> m_scene;
   std::unique_ptr<World> m_world;
   SandTools m_tools;
+  FramePacer m_pacer;
   SimulationControls m_controls;
   SimulationControls m_applied;
   std::string m_lastError;

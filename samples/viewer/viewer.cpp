@@ -9,7 +9,9 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <vector>
 
+#include "render/render_quality.h"
 #include "render/renderer.h"
 #include "viewer/camera_control.h"
 #include "viewer/frame_stats.h"
@@ -52,6 +54,55 @@ std::filesystem::path sequencePath(const RunOptions& options, std::uint64_t fram
   return options.screenshotDir / name;
 }
 
+// What the whole run did, printed at its end: frames per second and how much simulation each
+// frame got are what the frame budget trades against each other.
+struct RunTotals {
+  std::uint64_t frames = 0;
+  std::uint64_t steppedFrames = 0;
+  double wallSeconds = 0.0;
+  double stepMilliseconds = 0.0;
+  std::uint64_t substeps = 0;
+  std::uint64_t fullSubsteps = 0;
+  double simulatedSeconds = 0.0;
+  double frameDtSeconds = 0.0;  // simulated time had every stepped frame run its whole frame dt
+  double renderMilliseconds = 0.0;
+
+  void add(const FrameStats& stats, double frameDt) {
+    ++frames;
+    wallSeconds += stats.frameMilliseconds * 1e-3;
+    renderMilliseconds += stats.render.totalMs;
+    if (!stats.stepped) return;
+    ++steppedFrames;
+    stepMilliseconds += stats.stepMilliseconds;
+    substeps += stats.report.substeps;
+    fullSubsteps += stats.fullSubsteps;
+    simulatedSeconds += stats.report.simulatedTime;
+    frameDtSeconds += frameDt;
+  }
+
+  void print(std::ostream& out, const FrameStats& last, render::RenderQuality quality,
+             double budgetMs) const {
+    if (frames == 0) return;
+    const double stepped = static_cast<double>(std::max<std::uint64_t>(steppedFrames, 1));
+    char budget[32] = "off";
+    if (budgetMs > 0.0) std::snprintf(budget, sizeof budget, "%g ms", budgetMs);
+    const std::string_view preset = render::renderQualityName(quality);
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "sandphys-samples: %llu frames in %.2f s (%.2f frames/s, budget %s): %.1f of "
+                  "%.0f substeps per frame (x%.3g of real time), step %.1f ms, render %.1f ms GPU "
+                  "per frame; last frame %.*s %dx%d\n",
+                  static_cast<unsigned long long>(frames), wallSeconds,
+                  static_cast<double>(frames) / std::max(wallSeconds, 1e-9), budget,
+                  static_cast<double>(substeps) / stepped,
+                  static_cast<double>(fullSubsteps) / stepped,
+                  simulatedSeconds / std::max(frameDtSeconds, 1e-12), stepMilliseconds / stepped,
+                  renderMilliseconds / static_cast<double>(frames), static_cast<int>(preset.size()),
+                  preset.data(), last.render.renderWidth, last.render.renderHeight);
+    out << line;
+  }
+};
+
 render::Camera framingCamera(Session& session, Extent framebuffer) {
   const float aspect = framebuffer.height > 0 ? static_cast<float>(framebuffer.width) /
                                                     static_cast<float>(framebuffer.height)
@@ -69,7 +120,8 @@ class ViewerLoop {
         m_input(window.handle()),
         m_gui(window.handle()),
         m_script(KeyScript::fromEnvironment()),
-        m_session(m_gpu, std::move(options.scene), options.frameDt) {
+        m_session(m_gpu, std::move(options.scene), options.frameDt,
+                  FramePacer(options.frameBudgetMs, options.quality)) {
     m_view.gpu = m_gpu.description();
     if (!m_options.quiet) std::cerr << "sandphys-samples: viewer on " << m_view.gpu << '\n';
     m_camera = framingCamera(m_session, m_window.framebufferSize());
@@ -98,7 +150,14 @@ class ViewerLoop {
                                            : 0.0;
       frameStart = now;
       m_history.push(m_stats);
-      if (last) return kExitOk;
+      m_totals.add(m_stats, m_session.applied().frameDt);
+      if (last) {
+        if (!m_options.quiet) {
+          m_totals.print(std::cerr, m_stats, m_session.pacer().quality(),
+                         m_session.pacer().budgetMs());
+        }
+        return kExitOk;
+      }
     }
   }
 
@@ -150,28 +209,40 @@ class ViewerLoop {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, size.width, size.height);
     if (size.width > 0 && size.height > 0) {
+      FramePacer& pacer = m_session.pacer();
+      render::applyRenderQuality(pacer.quality(), m_renderer.settings());
       m_renderer.draw(m_session.world(), m_camera, m_session.scene().bounds(), size.width,
                       size.height);
+      ++m_draws;
+      const render::RenderStats& renderStats = m_renderer.stats();
+      pacer.recordDraw(renderStats.totalMs, renderStats.frame, m_draws);
+      m_stats.render = renderStats;
     }
-    m_stats.renderMilliseconds = m_renderer.stats().totalMs;
 
     const bool last = quit || (m_options.framesGiven && frame + 1 >= m_options.frames);
-    // Screenshots show the scene without the panel.
+    m_screenshots.clear();
     if (screenshot) {
-      saveScreenshot(keyScreenshotPath(m_options, m_session.scene().name(), frame), size);
+      m_screenshots.push_back(keyScreenshotPath(m_options, m_session.scene().name(), frame));
     }
     // Frames count from 1 here: image k·every shows the world after k·every frames.
     if (!m_options.screenshotDir.empty() && m_options.every > 0 &&
         (frame + 1) % m_options.every == 0) {
-      saveScreenshot(sequencePath(m_options, frame + 1), size);
+      m_screenshots.push_back(sequencePath(m_options, frame + 1));
     }
-    if (last && !m_options.screenshotPath.empty()) saveScreenshot(m_options.screenshotPath, size);
+    if (last && !m_options.screenshotPath.empty()) {
+      m_screenshots.push_back(m_options.screenshotPath);
+    }
 
+    // Screenshots show the scene alone unless --panel-in-screenshots: then they are taken once
+    // the panel is drawn over it, and show the whole window.
+    if (!m_options.panelInScreenshots) saveScreenshots(size);
     m_gui.beginFrame();
     m_view.paused = m_paused;
     m_view.vsync = m_window.vsync();
+    m_view.panelInScreenshots = m_options.panelInScreenshots;
     const PanelRequests requests = m_panel.draw(m_session, m_stats, m_history, m_view);
     m_gui.render();
+    if (m_options.panelInScreenshots) saveScreenshots(size);
     m_window.swapBuffers();
     apply(requests);
     return last;
@@ -196,6 +267,10 @@ class ViewerLoop {
     if (requests.step) m_pendingStep = true;
     if (requests.screenshot) m_pendingScreenshot = true;
     if (requests.toggleVsync) m_window.setVsync(!m_window.vsync());
+  }
+
+  void saveScreenshots(Extent size) {
+    for (const std::filesystem::path& path : m_screenshots) saveScreenshot(path, size);
   }
 
   void saveScreenshot(const std::filesystem::path& path, Extent size) {
@@ -223,7 +298,11 @@ class ViewerLoop {
   Panel m_panel;
   FrameStats m_stats;
   StatsHistory m_history;
+  RunTotals m_totals;
   PanelView m_view;
+  // This frame's screenshot paths, kept to be written before or after the panel is drawn.
+  std::vector<std::filesystem::path> m_screenshots;
+  std::uint64_t m_draws = 0;
   bool m_paused = false;
   bool m_pendingStep = false;
   bool m_pendingScreenshot = false;

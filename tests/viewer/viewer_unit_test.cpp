@@ -1,10 +1,16 @@
-// The viewer's pieces that need no window: key scripts, camera control, tool capacities, plots.
+// The viewer's pieces that need no window: key scripts, camera control, tool capacities, plots,
+// the frame pacer and the viewer's command-line flags.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
+#include "app/cli.h"
 #include "viewer/camera_control.h"
+#include "viewer/frame_pacer.h"
 #include "viewer/frame_stats.h"
 #include "viewer/input.h"
 #include "viewer/sand_tools.h"
@@ -119,6 +125,208 @@ TEST(PlotHistory, KeepsTheNewestValuesInOrder) {
   EXPECT_FLOAT_EQ(history.data()[0], 10.0f);
   EXPECT_FLOAT_EQ(history.latest(), static_cast<float>(PlotHistory::kLength + 9));
   EXPECT_FLOAT_EQ(history.max(), history.latest());
+}
+
+using render::RenderQuality;
+
+// Feeds `frames` draws of `renderMs` each, numbered on from `draws`, as the viewer does: the
+// renderer's times arrive one draw late.
+void drawFrames(FramePacer& pacer, double renderMs, int frames, std::uint64_t& draws) {
+  for (int i = 0; i < frames; ++i) {
+    ++draws;
+    if (draws > 1) pacer.recordDraw(renderMs, draws - 1, draws);
+  }
+}
+
+TEST(FramePacer, WithoutABudgetEveryFrameRunsItsWholeFrameDt) {
+  FramePacer pacer;
+  EXPECT_FALSE(pacer.pacing());
+  EXPECT_EQ(pacer.substepsFor(253), 253u);
+  pacer.recordStep(253 * 30.0, 253);
+  EXPECT_EQ(pacer.substepsFor(253), 253u);
+  EXPECT_EQ(pacer.quality(), RenderQuality::High);  // auto without a budget
+}
+
+TEST(FramePacer, StartsWithOneSubstepAndFillsTheBudgetBesideTheRendering) {
+  FramePacer pacer(50.0, RenderQuality::Medium);
+  EXPECT_EQ(pacer.substepsFor(253), 1u);  // nothing measured yet
+  pacer.recordStep(4.0, 1);
+  std::uint64_t draws = 0;
+  drawFrames(pacer, 10.0, 3, draws);
+  // (50 - 10) ms / 4 ms per substep.
+  EXPECT_EQ(pacer.substepsFor(253), 10u);
+  EXPECT_EQ(pacer.substepsFor(7), 7u);  // never more than the whole frame
+  // Steps dearer than the room left still run one substep: the simulation must go on.
+  pacer.forgetStepCost();
+  pacer.recordStep(300.0, 1);
+  EXPECT_EQ(pacer.substepsFor(253), 1u);
+  drawFrames(pacer, 80.0, 1, draws);  // rendering alone over the budget
+  EXPECT_EQ(pacer.substepsFor(253), 1u);
+}
+
+TEST(FramePacer, SmoothsTheCostOfASubstep) {
+  FramePacer pacer(100.0, RenderQuality::Low);
+  pacer.recordStep(20.0, 10);  // 2 ms each: the first measurement is taken as it is
+  EXPECT_DOUBLE_EQ(pacer.msPerSubstep(), 2.0);
+  pacer.recordStep(60.0, 10);  // one frame at 6 ms moves the estimate by kSmoothing of the way
+  EXPECT_DOUBLE_EQ(pacer.msPerSubstep(), 2.0 + FramePacer::kSmoothing * 4.0);
+  pacer.recordStep(5.0, 0);  // a step that ran no substep
+  pacer.recordStep(std::numeric_limits<double>::quiet_NaN(), 3);
+  EXPECT_DOUBLE_EQ(pacer.msPerSubstep(), 2.0 + FramePacer::kSmoothing * 4.0);
+  for (int i = 0; i < 60; ++i) pacer.recordStep(60.0, 10);
+  EXPECT_NEAR(pacer.msPerSubstep(), 6.0, 1e-6);
+  EXPECT_EQ(pacer.substepsFor(253), 16u);  // 100 ms / 6 ms
+}
+
+TEST(FramePacer, ABudgetOfZeroOrNonsenseIsOff) {
+  FramePacer pacer(50.0, std::nullopt);
+  EXPECT_TRUE(pacer.pacing());
+  pacer.setBudgetMs(0.0);
+  EXPECT_FALSE(pacer.pacing());
+  pacer.setBudgetMs(-3.0);
+  EXPECT_FALSE(pacer.pacing());
+  pacer.setBudgetMs(std::numeric_limits<double>::infinity());
+  EXPECT_FALSE(pacer.pacing());
+}
+
+TEST(FramePacer, AutoQualityStepsDownAfterSeveralSlowFramesOnly) {
+  FramePacer pacer(50.0, std::nullopt);
+  ASSERT_EQ(pacer.quality(), RenderQuality::High);
+  std::uint64_t draws = 0;
+  // One slow frame among fast ones changes nothing.
+  drawFrames(pacer, 40.0, FramePacer::kFramesToLower - 1, draws);
+  drawFrames(pacer, 20.0, 1, draws);
+  drawFrames(pacer, 40.0, FramePacer::kFramesToLower - 1, draws);
+  EXPECT_EQ(pacer.quality(), RenderQuality::High);
+  // Render time over half the budget in enough consecutive frames: one step down.
+  drawFrames(pacer, 40.0, 2, draws);
+  EXPECT_EQ(pacer.quality(), RenderQuality::Medium);
+  // Draws already made at high quality, measured after the change, do not count against medium.
+  const std::uint64_t changedAt = draws;
+  for (std::uint64_t draw = changedAt - 1; draw <= changedAt; ++draw) {
+    for (int i = 0; i < FramePacer::kFramesToLower; ++i) pacer.recordDraw(40.0, draw, changedAt);
+  }
+  EXPECT_EQ(pacer.quality(), RenderQuality::Medium);
+  // Still too slow at medium: down to low, and no further.
+  drawFrames(pacer, 40.0, FramePacer::kFramesToLower + 1, draws);
+  EXPECT_EQ(pacer.quality(), RenderQuality::Low);
+  drawFrames(pacer, 40.0, 10 * FramePacer::kFramesToLower, draws);
+  EXPECT_EQ(pacer.quality(), RenderQuality::Low);
+}
+
+TEST(FramePacer, AutoQualityStepsUpOnlyWhenFarBelowTheBudget) {
+  FramePacer pacer(50.0, std::nullopt);
+  std::uint64_t draws = 0;
+  drawFrames(pacer, 40.0, FramePacer::kFramesToLower + 1, draws);
+  drawFrames(pacer, 40.0, FramePacer::kFramesToLower + 1, draws);
+  ASSERT_EQ(pacer.quality(), RenderQuality::Low);
+  // Between the two thresholds (7.5 and 25 ms of 50): stays, however long.
+  drawFrames(pacer, 12.0, 10 * FramePacer::kFramesToRaise, draws);
+  EXPECT_EQ(pacer.quality(), RenderQuality::Low);
+  // Far below: one step up after kFramesToRaise frames, not before.
+  drawFrames(pacer, 5.0, FramePacer::kFramesToRaise - 1, draws);
+  EXPECT_EQ(pacer.quality(), RenderQuality::Low);
+  drawFrames(pacer, 5.0, 2, draws);
+  EXPECT_EQ(pacer.quality(), RenderQuality::Medium);
+}
+
+// A preset that costs 2.5 times the next lower one, rendered at several budgets: auto settles
+// on one preset and stays there.
+TEST(FramePacer, AutoQualityDoesNotOscillate) {
+  for (const double lowMs : {1.0, 4.0, 9.0, 14.0, 30.0}) {
+    FramePacer pacer(50.0, std::nullopt);
+    std::uint64_t draws = 0;
+    int changes = 0;
+    RenderQuality last = pacer.quality();
+    for (int frame = 0; frame < 2000; ++frame) {
+      const int level = static_cast<int>(pacer.quality());
+      drawFrames(pacer, lowMs * std::pow(2.5, level), 1, draws);
+      if (pacer.quality() != last) ++changes;
+      last = pacer.quality();
+    }
+    EXPECT_LE(changes, 2) << "low preset at " << lowMs << " ms";
+  }
+}
+
+TEST(FramePacer, FixedQualityStaysAndAutoGoesOnFromIt) {
+  FramePacer pacer(50.0, RenderQuality::High);
+  std::uint64_t draws = 0;
+  drawFrames(pacer, 45.0, 100, draws);
+  EXPECT_EQ(pacer.quality(), RenderQuality::High);
+  pacer.setFixedQuality(RenderQuality::Low);
+  EXPECT_EQ(pacer.quality(), RenderQuality::Low);
+  pacer.setFixedQuality(std::nullopt);
+  EXPECT_EQ(pacer.quality(), RenderQuality::Low);
+  EXPECT_FALSE(pacer.fixedQuality().has_value());
+}
+
+// The flags are parsed in process: parseCommandLine touches no GPU.
+struct Parsed {
+  std::optional<int> exitCode;
+  samples::RunOptions options;
+  std::string errors;
+};
+
+Parsed parse(std::vector<std::string> arguments) {
+  arguments.insert(arguments.begin(), "sandphys-samples");
+  std::vector<char*> argv;
+  for (std::string& argument : arguments) argv.push_back(argument.data());
+  Parsed parsed;
+  ::testing::internal::CaptureStderr();
+  parsed.exitCode =
+      samples::parseCommandLine(static_cast<int>(argv.size()), argv.data(), parsed.options);
+  parsed.errors = ::testing::internal::GetCapturedStderr();
+  return parsed;
+}
+
+void expectUsageError(const std::vector<std::string>& arguments,
+                      const std::vector<std::string>& named) {
+  const Parsed parsed = parse(arguments);
+  EXPECT_EQ(parsed.exitCode, samples::kExitUsage) << parsed.errors;
+  for (const std::string& text : named) {
+    EXPECT_NE(parsed.errors.find(text), std::string::npos)
+        << "'" << text << "' not named in: " << parsed.errors;
+  }
+}
+
+TEST(ViewerFlags, Defaults) {
+  const Parsed windowed = parse({});
+  ASSERT_FALSE(windowed.exitCode) << windowed.errors;
+  EXPECT_EQ(windowed.options.frameBudgetMs, 50.0);
+  EXPECT_FALSE(windowed.options.quality.has_value());  // auto
+  EXPECT_FALSE(windowed.options.panelInScreenshots);
+}
+
+TEST(ViewerFlags, AcceptsBudgetsQualitiesAndPanelScreenshots) {
+  const Parsed parsed =
+      parse({"--frame-budget", "0", "--quality", "medium", "--panel-in-screenshots"});
+  ASSERT_FALSE(parsed.exitCode) << parsed.errors;
+  EXPECT_EQ(parsed.options.frameBudgetMs, 0.0);
+  EXPECT_EQ(parsed.options.quality, RenderQuality::Medium);
+  EXPECT_TRUE(parsed.options.panelInScreenshots);
+  EXPECT_EQ(parse({"--frame-budget", "33.5"}).options.frameBudgetMs, 33.5);
+  EXPECT_EQ(parse({"--frame-budget", "10000"}).options.frameBudgetMs, 10000.0);
+  EXPECT_FALSE(parse({"--quality", "auto"}).options.quality.has_value());
+  const Parsed headless = parse({"--headless", "--quality", "low"});
+  ASSERT_FALSE(headless.exitCode) << headless.errors;
+  EXPECT_EQ(headless.options.quality, RenderQuality::Low);
+}
+
+TEST(ViewerFlags, RefusesBadBudgetsNamingThem) {
+  for (const char* bad : {"-5", "10000.5", "nan", "inf", "1e3", "fast", ""}) {
+    expectUsageError({"--frame-budget", bad}, {"--frame-budget", bad, "0..10000"});
+  }
+}
+
+TEST(ViewerFlags, RefusesUnknownQualitiesAndAutoHeadless) {
+  expectUsageError({"--quality", "ultra"}, {"--quality", "ultra", "auto, low, medium or high"});
+  expectUsageError({"--headless", "--quality", "auto"}, {"--quality auto", "headless"});
+}
+
+TEST(ViewerFlags, WindowOnlyFlagsAreRefusedHeadless) {
+  expectUsageError({"--headless", "--frame-budget", "20"}, {"--frame-budget 20", "--headless"});
+  expectUsageError({"--headless", "--panel-in-screenshots"},
+                   {"--panel-in-screenshots", "--headless"});
 }
 
 }  // namespace

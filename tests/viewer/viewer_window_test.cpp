@@ -1,7 +1,8 @@
 // The windowed samples app under a virtual X server (CTest runs this program through xvfb-run):
 // every registered scene opens its window, runs a few frames, writes a screenshot through its
 // own key binding (F, pressed by the SANDPHYS_VIEWER_KEYS hook, so the real key handler runs)
-// and exits with status 0.
+// and exits with status 0; --panel-in-screenshots puts the panel into the pictures and leaves
+// the scene as it was.
 #include <gtest/gtest.h>
 #include <stb_image.h>
 
@@ -152,6 +153,147 @@ TEST(ViewerTools, PourPushAndQuitWithEscape) {
     expectPicture(dir / "sequence" / image, 320, 240);
   }
   EXPECT_FALSE(fs::exists(dir / "sequence" / "frame_000016.png"));
+}
+
+// A rectangle of pixels, [x0, x1) × [y0, y1), rows from the top of the image.
+struct PixelBox {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool contains(int x, int y) const { return x >= x0 && x < x1 && y >= y0 && y < y1; }
+  int area() const { return std::max(0, x1 - x0) * std::max(0, y1 - y0); }
+};
+
+bool samePixel(const Image& a, const Image& b, std::size_t pixel) {
+  return a.rgb[3 * pixel] == b.rgb[3 * pixel] && a.rgb[3 * pixel + 1] == b.rgb[3 * pixel + 1] &&
+         a.rgb[3 * pixel + 2] == b.rgb[3 * pixel + 2];
+}
+
+// Where two images of one size differ: the bounding box and the count of differing pixels.
+struct Difference {
+  PixelBox box;
+  long pixels = 0;
+};
+
+Difference difference(const Image& a, const Image& b) {
+  Difference result;
+  result.box = {a.width, a.height, 0, 0};
+  for (int y = 0; y < a.height; ++y) {
+    for (int x = 0; x < a.width; ++x) {
+      if (samePixel(a, b, static_cast<std::size_t>(y) * a.width + x)) continue;
+      ++result.pixels;
+      result.box.x0 = std::min(result.box.x0, x);
+      result.box.y0 = std::min(result.box.y0, y);
+      result.box.x1 = std::max(result.box.x1, x + 1);
+      result.box.y1 = std::max(result.box.y1, y + 1);
+    }
+  }
+  return result;
+}
+
+long differingOutside(const Image& a, const Image& b, const PixelBox& box) {
+  long count = 0;
+  for (int y = 0; y < a.height; ++y) {
+    for (int x = 0; x < a.width; ++x) {
+      if (!box.contains(x, y) && !samePixel(a, b, static_cast<std::size_t>(y) * a.width + x)) {
+        ++count;
+      }
+    }
+  }
+  return count;
+}
+
+// What the pixels of a box look like. ImGui's dark style is a near-black grey window (about 60%
+// of the panel's pixels), dark blue fields and headers (most of the rest) and light grey text.
+struct BoxLook {
+  double dark = 0.0;      // fraction with luminance < 80 of 255
+  double darkGrey = 0.0;  // fraction dark and with channels within 40 of each other
+  long bright = 0;        // pixels with luminance > 180: text
+};
+
+BoxLook look(const Image& image, const PixelBox& box) {
+  BoxLook result;
+  long dark = 0, darkGrey = 0;
+  for (int y = box.y0; y < box.y1; ++y) {
+    for (int x = box.x0; x < box.x1; ++x) {
+      const unsigned char* p = &image.rgb[3 * (static_cast<std::size_t>(y) * image.width + x)];
+      const double luminance = 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+      const int spread = std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]});
+      if (luminance < 80.0) ++dark;
+      if (luminance < 80.0 && spread < 40) ++darkGrey;
+      if (luminance > 180.0) ++result.bright;
+    }
+  }
+  if (box.area() > 0) {
+    result.dark = static_cast<double>(dark) / box.area();
+    result.darkGrey = static_cast<double>(darkGrey) / box.area();
+  }
+  return result;
+}
+
+// The same short run twice, each frame simulating its whole frame dt (--frame-budget 0) so that
+// both worlds and pictures match, once with --panel-in-screenshots: the pictures (the one of
+// --screenshot and the one of the F key) differ exactly where the panel is, a window of 430 px
+// at (8, 8) drawn in ImGui's dark style, and nowhere else.
+TEST(ViewerScreenshots, PanelInScreenshotsAddsThePanelAndLeavesTheScene) {
+  ASSERT_NE(std::getenv("DISPLAY"), nullptr) << "run through xvfb-run (CTest does)";
+  constexpr int kWidth = 960, kHeight = 600;
+  // The panel's place and width at first use (samples/viewer/panel.cpp); its height follows its
+  // contents, at most the window's.
+  constexpr int kPanelX = 8, kPanelY = 8, kPanelWidth = 430;
+  // Edges are allowed this much play, px (ImGui's border and rounding).
+  constexpr int kEdgeSlack = 4;
+  const fs::path dir = freshDirectory("panel_in_screenshots");
+  const std::string run = "--scene box-drop --param block=3,2,3 --frames 6 " +
+                          std::string(kShortFrames) + " --frame-budget 0 --size " +
+                          std::to_string(kWidth) + "x" + std::to_string(kHeight);
+  for (const char* variant : {"scene", "window"}) {
+    const fs::path variantDir = dir / variant;
+    fs::create_directories(variantDir);
+    const std::string panel = variant == std::string("window") ? " --panel-in-screenshots" : "";
+    const testing::ProcessResult result =
+        runViewer(variantDir, "F@3",
+                  run + panel + " --screenshot " + quoted((variantDir / "last.png").string()));
+    ASSERT_EQ(result.exitCode, 0) << result.output;
+  }
+
+  for (const char* picture : {"last.png", "box-drop-000003.png"}) {
+    SCOPED_TRACE(picture);
+    const Image scene = readPng(dir / "scene" / picture);
+    const Image window = readPng(dir / "window" / picture);
+    ASSERT_EQ(scene.width, kWidth);
+    ASSERT_EQ(scene.height, kHeight);
+    ASSERT_EQ(window.width, kWidth);
+    ASSERT_EQ(window.height, kHeight);
+    EXPECT_GT(luminanceSpread(scene), 5.0) << "the scene-only picture is (nearly) uniform";
+
+    const Difference diff = difference(scene, window);
+    const PixelBox& box = diff.box;
+    std::printf("%s: %ld pixels differ, in x %d..%d, y %d..%d\n", picture, diff.pixels, box.x0,
+                box.x1, box.y0, box.y1);
+    ASSERT_GT(diff.pixels, 0) << "the panel is not in the picture";
+    EXPECT_NEAR(box.x0, kPanelX, kEdgeSlack);
+    EXPECT_NEAR(box.y0, kPanelY, kEdgeSlack);
+    EXPECT_NEAR(box.x1 - box.x0, kPanelWidth, kEdgeSlack);
+    EXPECT_GE(box.y1 - box.y0, 200) << "a panel shorter than its first section";
+    EXPECT_LE(box.y1, kHeight);
+    // The panel's window covers its box: nearly every pixel in it differs from the scene.
+    EXPECT_GT(static_cast<double>(diff.pixels) / box.area(), 0.9);
+
+    // Outside the panel's place the scene is untouched (the count is exact, so this also holds
+    // when the box above came out wrong).
+    const PixelBox panelPlace{0, 0, kPanelX + kPanelWidth + kEdgeSlack, kHeight};
+    EXPECT_LE(differingOutside(scene, window, panelPlace), 4);
+
+    const BoxLook panel = look(window, box);
+    const BoxLook under = look(scene, box);
+    std::printf(
+        "%s: panel %.0f%% dark, %.0f%% dark grey, %ld bright pixels; the scene there %.0f%% "
+        "dark\n",
+        picture, 100.0 * panel.dark, 100.0 * panel.darkGrey, panel.bright, 100.0 * under.dark);
+    EXPECT_GT(panel.dark, 0.85) << "not ImGui's dark window";
+    EXPECT_GT(panel.darkGrey, 0.45) << "not ImGui's grey window background";
+    EXPECT_GT(panel.bright, 2000) << "no text on the panel";
+    EXPECT_LT(under.dark, 0.3) << "the scene itself is dark there: the look proves nothing";
+  }
 }
 
 // Without a display the viewer fails with a message, not a crash.
