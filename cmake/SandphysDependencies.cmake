@@ -14,6 +14,9 @@ find_package(GLEW)
 sandphys_require(GLEW_FOUND "GLEW" "libglew-dev")
 find_package(Eigen3 3.3 NO_MODULE)
 sandphys_require(Eigen3_FOUND "Eigen 3" "libeigen3-dev")
+# Mesh files for sampled bodies (loadMesh). Debian 12 ships assimp 5.2 with a CMake package.
+find_package(assimp 5 CONFIG)
+sandphys_require(assimp_FOUND "assimp (mesh files for sandphys::loadMesh)" "libassimp-dev")
 
 if(SANDPHYS_SAMPLES OR SANDPHYS_BENCH OR SANDPHYS_TESTS)
   find_package(nlohmann_json 3)
@@ -28,6 +31,16 @@ if(SANDPHYS_SAMPLES OR SANDPHYS_TESTS)
     pkg_check_modules(STB IMPORTED_TARGET stb)
   endif()
   sandphys_require(STB_FOUND "stb (stb_image_write, found with pkg-config)" "libstb-dev")
+endif()
+if(SANDPHYS_BULLET)
+  # Debian's Bullet 3.24 (single precision); its CMake file sets variables only, so pkg-config
+  # gives the imported target.
+  find_package(PkgConfig)
+  if(PkgConfig_FOUND)
+    pkg_check_modules(BULLET IMPORTED_TARGET GLOBAL bullet)
+  endif()
+  sandphys_require(BULLET_FOUND "Bullet for the bridge (SANDPHYS_BULLET; found with pkg-config)"
+                   "libbullet-dev")
 endif()
 if(SANDPHYS_TESTS)
   find_package(GTest)

@@ -15,7 +15,8 @@ enum class Motion : unsigned {
 };
 
 /// A rigid arrangement of equal particles, in its principal frame: the centre of mass is at the
-/// origin and the inertia tensor is diagonal. Built by makeParticleTemplate, never typed in.
+/// origin and the inertia tensor is diagonal. Built by makeParticleTemplate or makeBodyTemplate
+/// (sampleMesh uses the latter), never typed in.
 struct ParticleTemplate {
   /// Particle centres relative to the centre of mass, in the principal frame, m.
   std::vector<Vec3> offsets;
@@ -36,6 +37,28 @@ struct ParticleTemplate {
 /// an empty list, non-finite centres or non-positive diameter/density.
 ParticleTemplate makeParticleTemplate(const std::vector<Vec3>& centres, float particleDiameter,
                                       float density, float mass = 0.0f);
+
+/// Mass, centre of mass and inertia tensor of a rigid body, in the frame its particle centres are
+/// given in. Double precision: sampleMesh computes them exactly from a closed mesh, and a body far
+/// from the origin of its mesh file would lose its small moments in float.
+struct MassProperties {
+  /// Total mass, kg; finite and > 0.
+  double mass = 0.0;
+  /// Centre of mass, m; finite.
+  std::array<double, 3> centreOfMass{};
+  /// Inertia tensor about the centre of mass, kg·m², row-major. Must be symmetric and physical:
+  /// positive definite, and no principal moment larger than the sum of the other two.
+  std::array<std::array<double, 3>, 3> inertia{};
+};
+
+/// Builds a template whose mass, centre of mass and inertia are given rather than summed from
+/// the particles: the particles only carry the contacts (a mesh-sampled shell, say), while the
+/// body moves like the solid they outline. The tensor is diagonalised with Eigen; the offsets are
+/// `centres` (m, in the frame of `massProperties`) relative to the centre of mass, in the principal
+/// frame. Throws InvalidArgument for an empty list, non-finite centres, a non-positive mass or an
+/// inertia tensor that is not symmetric, positive definite and within the triangle inequality.
+ParticleTemplate makeBodyTemplate(const std::vector<Vec3>& centres,
+                                  const MassProperties& massProperties);
 
 /// The sand granule of the paper: 4 particles of diameter d touching at the corners of a
 /// regular tetrahedron of edge d.

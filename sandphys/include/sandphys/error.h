@@ -30,6 +30,14 @@ class GpuError : public Error {
   using Error::Error;
 };
 
+/// A mesh file cannot be read, or a mesh (loaded or built in code) cannot make a body: missing
+/// file, importer failure, no triangles, non-finite vertices, indices out of range, no area, or an
+/// open mesh where a closed one is required. The message names the file (TriangleMesh::source).
+class MeshError : public Error {
+ public:
+  using Error::Error;
+};
+
 /// A stale or invalid id was passed to the world.
 class InvalidId : public Error {
  public:

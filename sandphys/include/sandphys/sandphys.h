@@ -8,6 +8,7 @@
 #include "sandphys/gpu_context.h"
 #include "sandphys/ids.h"
 #include "sandphys/math.h"
+#include "sandphys/mesh.h"
 #include "sandphys/readback.h"
 #include "sandphys/settings.h"
 #include "sandphys/spawn.h"

@@ -1,10 +1,13 @@
 // An outside program that uses the installed sandphys: a few granules above a floor, stepped
-// like a game would, must fall as gravity says. Exits non-zero otherwise.
+// like a game would, must fall as gravity says, and a mesh file must load into a body. Exits
+// non-zero otherwise.
 #include <sandphys/sandphys.h>
 
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
+#include <fstream>
 #include <vector>
 
 namespace {
@@ -57,6 +60,24 @@ int main() {
     std::printf("ok: 8 granules fell %.3g m in %.3g s (%llu substeps), free fall gives %.3g m\n",
                 before[0] - after[0], t, static_cast<unsigned long long>(world.stepCount()),
                 expected);
+
+    // A body from a mesh file: the package must bring assimp into the link and the run.
+    const std::filesystem::path obj =
+        std::filesystem::temp_directory_path() / "sandphys_consumer_tetrahedron.obj";
+    std::ofstream(obj) << "v 0 0 0\nv 0.05 0 0\nv 0 0.05 0\nv 0 0 0.05\n"
+                          "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    const sandphys::SampledMesh rock =
+        sandphys::sampleMesh(sandphys::loadMesh(obj), world.settings().particleDiameter);
+    std::filesystem::remove(obj);
+    const double volume = 0.05 * 0.05 * 0.05 / 6.0;
+    if (!rock.closed || std::abs(rock.volume - volume) > 1e-9) {
+      std::fprintf(stderr, "FAIL: the tetrahedron file gave volume %g m^3 (closed %d), not %g\n",
+                   rock.volume, int(rock.closed), volume);
+      return 1;
+    }
+    world.addBody(rock.shape, {.position = {0.0f, 0.3f, 0.0f}});
+    std::printf("ok: a tetrahedron from an OBJ file became a body of %zu particles\n",
+                rock.centres.size());
     return 0;
   } catch (const sandphys::Error& error) {
     std::fprintf(stderr, "FAIL: sandphys::Error: %s\n", error.what());

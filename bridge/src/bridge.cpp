@@ -1,0 +1,187 @@
+#include "sandphys/bullet/bridge.h"
+
+#include <BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h>
+#include <BulletDynamics/Dynamics/btRigidBody.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "conversions.h"
+#include "sandphys/bullet/shape_mesh.h"
+
+namespace sandphys::bullet {
+
+namespace {
+
+std::string format(float value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", double(value));
+  return text;
+}
+
+std::string format(const btVector3& v) {
+  return "(" + format(float(v.x())) + ", " + format(float(v.y())) + ", " + format(float(v.z())) +
+         ")";
+}
+
+}  // namespace
+
+Bridge::Bridge(World& sand, btDiscreteDynamicsWorld& dynamics, const BridgeSettings& settings)
+    : m_sand(sand), m_dynamics(dynamics), m_settings(settings) {
+  const WorldSettings& s = sand.settings();
+  const btVector3 gravity = dynamics.getGravity();
+  const btVector3 sandGravity = toBullet(s.gravity);
+  if ((gravity - sandGravity).length() > 1e-4f * std::max(sandGravity.length(), btScalar(1))) {
+    throw InvalidArgument("Bridge: Bullet's gravity " + format(gravity) +
+                          " differs from WorldSettings.gravity " + format(sandGravity) +
+                          " (m/s^2); the coupled bodies and the sand would fall differently");
+  }
+  if (!(settings.couplingStep >= 0.0f) || !std::isfinite(settings.couplingStep)) {
+    throw InvalidArgument("BridgeSettings.couplingStep " + format(settings.couplingStep) +
+                          ": must be finite and >= 0 s (0 = automatic)");
+  }
+  if (!(settings.maxCouplingStep > 0.0f) || !std::isfinite(settings.maxCouplingStep)) {
+    throw InvalidArgument("BridgeSettings.maxCouplingStep " + format(settings.maxCouplingStep) +
+                          ": must be finite and > 0 s");
+  }
+  m_lastStep = automaticStep();
+}
+
+float Bridge::automaticStep() const {
+  if (m_settings.couplingStep > 0.0f) return std::max(m_settings.couplingStep, m_sand.timeStep());
+  float fastest = 0.0f;
+  for (const Coupled& c : m_coupled) {
+    fastest = std::max(fastest, float(c.body->getLinearVelocity().length() +
+                                      c.body->getAngularVelocity().length() * c.reach));
+  }
+  const float d = m_sand.settings().particleDiameter;
+  const float step = fastest > 0.0f ? 0.1f * d / fastest : m_settings.maxCouplingStep;
+  // Never shorter than one sand substep: an exchange must move the sand.
+  return std::clamp(step, m_sand.timeStep(),
+                    std::max(m_settings.maxCouplingStep, m_sand.timeStep()));
+}
+
+BodyId Bridge::couple(btRigidBody* body, const CouplingOptions& options) {
+  if (!body) throw InvalidArgument("Bridge::couple: the body is null");
+  const float d = m_sand.settings().particleDiameter;
+  return couple(body, shapeMesh(*body->getCollisionShape(), options.maxChordError * d), options);
+}
+
+BodyId Bridge::couple(btRigidBody* body, const TriangleMesh& surface,
+                      const CouplingOptions& options) {
+  if (!body) throw InvalidArgument("Bridge::couple: the body is null");
+  if (find(body)) throw InvalidArgument("Bridge::couple: this Bullet body is coupled already");
+  const WorldSettings& s = m_sand.settings();
+  const float d = s.particleDiameter;
+  const bool isStatic = body->getInvMass() == btScalar(0);
+  const float granuleMass = tetrahedronTemplate(d, s.material.density).mass;
+  const float mass = isStatic ? 0.0f : float(btScalar(1) / body->getInvMass());
+  if (!isStatic && mass < kMinMassInGranules * granuleMass) {
+    throw InvalidArgument("Bridge::couple: a body of " + format(mass) + " kg is lighter than " +
+                          format(kMinMassInGranules) + " sand granules (" +
+                          format(kMinMassInGranules * granuleMass) +
+                          " kg): the explicit exchange of forces would not be stable for it");
+  }
+
+  MeshSampling sampling;
+  sampling.spacing = options.spacing;
+  sampling.density = s.material.density;
+  const SampledMesh sampled = sampleMesh(surface, d, sampling);
+  ParticleTemplate shape = sampled.shape;
+  if (!isStatic) {
+    // Bullet's centre-of-mass frame is principal: its mass and diagonal inertia are the body's,
+    // whatever the sampled surface would give.
+    const btVector3 inertia = body->getLocalInertia();
+    MassProperties massProperties;
+    massProperties.mass = mass;
+    massProperties.inertia = {
+        {{double(inertia.x()), 0, 0}, {0, double(inertia.y()), 0}, {0, 0, double(inertia.z())}}};
+    shape = makeBodyTemplate(sampled.centres, massProperties);
+  }
+  const btTransform& pose = body->getCenterOfMassTransform();
+  BodyDesc desc;
+  desc.position = toSand(pose.getOrigin());
+  desc.orientation = toSand(pose.getRotation());
+  desc.velocity = toSand(body->getLinearVelocity());
+  desc.angularVelocity = toSand(body->getAngularVelocity());
+  desc.motion = isStatic ? Motion::Static : Motion::Kinematic;
+  const BodyId id = m_sand.addBody(shape, desc);
+  m_coupled.push_back(
+      {body, id, std::uint32_t(shape.offsets.size()), {}, {}, shape.boundingRadius + 0.5f * d});
+  m_frameForce.emplace_back();
+  m_frameTorque.emplace_back();
+  return id;
+}
+
+const Bridge::Coupled* Bridge::find(const btRigidBody* body) const {
+  for (const Coupled& c : m_coupled) {
+    if (c.body == body) return &c;
+  }
+  return nullptr;
+}
+
+void Bridge::pushPoses() {
+  for (const Coupled& c : m_coupled) {
+    if (c.body->getInvMass() == btScalar(0)) continue;  // static on both sides
+    const btTransform& pose = c.body->getCenterOfMassTransform();
+    m_sand.setBodyState(c.sandBody,
+                        BodyDesc{.position = toSand(pose.getOrigin()),
+                                 .orientation = toSand(pose.getRotation()),
+                                 .velocity = toSand(c.body->getLinearVelocity()),
+                                 .angularVelocity = toSand(c.body->getAngularVelocity()),
+                                 .motion = Motion::Kinematic});
+  }
+}
+
+void Bridge::applySandForces(double weight) {
+  const std::vector<BodyForce> forces = m_sand.takeBodyForces();
+  for (std::size_t i = 0; i < m_coupled.size(); ++i) {
+    Coupled& c = m_coupled[i];
+    if (c.body->getInvMass() == btScalar(0)) continue;
+    for (const BodyForce& f : forces) {
+      if (!(f.body == c.sandBody)) continue;
+      const Vec3 force = f.meanForce();
+      const Vec3 torque = f.meanTorque();
+      if (f.substeps > 0) {
+        c.body->applyCentralForce(toBullet(force));
+        c.body->applyTorque(toBullet(torque));
+        // Sand resting on a body that Bullet put to sleep must wake it.
+        if (force.x != 0.0f || force.y != 0.0f || force.z != 0.0f) c.body->activate();
+      }
+      m_frameForce[i] = {m_frameForce[i].x + float(weight) * force.x,
+                         m_frameForce[i].y + float(weight) * force.y,
+                         m_frameForce[i].z + float(weight) * force.z};
+      m_frameTorque[i] = {m_frameTorque[i].x + float(weight) * torque.x,
+                          m_frameTorque[i].y + float(weight) * torque.y,
+                          m_frameTorque[i].z + float(weight) * torque.z};
+      break;
+    }
+  }
+}
+
+StepReport Bridge::step(float frameDt) {
+  StepReport report;
+  if (!std::isfinite(frameDt) || frameDt <= 0.0f) return report;
+  const auto exchanges = std::max(1, int(std::ceil(double(frameDt) / automaticStep() - 1e-6)));
+  const float h = frameDt / float(exchanges);
+  m_lastStep = h;
+  m_lastExchanges = exchanges;
+  std::fill(m_frameForce.begin(), m_frameForce.end(), Vec3{});
+  std::fill(m_frameTorque.begin(), m_frameTorque.end(), Vec3{});
+  for (int i = 0; i < exchanges; ++i) {
+    pushPoses();
+    report = m_sand.step(h);
+    applySandForces(1.0 / exchanges);
+    // One fixed step of exactly h: the forces just applied act over the same span the sand
+    // measured them on.
+    m_dynamics.stepSimulation(h, 0);
+  }
+  for (std::size_t i = 0; i < m_coupled.size(); ++i) {
+    m_coupled[i].force = m_frameForce[i];
+    m_coupled[i].torque = m_frameTorque[i];
+  }
+  return report;
+}
+
+}  // namespace sandphys::bullet

@@ -1,0 +1,32 @@
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "mesh/point_grid.h"
+#include "sandphys/mesh.h"
+
+namespace sandphys::mesh_detail {
+
+/// Samples of the surface of a validated mesh: each triangle with an area is cut into equal
+/// sub-triangles with edges <= `spacing` (m), whose corners are the samples; a corner within
+/// spacing/1000 of an earlier sample is the same sample. Triangle by triangle, in mesh order.
+/// The grid's cells are spacing/2 wide. Throws CapacityExceeded past `maxParticles`.
+PointGrid sampleSurface(const TriangleMesh& mesh, double spacing, std::size_t maxParticles);
+
+/// Points of a cubic lattice of `spacing` (m), centred on the mesh's bounding box, that lie
+/// inside the closed mesh (nonzero winding number, from a ray cast along +x per lattice row) and
+/// at least spacing/2 from every surface sample; ordered by z, then y, then x. Throws
+/// CapacityExceeded when they and the surface samples exceed `maxParticles`.
+std::vector<Eigen::Vector3d> sampleInterior(const TriangleMesh& mesh, double spacing,
+                                            const PointGrid& surface, std::size_t maxParticles);
+
+/// Throws CapacityExceeded for a mesh whose sampling needs more than `maxParticles` particles;
+/// `estimate` > 0 is quoted as the count it would need.
+[[noreturn]] void throwTooManyParticles(const std::string& source, double spacing,
+                                        std::size_t maxParticles, double estimate);
+
+}  // namespace sandphys::mesh_detail

@@ -1,0 +1,84 @@
+// Sampled meshes in a World (headless GL): the particles stand where the mesh says, and a body
+// too large for the capacity left is refused without changing the world.
+#include <gtest/gtest.h>
+#include <sandphys/sandphys.h>
+
+#include <Eigen/Geometry>
+
+#include <cstdio>
+
+#include "mesh/mesh_shapes.h"
+#include "support/test_world.h"
+
+namespace sandphys {
+namespace {
+
+using mesh_testing::toEigen;
+
+TEST(MeshBody, ParticlesStandWhereTheMeshPutsThem) {
+  // A box with three different moments, so that its principal frame is a real rotation, posed
+  // with a rotation of its own: particle = position + R(q) (mesh point - centre of mass).
+  const Eigen::Matrix3d tilt =
+      Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 1, 0).normalized()).toRotationMatrix();
+  const TriangleMesh box = mesh_testing::transformed(
+      mesh_testing::boxMesh({-0.06f, -0.03f, -0.02f}, {0.06f, 0.03f, 0.02f}), tilt,
+      {0.3, 0.1, -0.2});
+  WorldSettings settings = testing::smallSettings(8);
+  settings.gravity = {0, 0, 0};
+  settings.maxParticles = 1024;
+  World world(testing::gpu(), settings);
+  const SampledMesh sampled = sampleMesh(box, settings.particleDiameter);
+  ASSERT_NE(sampled.shape.principalRotation.w, 1.0f);
+
+  const Eigen::Quaterniond pose(Eigen::AngleAxisd(1.1, Eigen::Vector3d(0, 1, 0.5).normalized()));
+  const Eigen::Vector3d position(1.0, 2.0, 3.0);
+  world.addBody(
+      sampled.shape,
+      {.position = {float(position.x()), float(position.y()), float(position.z())},
+       .orientation = {float(pose.w()), float(pose.x()), float(pose.y()), float(pose.z())},
+       .motion = Motion::Kinematic});
+  ASSERT_EQ(world.particleCount(), sampled.centres.size());
+  world.substep(1);  // places the particles from the body's pose
+
+  const std::vector<ParticleState> particles = world.readParticles();
+  const Eigen::Vector3d com(sampled.massProperties.centreOfMass[0],
+                            sampled.massProperties.centreOfMass[1],
+                            sampled.massProperties.centreOfMass[2]);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    const Eigen::Vector3d expected =
+        position + pose.toRotationMatrix() * (toEigen(sampled.centres[i]) - com);
+    worst = std::max(worst, (toEigen(particles[i].position) - expected).norm());
+  }
+  std::printf("%zu particles, largest misplacement %.3g m\n", particles.size(), worst);
+  EXPECT_LT(worst, 1e-5) << "largest particle misplacement, m";
+}
+
+TEST(MeshBody, BodyBeyondTheParticleCapacityIsRefusedAndNothingChanges) {
+  WorldSettings settings = testing::smallSettings(16);  // 64 particles
+  testing::TestWorld world(settings);
+  world.addGranule({0, 0.1f, 0});
+  const std::uint32_t bodies = world->bodyCount(), particles = world->particleCount();
+  ASSERT_EQ(particles, 4u);
+
+  const SampledMesh rock = sampleMesh(mesh_testing::icosphereMesh(0.05, 2, {}, "rock"),
+                                      world->settings().particleDiameter);
+  ASSERT_GT(rock.centres.size(), world->particleCapacity() - particles);
+  try {
+    world->addBody(rock.shape, {.position = {0, 0.5f, 0}});
+    FAIL() << "a body of " << rock.centres.size() << " particles fit in "
+           << world->particleCapacity();
+  } catch (const CapacityExceeded& e) {
+    EXPECT_NE(std::string(e.what()).find("WorldSettings.maxParticles = 64"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(world->bodyCount(), bodies);
+  EXPECT_EQ(world->particleCount(), particles);
+  // Room made with reserve: now it fits.
+  world->reserve(16, std::uint32_t(particles + rock.centres.size()));
+  world->addBody(rock.shape, {.position = {0, 0.5f, 0}});
+  EXPECT_EQ(world->particleCount(), particles + rock.centres.size());
+}
+
+}  // namespace
+}  // namespace sandphys
