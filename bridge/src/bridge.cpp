@@ -7,7 +7,7 @@
 #include <cmath>
 #include <string>
 
-#include "conversions.h"
+#include "sandphys/bullet/conversions.h"
 #include "sandphys/bullet/shape_mesh.h"
 
 namespace sandphys::bullet {
@@ -171,7 +171,15 @@ StepReport Bridge::step(float frameDt) {
   std::fill(m_frameTorque.begin(), m_frameTorque.end(), Vec3{});
   for (int i = 0; i < exchanges; ++i) {
     pushPoses();
-    report = m_sand.step(h);
+    const StepReport exchange = m_sand.step(h);
+    // The frame's report: totals over the exchanges, the statistics of the last.
+    report.substeps += exchange.substeps;
+    report.simulatedTime += exchange.simulatedTime;
+    report.droppedTime += exchange.droppedTime;
+    report.granulesEmitted += exchange.granulesEmitted;
+    report.emitterBlocked = report.emitterBlocked || exchange.emitterBlocked;
+    report.hasStats = exchange.hasStats;
+    report.stats = exchange.stats;
     applySandForces(1.0 / exchanges);
     // One fixed step of exactly h: the forces just applied act over the same span the sand
     // measured them on.

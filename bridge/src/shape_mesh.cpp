@@ -10,54 +10,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
 #include <string>
 #include <utility>
 
-#include "conversions.h"
+#include "sandphys/bullet/conversions.h"
 
 namespace sandphys::bullet {
 
 namespace {
-
-// Unit directions at the vertices of an icosahedron subdivided `level` times: even coverage of
-// the sphere, neighbours 1.107 / 2^level rad apart.
-std::vector<btVector3> icosphereDirections(int level) {
-  const btScalar t = btScalar((1.0 + std::sqrt(5.0)) / 2.0);
-  std::vector<btVector3> points = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
-                                   {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
-                                   {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-  std::vector<std::array<int, 3>> faces = {
-      {0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-      {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-      {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-  for (btVector3& p : points) p.normalize();
-  for (int l = 0; l < level; ++l) {
-    std::map<std::pair<int, int>, int> midpoints;
-    auto midpoint = [&](int a, int b) {
-      const std::pair<int, int> key = std::minmax(a, b);
-      const auto found = midpoints.find(key);
-      if (found != midpoints.end()) return found->second;
-      points.push_back((points[std::size_t(a)] + points[std::size_t(b)]).normalized());
-      const int index = int(points.size()) - 1;
-      midpoints.emplace(key, index);
-      return index;
-    };
-    std::vector<std::array<int, 3>> finer;
-    finer.reserve(faces.size() * 4);
-    for (const auto& f : faces) {
-      const int ab = midpoint(f[0], f[1]);
-      const int bc = midpoint(f[1], f[2]);
-      const int ca = midpoint(f[2], f[0]);
-      finer.push_back({f[0], ab, ca});
-      finer.push_back({f[1], bc, ab});
-      finer.push_back({f[2], ca, bc});
-      finer.push_back({ab, bc, ca});
-    }
-    faces = std::move(finer);
-  }
-  return points;
-}
 
 // Subdivision level whose facets on a sphere of `radius` sag at most `maxChordError`.
 int levelFor(btScalar radius, float maxChordError) {
@@ -80,8 +40,9 @@ TriangleMesh convexMesh(const btConvexShape& shape, float maxChordError) {
   btScalar radius = 0;
   shape.getBoundingSphere(centre, radius);
   std::vector<btScalar> coords;
-  for (const btVector3& direction : icosphereDirections(levelFor(radius, maxChordError))) {
-    const btVector3 p = shape.localGetSupportingVertex(direction);
+  // Directions spread evenly over the sphere: the vertices of a unit icosphere.
+  for (const Vec3& direction : icosphereMesh(1.0, levelFor(radius, maxChordError)).vertices) {
+    const btVector3 p = shape.localGetSupportingVertex(toBullet(direction));
     coords.insert(coords.end(), {p.x(), p.y(), p.z()});
   }
   btConvexHullComputer hull;

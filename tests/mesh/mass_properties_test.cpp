@@ -14,8 +14,8 @@
 namespace sandphys {
 namespace {
 
-using mesh_testing::boxMesh;
-using mesh_testing::icosphereMesh;
+using mesh_testing::namedBox;
+using mesh_testing::namedIcosphere;
 using mesh_testing::toEigen;
 
 Eigen::Matrix3d toMatrix(const std::array<std::array<double, 3>, 3>& m) {
@@ -159,7 +159,7 @@ TEST(MassProperties, InwardWindingIsTheSameSolid) {
 
 TEST(MassProperties, TwoCubesSharingAnEdgeAreOneClosedSolid) {
   // Four triangles meet at the shared edge, two in each direction: still a closed surface.
-  TriangleMesh a = boxMesh({0, 0, 0}, {1, 1, 1}, "two cubes");
+  TriangleMesh a = namedBox({0, 0, 0}, {1, 1, 1}, "two cubes");
   const TriangleMesh b = boxMesh({1, 1, 0}, {2, 2, 1});
   const auto offset = std::uint32_t(a.vertices.size());
   a.vertices.insert(a.vertices.end(), b.vertices.begin(), b.vertices.end());
@@ -222,7 +222,7 @@ TEST(MassProperties, GivenMassScalesTheSolid) {
 }
 
 TEST(MassProperties, OpenMeshWarnsAndFallsBackToItsParticles) {
-  TriangleMesh box = boxMesh({0, 0, 0}, {0.2f, 0.1f, 0.1f}, "box without a lid");
+  TriangleMesh box = namedBox({0, 0, 0}, {0.2f, 0.1f, 0.1f}, "box without a lid");
   box.triangles.resize(10);  // the two triangles of the +z face are gone
   const MeshEdges edges = analyseEdges(box);
   EXPECT_FALSE(edges.closed());
@@ -264,7 +264,7 @@ TEST(MassProperties, OpenMeshWarnsAndFallsBackToItsParticles) {
 }
 
 TEST(MassProperties, OneFlippedTriangleMakesMisorientedEdges) {
-  TriangleMesh box = boxMesh({0, 0, 0}, {0.1f, 0.1f, 0.1f}, "box with a flipped triangle");
+  TriangleMesh box = namedBox({0, 0, 0}, {0.1f, 0.1f, 0.1f}, "box with a flipped triangle");
   std::swap(box.triangles[3][1], box.triangles[3][2]);
   const MeshEdges edges = analyseEdges(box);
   EXPECT_EQ(edges.edges, 18u);

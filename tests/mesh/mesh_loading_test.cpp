@@ -13,6 +13,7 @@
 namespace sandphys {
 namespace {
 
+using mesh_testing::namedBox;
 using mesh_testing::ScratchDirectory;
 
 struct Bounds {
@@ -176,7 +177,7 @@ TEST(LoadMesh, FileWithOnlyDegenerateTriangles) {
 
 // The same checks on a mesh built in code, by validateMesh and by everything that uses it.
 TEST(ValidateMesh, HandBuiltMeshesGetTheSameChecks) {
-  TriangleMesh mesh = mesh_testing::boxMesh({0, 0, 0}, {1, 1, 1}, "hand-built");
+  TriangleMesh mesh = namedBox({0, 0, 0}, {1, 1, 1}, "hand-built");
   EXPECT_NO_THROW(validateMesh(mesh));
 
   TriangleMesh none = mesh;
@@ -225,7 +226,7 @@ TEST(LoadMesh, LoadedMeshSamplesLikeTheSameMeshBuiltInCode) {
   const Vec3 lo{-0.1f, 0.0f, -0.05f}, hi{0.1f, 0.1f, 0.05f};
   const auto file = dir.write("box.obj", mesh_testing::boxObj(lo, hi));
   const SampledMesh loaded = sampleMesh(loadMesh(file), 0.02f);
-  const SampledMesh built = sampleMesh(mesh_testing::boxMesh(lo, hi), 0.02f);
+  const SampledMesh built = sampleMesh(boxMesh(lo, hi), 0.02f);
   EXPECT_EQ(loaded.centres.size(), built.centres.size());
   EXPECT_TRUE(loaded.closed);
   EXPECT_NEAR(loaded.volume, built.volume, 1e-9);

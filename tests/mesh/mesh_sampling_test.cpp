@@ -14,8 +14,8 @@
 namespace sandphys {
 namespace {
 
-using mesh_testing::boxMesh;
-using mesh_testing::icosphereMesh;
+using mesh_testing::namedBox;
+using mesh_testing::namedIcosphere;
 using mesh_testing::toEigen;
 
 constexpr float kDiameter = 0.02f;
@@ -54,7 +54,8 @@ void expectNeighboursWithinSpacing(const SampledMesh& sampled, double spacing, f
 
 TEST(MeshSampling, BoxSurfaceIsCoveredWithinTheSpacingRule) {
   // Faces of three sizes: neighbouring triangles are cut into different numbers of parts.
-  const TriangleMesh box = boxMesh({-0.15f, 0.0f, -0.05f}, {0.15f, 0.2f, 0.05f}, "box 30x20x10 cm");
+  const TriangleMesh box =
+      namedBox({-0.15f, 0.0f, -0.05f}, {0.15f, 0.2f, 0.05f}, "box 30x20x10 cm");
   const SampledMesh sampled = sampleMesh(box, kDiameter);
   expectCoveredWithinRule(box, sampled, kSpacing, true);
   expectNeighboursWithinSpacing(sampled, kSpacing, kDiameter);
@@ -62,14 +63,14 @@ TEST(MeshSampling, BoxSurfaceIsCoveredWithinTheSpacingRule) {
 
 TEST(MeshSampling, SphereSurfaceIsCoveredWithinTheSpacingRule) {
   // Triangles of about 1.5 h: each is cut in two, so the lattice changes at every edge.
-  const TriangleMesh sphere = icosphereMesh(0.1, 3, {0.5f, 1.0f, -0.25f}, "icosphere r 10 cm");
+  const TriangleMesh sphere = namedIcosphere(0.1, 3, {0.5f, 1.0f, -0.25f}, "icosphere r 10 cm");
   const SampledMesh sampled = sampleMesh(sphere, kDiameter);
   expectCoveredWithinRule(sphere, sampled, kSpacing, true);
   expectNeighboursWithinSpacing(sampled, kSpacing, kDiameter);
 }
 
 TEST(MeshSampling, CoarserSpacingStillKeepsItsRule) {
-  const TriangleMesh sphere = icosphereMesh(0.1, 2, {}, "icosphere r 10 cm, coarse");
+  const TriangleMesh sphere = namedIcosphere(0.1, 2, {}, "icosphere r 10 cm, coarse");
   const double spacing = 1.5 * kDiameter;
   const SampledMesh sampled = sampleMesh(sphere, kDiameter, {.spacing = float(spacing)});
   expectCoveredWithinRule(sphere, sampled, spacing, false);
@@ -128,7 +129,7 @@ TEST(MeshSampling, FilledBoxHasEveryInteriorLatticePoint) {
   // 0.3 / h = 18.75: the lattice stays clear of the faces, but its rows with y = z run exactly
   // along the diagonals of the x faces, where two triangles meet (each must count once).
   const Vec3 lo{-0.15f, -0.15f, -0.15f}, hi{0.15f, 0.15f, 0.15f};
-  const TriangleMesh box = boxMesh(lo, hi, "filled box");
+  const TriangleMesh box = namedBox(lo, hi, "filled box");
   const SampledMesh sampled = sampleMesh(box, kDiameter, {.fillVolume = true});
   const std::vector<Vec3> surface(sampled.centres.begin(),
                                   sampled.centres.begin() + long(sampled.surfaceParticles));
@@ -146,7 +147,7 @@ TEST(MeshSampling, FilledBoxHasEveryInteriorLatticePoint) {
 TEST(MeshSampling, FilledSphereHoldsItsInteriorAndNothingOutside) {
   const Vec3 centre{0.05f, -0.02f, 0.01f};
   const double radius = 0.1;
-  const TriangleMesh sphere = icosphereMesh(radius, 3, centre, "filled icosphere");
+  const TriangleMesh sphere = namedIcosphere(radius, 3, centre, "filled icosphere");
   const SampledMesh sampled = sampleMesh(sphere, kDiameter, {.fillVolume = true});
   // The polyhedron lies between its inradius and the sphere.
   double inradius = radius;
@@ -196,7 +197,7 @@ TEST(MeshSampling, FilledSphereHoldsItsInteriorAndNothingOutside) {
 }
 
 TEST(MeshSampling, ParticleLimitIsEnforcedAndNamed) {
-  const TriangleMesh box = boxMesh({0, 0, 0}, {1, 1, 1}, "big box");
+  const TriangleMesh box = namedBox({0, 0, 0}, {1, 1, 1}, "big box");
   try {
     sampleMesh(box, 0.002f);  // 12 triangles cut 884 times: about 12 · 884² / 2 = 4.7 million
     FAIL() << "sampling a 1 m box at d = 2 mm went through";
@@ -206,7 +207,7 @@ TEST(MeshSampling, ParticleLimitIsEnforcedAndNamed) {
     EXPECT_NE(message.find("MeshSampling.maxParticles = 1048576"), std::string::npos) << message;
   }
   // The surface fits but the filling does not: the count is checked as the particles come.
-  const TriangleMesh cube = boxMesh({0, 0, 0}, {0.2f, 0.2f, 0.2f}, "filled cube");
+  const TriangleMesh cube = namedBox({0, 0, 0}, {0.2f, 0.2f, 0.2f}, "filled cube");
   const std::size_t surface = sampleMesh(cube, kDiameter).centres.size();
   try {
     sampleMesh(cube, kDiameter, {.fillVolume = true, .maxParticles = std::uint32_t(surface + 10)});

@@ -19,13 +19,11 @@ struct BoxQuads {
 };
 BoxQuads boxQuads(Vec3 lo, Vec3 hi);
 
-/// The box [lo, hi] as 12 outward-wound triangles on its 8 corners.
-TriangleMesh boxMesh(Vec3 lo, Vec3 hi, const std::string& name = "box");
+/// sandphys::boxMesh with `name` as its source (error messages quote it).
+TriangleMesh namedBox(Vec3 lo, Vec3 hi, const std::string& name);
 
-/// A sphere of `radius` (m) about `centre`: an icosahedron whose triangles are split in four
-/// `subdivisions` times, every vertex pushed out onto the sphere (20 · 4^subdivisions triangles).
-TriangleMesh icosphereMesh(double radius, int subdivisions, Vec3 centre = {},
-                           const std::string& name = "icosphere");
+/// sandphys::icosphereMesh with `name` as its source.
+TriangleMesh namedIcosphere(double radius, int subdivisions, Vec3 centre, const std::string& name);
 
 /// Every vertex mapped to rotation · v + translation.
 TriangleMesh transformed(TriangleMesh mesh, const Eigen::Matrix3d& rotation,

@@ -13,6 +13,7 @@
 namespace sandphys {
 namespace {
 
+using mesh_testing::namedIcosphere;
 using mesh_testing::toEigen;
 
 TEST(MeshBody, ParticlesStandWhereTheMeshPutsThem) {
@@ -21,8 +22,7 @@ TEST(MeshBody, ParticlesStandWhereTheMeshPutsThem) {
   const Eigen::Matrix3d tilt =
       Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 1, 0).normalized()).toRotationMatrix();
   const TriangleMesh box = mesh_testing::transformed(
-      mesh_testing::boxMesh({-0.06f, -0.03f, -0.02f}, {0.06f, 0.03f, 0.02f}), tilt,
-      {0.3, 0.1, -0.2});
+      boxMesh({-0.06f, -0.03f, -0.02f}, {0.06f, 0.03f, 0.02f}), tilt, {0.3, 0.1, -0.2});
   WorldSettings settings = testing::smallSettings(8);
   settings.gravity = {0, 0, 0};
   settings.maxParticles = 1024;
@@ -61,8 +61,8 @@ TEST(MeshBody, BodyBeyondTheParticleCapacityIsRefusedAndNothingChanges) {
   const std::uint32_t bodies = world->bodyCount(), particles = world->particleCount();
   ASSERT_EQ(particles, 4u);
 
-  const SampledMesh rock = sampleMesh(mesh_testing::icosphereMesh(0.05, 2, {}, "rock"),
-                                      world->settings().particleDiameter);
+  const SampledMesh rock =
+      sampleMesh(namedIcosphere(0.05, 2, {}, "rock"), world->settings().particleDiameter);
   ASSERT_GT(rock.centres.size(), world->particleCapacity() - particles);
   try {
     world->addBody(rock.shape, {.position = {0, 0.5f, 0}});

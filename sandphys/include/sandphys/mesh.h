@@ -83,6 +83,15 @@ struct SolidProperties {
 /// when the mesh fails validateMesh, is not closed (analyseEdges) or encloses no volume.
 SolidProperties solidProperties(const TriangleMesh& mesh, double density);
 
+/// The box [lo, hi] (m) as 12 outward-wound triangles on its 8 corners; source "box".
+TriangleMesh boxMesh(Vec3 lo, Vec3 hi);
+
+/// A sphere of `radius` (m, > 0) about `centre`: an icosahedron whose triangles are split in four
+/// `subdivisions` times (0..8), every vertex pushed out onto the sphere: 20 · 4^subdivisions
+/// outward-wound triangles, whose facets sag at most about radius · (1.107 / 2^subdivisions)² / 8
+/// inside the sphere; source "icosphere".
+TriangleMesh icosphereMesh(double radius, int subdivisions, Vec3 centre = {});
+
 /// Default largest distance between neighbouring surface samples, in particle diameters d (see
 /// MeshSampling::spacing for the geometry behind it).
 inline constexpr float kDefaultMeshSpacing = 0.8f;

@@ -10,6 +10,7 @@
 
 namespace sandphys {
 
+using mesh_detail::boundsOfTriangles;
 using mesh_detail::toEigen;
 
 double surfaceArea(const TriangleMesh& mesh) {
@@ -35,14 +36,7 @@ SolidProperties solidProperties(const TriangleMesh& mesh, double density) {
 
   // The tetrahedra fan out from the centre of the bounding box rather than from the origin: a
   // mesh modelled far from its file's origin would otherwise sum large terms of opposite sign.
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-  Eigen::Vector3d hi = -lo;
-  for (const auto& tri : mesh.triangles) {
-    for (std::uint32_t i : tri) {
-      lo = lo.cwiseMin(toEigen(mesh.vertices[i]));
-      hi = hi.cwiseMax(toEigen(mesh.vertices[i]));
-    }
-  }
+  const auto [lo, hi] = boundsOfTriangles(mesh);
   const Eigen::Vector3d origin = 0.5 * (lo + hi);
 
   // Divergence theorem over signed tetrahedra (origin, a, b, c), det = a · (b × c) = 6 V_t:

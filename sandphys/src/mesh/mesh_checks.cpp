@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <unordered_map>
 
 #include "core/validation.h"
@@ -43,6 +44,18 @@ bool hasArea(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Ve
   const double longest =
       std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
   return (b - a).cross(c - a).norm() > 1e-6 * longest;
+}
+
+MeshBounds boundsOfTriangles(const TriangleMesh& mesh) {
+  MeshBounds b{Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()),
+               Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity())};
+  for (const auto& tri : mesh.triangles) {
+    for (std::uint32_t i : tri) {
+      b.lo = b.lo.cwiseMin(toEigen(mesh.vertices[i]));
+      b.hi = b.hi.cwiseMax(toEigen(mesh.vertices[i]));
+    }
+  }
+  return b;
 }
 
 }  // namespace mesh_detail

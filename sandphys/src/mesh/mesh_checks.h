@@ -30,6 +30,13 @@ inline Eigen::Vector3d toEigen(const Vec3& v) {
   return {v.x, v.y, v.z};
 }
 
+/// Corners of the axis-aligned box around the vertices the triangles use, m.
+struct MeshBounds {
+  Eigen::Vector3d lo;
+  Eigen::Vector3d hi;
+};
+MeshBounds boundsOfTriangles(const TriangleMesh& mesh);
+
 /// A vertex position as its bit pattern, -0 made +0: equal keys mean equal positions.
 struct PositionKey {
   std::uint32_t x, y, z;

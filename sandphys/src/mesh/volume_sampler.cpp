@@ -55,14 +55,7 @@ bool ownsBoundary(Point2 from, Point2 to) {
 
 std::vector<Eigen::Vector3d> sampleInterior(const TriangleMesh& mesh, double spacing,
                                             const PointGrid& surface, std::size_t maxParticles) {
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-  Eigen::Vector3d hi = -lo;
-  for (const auto& tri : mesh.triangles) {
-    for (std::uint32_t i : tri) {
-      lo = lo.cwiseMin(toEigen(mesh.vertices[i]));
-      hi = hi.cwiseMax(toEigen(mesh.vertices[i]));
-    }
-  }
+  const auto [lo, hi] = boundsOfTriangles(mesh);
   // A lattice centred on the bounding box: a symmetric mesh gets a symmetric filling.
   std::int64_t count[3];
   Eigen::Vector3d start;

@@ -72,8 +72,8 @@ class Bridge {
                 const CouplingOptions& options = {});
 
   /// Advances both worlds by `frameDt` s in coupling steps (see above); does not call Bullet's
-  /// stepSimulation otherwise, so the application must not step Bullet itself. Returns the last
-  /// exchange's sand report.
+  /// stepSimulation otherwise, so the application must not step Bullet itself. Returns the sand's
+  /// report of the whole frame (substeps and times summed, statistics of the last exchange).
   StepReport step(float frameDt);
 
   /// The coupling step of the last step() (or, before any, of a body at rest), s, and how many

@@ -1,5 +1,7 @@
 #pragma once
 
+// Conversions between sandphys and Bullet vectors and quaternions (both single precision here).
+
 #include <LinearMath/btQuaternion.h>
 #include <LinearMath/btVector3.h>
 
