@@ -40,6 +40,23 @@ double perWallSecond(double amount, double wallSeconds) {
   return wallSeconds > 0.0 ? amount / wallSeconds : 0.0;
 }
 
+// Scene::bodies as a list of {name, position [x, y, z] m, orientation [w, x, y, z], speed m/s,
+// tilt_deg}.
+nlohmann::json bodiesJson(const std::vector<scenes::SceneBody>& bodies) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const scenes::SceneBody& body : bodies) {
+    list.push_back({
+        {"name", body.name},
+        {"position", {body.position.x, body.position.y, body.position.z}},
+        {"orientation",
+         {body.orientation.w, body.orientation.x, body.orientation.y, body.orientation.z}},
+        {"speed", body.speed},
+        {"tilt_deg", body.tiltDegrees},
+    });
+  }
+  return list;
+}
+
 }  // namespace
 
 nlohmann::json metricsJson(const RunSummary& summary, scenes::Scene& scene) {
@@ -48,7 +65,7 @@ nlohmann::json metricsJson(const RunSummary& summary, scenes::Scene& scene) {
       {"scene", summary.scene},
       {"granules", stats.granulesAlive},
       {"particles", stats.particles},
-      {"bodies", stats.bodies},
+      {"body_slots", stats.bodies},
       {"frames", summary.frames},
       {"frame_dt", summary.frameDt},
       {"steps", stats.steps},
@@ -83,6 +100,12 @@ nlohmann::json metricsJson(const RunSummary& summary, scenes::Scene& scene) {
     sceneMetrics[metric.name] = metric.value;
   }
   metrics["scene_metrics"] = sceneMetrics;
+  metrics["bodies"] = bodiesJson(summary.sceneBodies);
+  nlohmann::json series = nlohmann::json::array();
+  for (const RunSummary::BodySample& sample : summary.bodySeries) {
+    series.push_back({{"time", sample.time}, {"bodies", bodiesJson(sample.bodies)}});
+  }
+  metrics["bodies_series"] = series;
   return metrics;
 }
 

@@ -9,11 +9,13 @@
 
 namespace sandphys::samples {
 
-/// The metrics of a run as JSON (keys and units in docs: scene, granules, particles, bodies,
+/// The metrics of a run as JSON (keys and units in docs: scene, granules, particles, body_slots,
 /// steps, simulated_seconds, wall_seconds, cundall_number, seconds_simulated_per_wall_second,
 /// contacts, kinetic_energy (J), max_overlap_d, penetration_clamps, velocity_clamps,
 /// granules_spawned, granules_killed, granules_lost, time_step (s), gpu, scene_parameters,
-/// scene_metrics, ...).
+/// scene_metrics, bodies: the scene's rigid bodies that are not sand at the end, each with name,
+/// position (m), orientation (w, x, y, z), speed (m/s) and tilt_deg; bodies_series: the same
+/// every kBodySeriesFrames frames with its time (s), ...).
 nlohmann::json metricsJson(const RunSummary& summary, scenes::Scene& scene);
 
 /// Writes `metrics` to `path`, pretty-printed. Throws std::runtime_error naming the path.

@@ -115,7 +115,7 @@ RunSummary runScene(const GpuContext& gpu, scenes::Scene& scene, std::uint64_t f
   const Clock::time_point loopStart = Clock::now();
   for (std::uint64_t frame = 0; frame < frames; ++frame) {
     if (untilDone && scene.finished()) break;
-    const StepReport report = world.step(static_cast<float>(frameDt));
+    const StepReport report = scene.step(world, static_cast<float>(frameDt));
     // Count the granules this step moved before the scene may add the next batch.
     const std::uint32_t granules =
         report.hasStats ? report.stats.granulesAlive : world.granulesSpawned();
@@ -125,6 +125,10 @@ RunSummary runScene(const GpuContext& gpu, scenes::Scene& scene, std::uint64_t f
     if (report.hasStats) summary.maxOverlap = std::max(summary.maxOverlap, report.stats.maxOverlap);
     scene.update(world, report, world.simulatedTime());
     summary.frames = frame + 1;
+    if (summary.frames % kBodySeriesFrames == 0) {
+      std::vector<scenes::SceneBody> bodies = scene.bodies();
+      if (!bodies.empty()) summary.bodySeries.push_back({world.simulatedTime(), std::move(bodies)});
+    }
     if (afterFrame) {
       const Clock::time_point hookStart = Clock::now();
       afterFrame(world, summary.frames);
@@ -152,6 +156,7 @@ RunSummary runScene(const GpuContext& gpu, scenes::Scene& scene, std::uint64_t f
   summary.gpuMemoryBytes = world.gpuMemoryBytes();
   summary.sceneFinished = scene.finished();
   summary.sceneMetrics = scene.metrics(summary.bodies);
+  summary.sceneBodies = scene.bodies();
   return summary;
 }
 

@@ -34,7 +34,18 @@ struct RunSummary {
   bool sceneFinished = false;        ///< Scene::finished at the end
   std::vector<scenes::SceneMetric> sceneMetrics;
   std::vector<BodyState> bodies;  ///< World::readBodies at the end (for exports)
+  /// The scene's rigid bodies that are not sand (Scene::bodies) at the end, and every
+  /// kBodySeriesFrames frames with the simulated time, s.
+  std::vector<scenes::SceneBody> sceneBodies;
+  struct BodySample {
+    double time = 0.0;
+    std::vector<scenes::SceneBody> bodies;
+  };
+  std::vector<BodySample> bodySeries;
 };
+
+/// Frames between two samples of RunSummary::bodySeries (10 per second at 60 frames per second).
+inline constexpr std::uint64_t kBodySeriesFrames = 6;
 
 /// Called by runScene with the world and the number of frames run so far: after every frame
 /// (afterFrame) or once after the loop (atEnd), e.g. to render screenshots. Its wall time is

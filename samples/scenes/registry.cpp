@@ -3,6 +3,9 @@
 #include <array>
 #include <string>
 
+#ifdef SANDPHYS_HAS_BULLET
+#include "scenes/block_avalanche.h"
+#endif
 #include "scenes/box_drop.h"
 #include "scenes/cylinder_pile.h"
 #include "scenes/sand_box_pour.h"
@@ -21,6 +24,12 @@ std::unique_ptr<Scene> make() {
 // a static library, and the linker drops object files that nothing references, together with
 // their registration.
 constexpr std::array kScenes{
+#ifdef SANDPHYS_HAS_BULLET
+    SceneEntry{"Avalanches", "avalanche",
+               "the slope's sand released onto two wooden blocks that Bullet simulates: it runs "
+               "over the low one and topples the plank standing on it",
+               &make<BlockAvalanche>},
+#endif
     SceneEntry{"Avalanches", "slope-avalanche",
                "a block of sand on a tilted floor runs down the slope when its retaining wall is "
                "removed",

@@ -31,6 +31,17 @@ struct SceneParameter {
   double max = 1.0e9;
 };
 
+/// A rigid body of a scene that is not sand (a block Bullet simulates, a sampled rock), as the
+/// metrics report it.
+struct SceneBody {
+  std::string name;    ///< kebab-case, unique in the scene ("upper-block")
+  Vec3 position{};     ///< centre of mass, m
+  Quat orientation{};  ///< w, x, y, z
+  float speed = 0.0f;  ///< of the centre of mass, m/s
+  /// Angle between the body's up axis at the start and now, degrees.
+  float tiltDegrees = 0.0f;
+};
+
 /// A number a scene adds to the run's metrics (written under "scene_metrics" in the JSON).
 struct SceneMetric {
   /// snake_case key, with the unit as a suffix where it has one ("pile_top_m").
@@ -52,7 +63,8 @@ struct SceneBounds {
 ///
 ///   World world(gpu, scene.settings());
 ///   scene.build(world);
-///   while (!done) { StepReport r = world.step(dt); scene.update(world, r, world.simulatedTime());
+///   while (!done) { StepReport r = scene.step(world, dt); scene.update(world, r,
+///   world.simulatedTime());
 ///   }
 ///
 /// A scene owns its parameters; build() may be called again on a fresh World to restart.
@@ -71,6 +83,10 @@ class Scene {
   /// Adds colliders, floors and the first granules to `world`, which was created from settings()
   /// and is otherwise empty; resets the scene's own state (so that the scene can be rebuilt).
   virtual void build(World& world) = 0;
+
+  /// Advances the scene by one frame of `frameDt` s: World::step, which the default does, or the
+  /// step of an engine coupled to the sand (a Bullet bridge steps both worlds).
+  virtual StepReport step(World& world, float frameDt) { return world.step(frameDt); }
 
   /// Scene logic after each World::step: `report` is that step's report and `simTime` the world's
   /// simulated time in s. May add granules; a read-back here is allowed only rarely (once per
@@ -92,6 +108,10 @@ class Scene {
   virtual std::vector<SceneMetric> metrics(std::span<const BodyState> /*bodies*/) const {
     return {};
   }
+
+  /// The scene's rigid bodies that are not sand, now (for metrics and their time series). The
+  /// default has none.
+  virtual std::vector<SceneBody> bodies() const { return {}; }
 
   /// The scene's tunable values (see SceneParameter). The default has none.
   virtual std::vector<SceneParameter> parameters() { return {}; }

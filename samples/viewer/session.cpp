@@ -97,7 +97,7 @@ void Session::stepFrame(bool pour, bool push, const Ray& cursorRay, FrameStats& 
                                          : static_cast<float>(m_applied.frameDt);
   const Clock::time_point start = Clock::now();
   m_tools.update(*m_world, pour, push, cursorRay, frameDt);
-  stats.report = m_world->step(frameDt);
+  stats.report = m_scene->step(*m_world, frameDt);
   m_tools.countEmitted(stats.report.granulesEmitted);
   m_scene->update(*m_world, stats.report, m_world->simulatedTime());
   stats.stepMilliseconds = millisecondsSince(start);

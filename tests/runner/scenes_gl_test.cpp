@@ -29,7 +29,7 @@ TEST(RegisteredScenes, BuildInsideTheirContainerAndStep) {
     EXPECT_EQ(granules, 32u);
     EXPECT_LE(world.bodyCount(), world.bodyCapacity());
 
-    const StepReport report = world.step(1.0f / 600.0f);
+    const StepReport report = scene->step(world, 1.0f / 600.0f);
     EXPECT_GT(report.substeps, 0u);
     scene->update(world, report, world.simulatedTime());
     const WorldStats stats = world.readStats();

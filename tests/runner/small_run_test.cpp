@@ -40,7 +40,9 @@ TEST(SmallRun, MetricsHaveEveryField) {
   for (const char* key : {"scene",
                           "granules",
                           "particles",
+                          "body_slots",
                           "bodies",
+                          "bodies_series",
                           "steps",
                           "simulated_seconds",
                           "wall_seconds",
@@ -68,7 +70,10 @@ TEST(SmallRun, MetricsDescribeTheRun) {
   EXPECT_EQ(m["granules"], kGranules);
   EXPECT_EQ(m["granules_spawned"], kGranules);
   EXPECT_EQ(m["granules_killed"], 0);
-  EXPECT_EQ(m["bodies"], kGranules + 1);  // + the rough floor
+  EXPECT_EQ(m["body_slots"], kGranules + 1);  // + the rough floor
+  // The cylinder pile has no bodies but sand.
+  EXPECT_EQ(m["bodies"], nlohmann::json::array());
+  EXPECT_EQ(m["bodies_series"], nlohmann::json::array());
   EXPECT_EQ(m["particles"],
             4 * kGranules + scenes::CylinderPile::roughFloorParticles(kRadius, 0.02f));
   EXPECT_EQ(m["scene_parameters"]["batch"], nlohmann::json::array({8, 4, 8}));

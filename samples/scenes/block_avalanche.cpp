@@ -1,0 +1,187 @@
+#include "scenes/block_avalanche.h"
+
+#include <BulletCollision/BroadphaseCollision/btDbvtBroadphase.h>
+#include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
+#include <BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h>
+#include <BulletCollision/CollisionShapes/btBoxShape.h>
+#include <BulletCollision/CollisionShapes/btStaticPlaneShape.h>
+#include <BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h>
+#include <BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h>
+#include <BulletDynamics/Dynamics/btRigidBody.h>
+#include <LinearMath/btDefaultMotionState.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include <sandphys/bullet/bridge.h>
+#include <sandphys/bullet/conversions.h>
+#include <sandphys/bullet/shape_mesh.h>
+
+namespace sandphys::scenes {
+
+namespace {
+
+// Particles the bridge samples from a box shape: counted by sampling it the same way, so that
+// settings() reserves exactly what build() will add.
+std::uint32_t sampledParticles(const btBoxShape& shape, float d) {
+  const TriangleMesh mesh = bullet::shapeMesh(shape, bullet::CouplingOptions{}.maxChordError * d);
+  return static_cast<std::uint32_t>(sampleMesh(mesh, d).centres.size());
+}
+
+btVector3 halfExtents(const Vec3& size, float d) {
+  return {0.5f * size.x * d, 0.5f * size.y * d, 0.5f * size.z * d};
+}
+
+}  // namespace
+
+// Bullet's world, with everything it points to, and the bridge to the sand.
+struct BlockAvalanche::Blocks {
+  struct Block {
+    std::string name;
+    std::unique_ptr<btBoxShape> shape;
+    std::unique_ptr<btDefaultMotionState> motion;
+    std::unique_ptr<btRigidBody> body;
+    btVector3 start;
+  };
+
+  btDefaultCollisionConfiguration configuration;
+  btCollisionDispatcher dispatcher{&configuration};
+  btDbvtBroadphase broadphase;
+  btSequentialImpulseConstraintSolver solver;
+  btDiscreteDynamicsWorld dynamics{&dispatcher, &broadphase, &solver, &configuration};
+  btStaticPlaneShape floorShape;
+  std::unique_ptr<btRigidBody> floor;
+  std::vector<Block> blocks;
+  std::unique_ptr<bullet::Bridge> bridge;
+
+  explicit Blocks(float floorY) : floorShape(btVector3(0, 1, 0), floorY) {}
+  ~Blocks() {
+    for (Block& block : blocks) dynamics.removeRigidBody(block.body.get());
+    if (floor) dynamics.removeRigidBody(floor.get());
+  }
+
+  void addBlock(std::string name, const btVector3& half, const btVector3& centre, float density,
+                float friction) {
+    Block block;
+    block.name = std::move(name);
+    block.shape = std::make_unique<btBoxShape>(half);
+    const float mass = density * 8.0f * float(half.x() * half.y() * half.z());
+    btVector3 inertia;
+    block.shape->calculateLocalInertia(mass, inertia);
+    block.motion =
+        std::make_unique<btDefaultMotionState>(btTransform(btQuaternion::getIdentity(), centre));
+    btRigidBody::btRigidBodyConstructionInfo info(mass, block.motion.get(), block.shape.get(),
+                                                  inertia);
+    info.m_friction = friction;
+    block.body = std::make_unique<btRigidBody>(info);
+    block.start = centre;
+    dynamics.addRigidBody(block.body.get());
+    blocks.push_back(std::move(block));
+  }
+};
+
+BlockAvalanche::BlockAvalanche() = default;
+BlockAvalanche::~BlockAvalanche() = default;
+
+WorldSettings BlockAvalanche::settings() const {
+  WorldSettings settings = m_slope.settings();
+  const float d = this->d();
+  const btBoxShape low(halfExtents(m_config.lowBlock, d));
+  const btBoxShape plank(halfExtents(m_config.plank, d));
+  settings.maxBodies += 2;
+  settings.maxParticles += sampledParticles(low, d) + sampledParticles(plank, d);
+  return settings;
+}
+
+void BlockAvalanche::build(World& world) {
+  m_slope.build(world);
+  const float d = this->d();
+  const SlopeAvalanche::Config& slope = m_slope.config();
+  const float foot = slope.slopeLength * d;
+  const float floorY = -foot * std::tan(slope.slopeAngle * std::numbers::pi_v<float> / 180.0f);
+
+  m_blocks.reset();  // the old bridge refers to the old World
+  m_blocks = std::make_unique<Blocks>(floorY);
+  m_blocks->dynamics.setGravity(bullet::toBullet(world.settings().gravity));
+  btRigidBody::btRigidBodyConstructionInfo floorInfo(0.0f, nullptr, &m_blocks->floorShape);
+  floorInfo.m_friction = m_config.blockFriction;
+  m_blocks->floor = std::make_unique<btRigidBody>(floorInfo);
+  m_blocks->dynamics.addRigidBody(m_blocks->floor.get());
+
+  const btVector3 low = halfExtents(m_config.lowBlock, d);
+  const btVector3 plank = halfExtents(m_config.plank, d);
+  const float lowX = foot + m_config.blockDistance * d + low.x();
+  m_blocks->addBlock("low-block", low, btVector3(lowX, floorY + low.y(), 0.0f), m_config.density,
+                     m_config.blockFriction);
+  m_blocks->addBlock("plank", plank, btVector3(lowX, floorY + 2.0f * low.y() + plank.y(), 0.0f),
+                     m_config.density, m_config.blockFriction);
+  m_blocks->bridge = std::make_unique<bullet::Bridge>(world, m_blocks->dynamics);
+  for (Blocks::Block& block : m_blocks->blocks) m_blocks->bridge->couple(block.body.get());
+}
+
+StepReport BlockAvalanche::step(World& world, float frameDt) {
+  if (!m_blocks) return world.step(frameDt);
+  return m_blocks->bridge->step(frameDt);
+}
+
+void BlockAvalanche::update(World& world, const StepReport& report, double simTime) {
+  m_slope.update(world, report, simTime);
+}
+
+std::vector<SceneBody> BlockAvalanche::bodies() const {
+  std::vector<SceneBody> out;
+  if (!m_blocks) return out;
+  for (const Blocks::Block& block : m_blocks->blocks) {
+    const btTransform& pose = block.body->getCenterOfMassTransform();
+    const btQuaternion q = pose.getRotation();
+    // The blocks start upright: the tilt is the angle of the body's y axis from the world's.
+    const btScalar up = std::clamp(pose.getBasis().getColumn(1).y(), btScalar(-1), btScalar(1));
+    out.push_back({.name = block.name,
+                   .position = bullet::toSand(pose.getOrigin()),
+                   .orientation = bullet::toSand(q),
+                   .speed = float(block.body->getLinearVelocity().length()),
+                   .tiltDegrees = float(std::acos(up) * 180.0 / std::numbers::pi)});
+  }
+  return out;
+}
+
+std::string BlockAvalanche::status() const {
+  std::string text = m_slope.status();
+  for (const SceneBody& body : bodies()) {
+    if (body.name == "plank")
+      text += ", plank tilt " + std::to_string(int(body.tiltDegrees)) + " deg";
+  }
+  return text;
+}
+
+std::vector<SceneMetric> BlockAvalanche::metrics(std::span<const BodyState> bodies) const {
+  std::vector<SceneMetric> out = m_slope.metrics(bodies);
+  if (!m_blocks) return out;
+  const std::vector<SceneBody> now = this->bodies();
+  for (std::size_t i = 0; i < now.size(); ++i) {
+    const btVector3& start = m_blocks->blocks[i].start;
+    const Vec3& p = now[i].position;
+    const float moved =
+        std::hypot(p.x - float(start.x()), p.y - float(start.y()), p.z - float(start.z()));
+    std::string key = now[i].name;
+    std::replace(key.begin(), key.end(), '-', '_');
+    out.push_back({key + "_tilt_deg", now[i].tiltDegrees});
+    out.push_back({key + "_displacement_m", moved});
+  }
+  return out;
+}
+
+std::vector<SceneParameter> BlockAvalanche::parameters() {
+  std::vector<SceneParameter> out = m_slope.parameters();
+  out.push_back({"block-distance", "gap between the slope's foot and the low block, d",
+                 &m_config.blockDistance, 0.0, 1e4});
+  out.push_back(
+      {"block-density", "density of the two wooden blocks, kg/m^3", &m_config.density, 1.0, 1e5});
+  out.push_back({"block-friction", "friction between the blocks and with the floor (Bullet)",
+                 &m_config.blockFriction, 0.0, 10.0});
+  return out;
+}
+
+}  // namespace sandphys::scenes
