@@ -12,21 +12,16 @@
 namespace sandphys::testing {
 namespace {
 
-// The exit code of a usage error (samples/app/cli.h).
-constexpr int kUsage = 2;
+std::string samplesCommand(const std::string& arguments) {
+  return std::string("'") + SANDPHYS_SAMPLES_EXE + "' --headless " + arguments;
+}
 
 ProcessResult runSamples(const std::string& arguments) {
-  return runCommand(std::string("'") + SANDPHYS_SAMPLES_EXE + "' --headless " + arguments);
+  return runCommand(samplesCommand(arguments));
 }
 
 void expectUsageError(const std::string& arguments, std::initializer_list<const char*> named) {
-  const ProcessResult result = runSamples(arguments);
-  EXPECT_EQ(result.exitCode, kUsage) << arguments << "\n" << result.output;
-  for (const char* text : named) {
-    EXPECT_NE(result.output.find(text), std::string::npos)
-        << "'" << text << "' not named for: " << arguments << "\n"
-        << result.output;
-  }
+  expectUsageErrorOf(samplesCommand(arguments), arguments, named);
 }
 
 TEST(ScreenshotCli, BadSizeIsAUsageError) {

@@ -1,9 +1,11 @@
 #pragma once
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <array>
 #include <cstdio>
+#include <initializer_list>
 #include <string>
 
 namespace sandphys::testing {
@@ -26,6 +28,22 @@ inline ProcessResult runCommand(const std::string& command) {
   const int status = pclose(pipe);
   result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
+}
+
+/// The exit code of a usage error (samples/app/cli.h, kExitUsage).
+inline constexpr int kUsageExit = 2;
+
+/// Runs `command` and expects a usage error whose output names each of `named` (flags, values);
+/// `arguments` is what the failure messages quote.
+inline void expectUsageErrorOf(const std::string& command, const std::string& arguments,
+                               std::initializer_list<const char*> named) {
+  const ProcessResult result = runCommand(command);
+  EXPECT_EQ(result.exitCode, kUsageExit) << arguments << "\n" << result.output;
+  for (const char* text : named) {
+    EXPECT_NE(result.output.find(text), std::string::npos)
+        << "'" << text << "' not named for: " << arguments << "\n"
+        << result.output;
+  }
 }
 
 }  // namespace sandphys::testing

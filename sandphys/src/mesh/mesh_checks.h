@@ -14,7 +14,8 @@
 
 namespace sandphys::mesh_detail {
 
-/// How messages name a mesh: "mesh 'path/rock.obj'", or a placeholder when it has no source.
+/// How messages name a mesh: "mesh 'path/rock.obj'", or "mesh (built in code, no
+/// TriangleMesh::source)" when its source is empty.
 std::string meshName(const std::string& source);
 inline std::string meshName(const TriangleMesh& mesh) {
   return meshName(mesh.source);
