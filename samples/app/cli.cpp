@@ -147,6 +147,8 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
   std::optional<std::string> batches;
   std::vector<std::string> batch;
   std::optional<std::string> seed;
+  std::optional<std::string> mesh;
+  std::optional<std::string> scale;
   std::vector<std::string> assignments;
   std::string metrics;
   std::vector<std::string> exports;
@@ -179,6 +181,9 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
          "high (default 32 16 32)")
       ->expected(3);
   app.add_option("--seed", seed, "random seed of the scene's granules");
+  app.add_option("--mesh", mesh, "rock-drop: the mesh file to drop (OBJ, STL, PLY, glTF/GLB)")
+      ->type_name("FILE");
+  app.add_option("--scale", scale, "rock-drop: scale factor applied to the mesh")->type_name("S");
   app.add_option("--param", assignments, "set a scene parameter NAME=VALUE (see --list)");
   app.add_option("--screenshot", screenshot,
                  "write a PNG of the last frame to this file (headless: rendered offscreen)");
@@ -260,6 +265,8 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
                      batch[0] + "," + batch[1] + "," + batch[2]);
     }
     if (seed) applyParameter(*options.scene, "--seed", "seed", *seed);
+    if (mesh) applyParameter(*options.scene, "--mesh", "mesh", *mesh);
+    if (scale) applyParameter(*options.scene, "--scale", "scale", *scale);
     for (const std::string& assignment : assignments) {
       const std::size_t equals = assignment.find('=');
       if (equals == std::string::npos || equals == 0) {

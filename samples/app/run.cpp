@@ -126,7 +126,7 @@ RunSummary runScene(const GpuContext& gpu, scenes::Scene& scene, std::uint64_t f
     scene.update(world, report, world.simulatedTime());
     summary.frames = frame + 1;
     if (summary.frames % kBodySeriesFrames == 0) {
-      std::vector<scenes::SceneBody> bodies = scene.bodies();
+      std::vector<scenes::SceneBody> bodies = scene.bodies(world);
       if (!bodies.empty()) summary.bodySeries.push_back({world.simulatedTime(), std::move(bodies)});
     }
     if (afterFrame) {
@@ -156,7 +156,7 @@ RunSummary runScene(const GpuContext& gpu, scenes::Scene& scene, std::uint64_t f
   summary.gpuMemoryBytes = world.gpuMemoryBytes();
   summary.sceneFinished = scene.finished();
   summary.sceneMetrics = scene.metrics(summary.bodies);
-  summary.sceneBodies = scene.bodies();
+  summary.sceneBodies = scene.bodies(world);
   return summary;
 }
 

@@ -130,7 +130,11 @@ void BlockAvalanche::update(World& world, const StepReport& report, double simTi
   m_slope.update(world, report, simTime);
 }
 
-std::vector<SceneBody> BlockAvalanche::bodies() const {
+std::vector<SceneBody> BlockAvalanche::bodies(const World& /*world*/) const {
+  return blockBodies();
+}
+
+std::vector<SceneBody> BlockAvalanche::blockBodies() const {
   std::vector<SceneBody> out;
   if (!m_blocks) return out;
   for (const Blocks::Block& block : m_blocks->blocks) {
@@ -149,7 +153,7 @@ std::vector<SceneBody> BlockAvalanche::bodies() const {
 
 std::string BlockAvalanche::status() const {
   std::string text = m_slope.status();
-  for (const SceneBody& body : bodies()) {
+  for (const SceneBody& body : blockBodies()) {
     if (body.name == "plank")
       text += ", plank tilt " + std::to_string(int(body.tiltDegrees)) + " deg";
   }
@@ -159,7 +163,7 @@ std::string BlockAvalanche::status() const {
 std::vector<SceneMetric> BlockAvalanche::metrics(std::span<const BodyState> bodies) const {
   std::vector<SceneMetric> out = m_slope.metrics(bodies);
   if (!m_blocks) return out;
-  const std::vector<SceneBody> now = this->bodies();
+  const std::vector<SceneBody> now = blockBodies();
   for (std::size_t i = 0; i < now.size(); ++i) {
     const btVector3& start = m_blocks->blocks[i].start;
     const Vec3& p = now[i].position;

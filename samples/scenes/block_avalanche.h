@@ -67,10 +67,12 @@ class BlockAvalanche final : public Scene {
   /// The slope's channel.
   SceneBounds bounds() const override { return m_slope.bounds(); }
   /// "low-block" and "plank", as Bullet has them now.
-  std::vector<SceneBody> bodies() const override;
+  std::vector<SceneBody> bodies(const World& world) const override;
 
  private:
   struct Blocks;
+  // The blocks as Bullet has them now (the sand world is not needed).
+  std::vector<SceneBody> blockBodies() const;
   float d() const { return m_slope.config().particleDiameter; }
 
   Config m_config;

@@ -73,6 +73,12 @@ void setSceneParameter(Scene& scene, std::string_view name, std::string_view tex
           using T = std::remove_pointer_t<decltype(target)>;
           if constexpr (std::is_same_v<T, Count3>) {
             *target = parseCount3(parameter, text);
+          } else if constexpr (std::is_same_v<T, std::string>) {
+            if (text.empty()) {
+              throw InvalidArgument("scene parameter '" + parameter.name + "' is empty (" +
+                                    parameter.help + ")");
+            }
+            *target = std::string(text);
           } else {
             *target = parseNumber<T>(parameter, text);
           }

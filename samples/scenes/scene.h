@@ -23,8 +23,9 @@ struct SceneParameter {
   std::string name;
   /// One line for --help and tooltips, with the unit.
   std::string help;
-  /// Where the value lives. Count3 values are set as "X,Y,Z" or "X Y Z".
-  std::variant<std::uint32_t*, std::uint64_t*, float*, Count3*> value;
+  /// Where the value lives. Count3 values are set as "X,Y,Z" or "X Y Z"; a string (a file name)
+  /// takes any text that is not empty, and min and max do not apply to it.
+  std::variant<std::uint32_t*, std::uint64_t*, float*, Count3*, std::string*> value;
   /// Smallest valid value (of each component for Count3).
   double min = 0.0;
   /// Largest valid value (of each component for Count3).
@@ -109,9 +110,10 @@ class Scene {
     return {};
   }
 
-  /// The scene's rigid bodies that are not sand, now (for metrics and their time series). The
-  /// default has none.
-  virtual std::vector<SceneBody> bodies() const { return {}; }
+  /// The scene's rigid bodies that are not sand, now, in `world` (the one build() filled), for
+  /// the metrics and their time series. Bodies that sandphys simulates are read back from `world`
+  /// (a sync point: the runner asks only every few frames). The default has none.
+  virtual std::vector<SceneBody> bodies(const World& /*world*/) const { return {}; }
 
   /// The scene's tunable values (see SceneParameter). The default has none.
   virtual std::vector<SceneParameter> parameters() { return {}; }

@@ -36,6 +36,16 @@ bool editParameter(const scenes::SceneParameter& parameter) {
         } else if constexpr (std::is_same_v<T, float>) {
           changed = ImGui::InputFloat(label, value, 0.0f, 0.0f, "%.4g");
           clampTo(*value, parameter.min, parameter.max);
+        } else if constexpr (std::is_same_v<T, std::string>) {
+          // A file name: edited as text, taken when the user presses Enter.
+          char buffer[1024];
+          std::snprintf(buffer, sizeof buffer, "%s", value->c_str());
+          if (ImGui::InputText(label, buffer, sizeof buffer,
+                               ImGuiInputTextFlags_EnterReturnsTrue) &&
+              buffer[0] != '\0') {
+            *value = buffer;
+            changed = true;
+          }
         } else {
           changed = ImGui::InputScalarN(label, ImGuiDataType_U32, value->data(), 3);
           for (std::uint32_t& count : *value) clampTo(count, parameter.min, parameter.max);

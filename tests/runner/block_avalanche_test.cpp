@@ -41,25 +41,25 @@ Outcome run(float releaseTime, double seconds) {
   slope.releaseTime = releaseTime;
   World world(testing::gpu(), scene.settings());
   scene.build(world);
-  const std::vector<SceneBody> start = scene.bodies();
+  const std::vector<SceneBody> start = scene.bodies(world);
   Outcome outcome;
   int frame = 0;
   while (world.simulatedTime() < seconds) {
     const StepReport report = scene.step(world, kFrame);
     if (!scene.slope().released()) {
-      const std::vector<SceneBody> held = scene.bodies();
+      const std::vector<SceneBody> held = scene.bodies(world);
       outcome.plankTiltHeld = held[1].tiltDegrees;
       outcome.lowMovedHeld = distance(start[0].position, held[0].position);
     }
     scene.update(world, report, world.simulatedTime());
     if (++frame % 15 == 0) {
-      const std::vector<SceneBody> now = scene.bodies();
+      const std::vector<SceneBody> now = scene.bodies(world);
       std::printf("t %.2f s (%s): low block x %+.4f m, plank tilt %5.1f deg\n",
                   world.simulatedTime(), scene.status().c_str(),
                   now[0].position.x - start[0].position.x, now[1].tiltDegrees);
     }
   }
-  const std::vector<SceneBody> end = scene.bodies();
+  const std::vector<SceneBody> end = scene.bodies(world);
   EXPECT_EQ(end.size(), 2u);
   outcome.low = end[0];
   outcome.plank = end[1];
