@@ -1,4 +1,5 @@
-// The two-way Bullet bridge: transparent without sand, and a box resting on a sand bed.
+// The two-way Bullet bridge: transparent without sand, a box resting on a sand bed, and the
+// momentum the sand hands to a light box.
 #include <gtest/gtest.h>
 
 #include <BulletCollision/BroadphaseCollision/btDbvtBroadphase.h>
@@ -237,6 +238,91 @@ TEST(Bridge, BoxRestsOnASandBedCarriedByTheSandForce) {
   EXPECT_LT(sink, 3.0f * d) << "the box sank through the bed";
   const btVector3 up = box->getCenterOfMassTransform().getBasis().getColumn(1);
   EXPECT_GT(up.y(), 0.99f) << "the box tipped over";
+}
+
+// Sand thrown at a light free box in empty space (no gravity, no floor, no walls): whatever the
+// sand loses, the box gains. The bridge hands each exchange's summed sand force to Bullet one
+// exchange later, so the box's momentum lags the sand's by at most one exchange's impulse; once
+// the contacts have ended, the two must agree.
+TEST(Bridge, SandThrownAtALightBoxHandsItTheMomentumItLoses) {
+  WorldSettings settings = smallSettings(100);
+  settings.maxParticles = 100 * 4 + 4000;
+  settings.gravity = {0.0f, 0.0f, 0.0f};
+  settings.maxSpeed = 1.0f;
+  settings.material.youngsModulus = 5.0e5f;
+  World sand(gpu(), settings);
+  const float d = settings.particleDiameter;
+  const float speed = 0.5f;  // m/s, along +x
+  // 4×4×4 granules 2.4 d apart, so they arrive at the box one layer after another.
+  const float spacing = 2.4f * d;
+  const float blockFront = -2.0f * d;
+  sand.addGranules(GranuleBlock{.center = {blockFront - 1.5f * spacing, 0, 0},
+                                .countX = 4,
+                                .countY = 4,
+                                .countZ = 4,
+                                .spacing = spacing,
+                                .velocity = {speed, 0, 0},
+                                .seed = 5});
+  const float granuleMass = tetrahedronTemplate(d, settings.material.density).mass;
+
+  Physics physics;
+  physics.world().setGravity(btVector3(0, 0, 0));
+  // A plate broadside to the stream, wide enough that every column of granules hits it, and as
+  // heavy as 24 granules: a third of the sand's mass, so that it is thrown clearly.
+  btBoxShape plateShape(btVector3(1.5f * d, 6.0f * d, 6.0f * d));
+  const float mass = 24.0f * granuleMass;
+  btRigidBody* plate = physics.add(&plateShape, mass, btVector3(1.5f * d, 0, 0));
+  Bridge bridge(sand, physics.world());
+  bridge.couple(plate);
+
+  const auto sandMomentum = [&] {
+    Vec3 p{};
+    for (const BodyState& b : sand.readBodies()) {
+      if (!b.granule || !b.alive) continue;
+      p.x += granuleMass * b.velocity.x;
+      p.y += granuleMass * b.velocity.y;
+      p.z += granuleMass * b.velocity.z;
+    }
+    return p;
+  };
+  const Vec3 before = sandMomentum();
+  const float frame = 1.0f / 60.0f;
+  int quietFrames = 0;  // frames in a row without any sand force on the plate
+  int frames = 0;
+  int exchanges = 0;
+  bool touched = false;
+  // Until the sand has let go of the plate for good (a few frames without contact), at most 2 s.
+  while (frames < 120 && quietFrames < 6) {
+    bridge.step(frame);
+    ++frames;
+    exchanges += bridge.exchanges();
+    const Vec3 force = bridge.coupled()[0].force;
+    const bool contact = force.x != 0.0f || force.y != 0.0f || force.z != 0.0f;
+    touched = touched || contact;
+    quietFrames = touched && !contact ? quietFrames + 1 : 0;
+    if (frames % 6 == 0) {
+      std::printf("t %.2f s: plate vx %.4f m/s, sand force x %.4f N\n", frames * frame,
+                  float(plate->getLinearVelocity().x()), force.x);
+    }
+  }
+  const Vec3 after = sandMomentum();
+  const btVector3 plateMomentum = mass * plate->getLinearVelocity();
+  const float lost = before.x - after.x;
+  const float gained = float(plateMomentum.x());
+  std::printf(
+      "after %.2f s (%d exchanges): sand momentum x %.5f -> %.5f kg m/s, lost %.5f; plate gained "
+      "%.5f kg m/s (speed %.4f m/s); sideways sand %.2e %.2e, plate %.2e %.2e\n",
+      frames * frame, exchanges, before.x, after.x, lost, gained,
+      float(plate->getLinearVelocity().x()), after.y - before.y, after.z - before.z,
+      float(plateMomentum.y()), float(plateMomentum.z()));
+  ASSERT_TRUE(touched) << "the sand never reached the plate";
+  EXPECT_EQ(quietFrames, 6) << "the sand was still touching the plate after 2 s";
+  // The plate was thrown: it carries at least a fifth of the sand's momentum.
+  EXPECT_GT(gained, 0.2f * before.x);
+  EXPECT_NEAR(gained, lost, 0.1f * lost);
+  // Sideways too (the granules glance off at angles): what the sand gained, the plate lost.
+  EXPECT_NEAR(float(plateMomentum.y()), before.y - after.y, 0.1f * lost);
+  EXPECT_NEAR(float(plateMomentum.z()), before.z - after.z, 0.1f * lost);
 }
 
 }  // namespace
