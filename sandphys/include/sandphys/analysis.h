@@ -1,0 +1,5 @@
+#pragma once
+
+/// The analysis tools of the validation experiments: curve fits and empirical distributions.
+#include "sandphys/analysis/distributions.h"
+#include "sandphys/analysis/fits.h"
