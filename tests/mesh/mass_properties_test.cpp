@@ -175,7 +175,7 @@ TEST(MassProperties, TwoCubesSharingAnEdgeAreOneClosedSolid) {
 }
 
 TEST(MassProperties, SampledBoxBodyTakesTheSolidsMassNotTheSpheres) {
-  const Vec3 lo{0.5f, 0.0f, -0.2f}, hi{0.9f, 0.1f, 0.0f};
+  const Vec3 lo{0.5f, 0.0f, -0.2f}, hi{0.9f, 0.3f, 0.0f};
   const Eigen::Vector3d size = toEigen(hi) - toEigen(lo);
   const float density = 1500.0f, diameter = 0.02f;
   const SampledMesh sampled = sampleMesh(boxMesh(lo, hi), diameter, {.density = density});

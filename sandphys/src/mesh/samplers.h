@@ -11,9 +11,11 @@
 
 namespace sandphys::mesh_detail {
 
-/// Samples of the surface of a validated mesh: each triangle with an area is cut into equal
-/// sub-triangles with edges <= `spacing` (m), whose corners are the samples; a corner within
-/// spacing/1000 of an earlier sample is the same sample. Triangle by triangle, in mesh order.
+/// Samples of the surface of a validated mesh: each triangle with an area, first halved along its
+/// longest edge until no piece is more elongated than a right isosceles triangle, is cut into
+/// equal sub-triangles with edges <= `spacing` (m), whose corners are the samples; a corner
+/// within spacing/1000 of an earlier sample is the same sample. Triangle by triangle, in mesh
+/// order.
 /// The grid's cells are spacing/2 wide. Throws CapacityExceeded past `maxParticles`.
 PointGrid sampleSurface(const TriangleMesh& mesh, double spacing, std::size_t maxParticles);
 

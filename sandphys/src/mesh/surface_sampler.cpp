@@ -1,3 +1,5 @@
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 
@@ -17,28 +19,69 @@ void throwTooManyParticles(const std::string& source, double spacing, std::size_
       " (raise the limit, or sample coarser: larger spacing or diameter)");
 }
 
+namespace {
+
+struct Corners {
+  Eigen::Vector3d a;
+  Eigen::Vector3d b;
+  Eigen::Vector3d c;
+};
+
+// Cuts a triangle into ones no more elongated than a right isosceles triangle (longest edge at
+// most twice the height over it), by halving the longest edge again and again. An equal cut of
+// a long thin triangle (a board's narrow face) would otherwise follow its longest edge and put
+// (length / h)² / 2 samples on an area of length × width; the pieces cost about 2 / h² per area
+// like any well-shaped triangle. Triangles already that compact (every face of a cube, an
+// icosphere's) are left whole, so their lattices do not change.
+void splitElongated(const Corners& t, double spacing, std::vector<Corners>& out) {
+  const double ab = (t.b - t.a).squaredNorm();
+  const double bc = (t.c - t.b).squaredNorm();
+  const double ca = (t.a - t.c).squaredNorm();
+  const double longest = std::max({ab, bc, ca});
+  const double twiceArea = (t.b - t.a).cross(t.c - t.a).norm();
+  // longest / height = longest² / (2 · area); the margin keeps a right isosceles triangle whole.
+  if (longest <= spacing * spacing || longest <= 2.0 * (1.0 + 1e-9) * twiceArea) {
+    out.push_back(t);
+    return;
+  }
+  // Rotate so that the longest edge is a-b, then cut it at its midpoint.
+  const Corners r = longest == ab   ? t
+                    : longest == bc ? Corners{t.b, t.c, t.a}
+                                    : Corners{t.c, t.a, t.b};
+  const Eigen::Vector3d middle = 0.5 * (r.a + r.b);
+  splitElongated({r.a, middle, r.c}, spacing, out);
+  splitElongated({middle, r.b, r.c}, spacing, out);
+}
+
+}  // namespace
+
 PointGrid sampleSurface(const TriangleMesh& mesh, double spacing, std::size_t maxParticles) {
-  // Subdivisions per triangle first, so that a hopeless request fails before any allocation. A
+  // The pieces and their cuts first, so that a hopeless request fails before any allocation. A
   // closed surface of F lattice triangles has about F/2 corners once shared ones are welded, so
   // Σ n²/2 estimates the count from below and never refuses a mesh that would fit.
-  std::vector<std::uint32_t> divisions(mesh.triangles.size(), 0);
+  std::vector<Corners> pieces;
+  std::vector<std::uint32_t> divisions;
   double estimate = 0.0;
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const auto& tri = mesh.triangles[t];
-    const Eigen::Vector3d a = toEigen(mesh.vertices[tri[0]]);
-    const Eigen::Vector3d b = toEigen(mesh.vertices[tri[1]]);
-    const Eigen::Vector3d c = toEigen(mesh.vertices[tri[2]]);
+  for (const auto& tri : mesh.triangles) {
+    const Corners t{toEigen(mesh.vertices[tri[0]]), toEigen(mesh.vertices[tri[1]]),
+                    toEigen(mesh.vertices[tri[2]])};
     // A triangle without area adds no surface; its edges belong to its neighbours as well.
-    if (!hasArea(a, b, c)) continue;
-    const double longest =
-        std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()}));
-    const double n = std::max(1.0, std::ceil(longest / spacing));
-    estimate += 0.5 * n * n;
-    // Capped so that the cast stays defined; such a triangle fails the estimate below anyway.
-    divisions[t] = std::uint32_t(std::min(n, 1e9));
-  }
-  if (estimate > double(maxParticles)) {
-    throwTooManyParticles(mesh.source, spacing, maxParticles, estimate);
+    if (!hasArea(t.a, t.b, t.c)) continue;
+    const std::size_t first = pieces.size();
+    splitElongated(t, spacing, pieces);
+    for (std::size_t p = first; p < pieces.size(); ++p) {
+      const Corners& piece = pieces[p];
+      const double longest =
+          std::sqrt(std::max({(piece.b - piece.a).squaredNorm(), (piece.c - piece.b).squaredNorm(),
+                              (piece.a - piece.c).squaredNorm()}));
+      const double n = std::max(1.0, std::ceil(longest / spacing));
+      estimate += 0.5 * n * n;
+      // Capped so that the cast stays defined; such a triangle fails the estimate below anyway.
+      divisions.push_back(std::uint32_t(std::min(n, 1e9)));
+    }
+    if (estimate > double(maxParticles)) {
+      throwTooManyParticles(mesh.source, spacing, maxParticles, estimate);
+    }
   }
 
   // Points on an edge that two triangles share come out of both, equal up to rounding; points
@@ -46,17 +89,14 @@ PointGrid sampleSurface(const TriangleMesh& mesh, double spacing, std::size_t ma
   // tells the two apart.
   const double weld = 1e-3 * spacing;
   PointGrid grid(0.5 * spacing);
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+  for (std::size_t t = 0; t < pieces.size(); ++t) {
     const std::uint32_t n = divisions[t];
-    if (n == 0) continue;
-    const auto& tri = mesh.triangles[t];
-    const Eigen::Vector3d a = toEigen(mesh.vertices[tri[0]]);
-    const Eigen::Vector3d b = toEigen(mesh.vertices[tri[1]]);
-    const Eigen::Vector3d c = toEigen(mesh.vertices[tri[2]]);
+    const Corners& piece = pieces[t];
     for (std::uint32_t i = 0; i <= n; ++i) {
       for (std::uint32_t j = 0; j <= n - i; ++j) {
         const std::uint32_t k = n - i - j;
-        const Eigen::Vector3d p = (double(i) * a + double(j) * b + double(k) * c) / double(n);
+        const Eigen::Vector3d p =
+            (double(i) * piece.a + double(j) * piece.b + double(k) * piece.c) / double(n);
         if (grid.addUnlessNear(p, weld) && grid.points().size() > maxParticles) {
           throwTooManyParticles(mesh.source, spacing, maxParticles, 0.0);
         }
