@@ -149,6 +149,9 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
   std::optional<std::string> seed;
   std::optional<std::string> mesh;
   std::optional<std::string> scale;
+  std::optional<std::string> friction;
+  std::optional<std::string> outlet;
+  std::optional<std::string> granules;
   std::vector<std::string> assignments;
   std::string metrics;
   std::vector<std::string> exports;
@@ -184,6 +187,15 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
   app.add_option("--mesh", mesh, "rock-drop: the mesh file to drop (OBJ, STL, PLY, glTF/GLB)")
       ->type_name("FILE");
   app.add_option("--scale", scale, "rock-drop: scale factor applied to the mesh")->type_name("S");
+  app.add_option("--friction", friction,
+                 "friction coefficient (hourglass: of the grains and the funnel wall; "
+                 "slope-avalanche, avalanche: of the slope and the walls)")
+      ->type_name("MU");
+  app.add_option("--outlet", outlet, "hourglass: outlet diameter, particle diameters")
+      ->type_name("D");
+  app.add_option("--granules", granules,
+                 "granules (hourglass: in the funnel; sand-box-pour: poured in total)")
+      ->type_name("N");
   app.add_option("--param", assignments, "set a scene parameter NAME=VALUE (see --list)");
   app.add_option("--screenshot", screenshot,
                  "write a PNG of the last frame to this file (headless: rendered offscreen)");
@@ -267,6 +279,9 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
     if (seed) applyParameter(*options.scene, "--seed", "seed", *seed);
     if (mesh) applyParameter(*options.scene, "--mesh", "mesh", *mesh);
     if (scale) applyParameter(*options.scene, "--scale", "scale", *scale);
+    if (friction) applyParameter(*options.scene, "--friction", "friction", *friction);
+    if (outlet) applyParameter(*options.scene, "--outlet", "outlet", *outlet);
+    if (granules) applyParameter(*options.scene, "--granules", "granules", *granules);
     for (const std::string& assignment : assignments) {
       const std::size_t equals = assignment.find('=');
       if (equals == std::string::npos || equals == 0) {
@@ -278,6 +293,10 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
     // Settings validate the parameters together (e.g. batches × batch against the limits).
     try {
       (void)options.scene->settings();
+    } catch (const MeshError& error) {
+      // Scenes load their mesh files here; name the flag that gave the file.
+      throw UsageError((mesh ? "--mesh " + *mesh : std::string("scene parameters")) + ": " +
+                       error.what());
     } catch (const Error& error) {
       throw UsageError(std::string("scene parameters: ") + error.what());
     }

@@ -1,10 +1,13 @@
 #include "app/metrics.h"
 
+#include <array>
 #include <charconv>
 #include <cstdlib>
 #include <fstream>
 #include <stdexcept>
+#include <string>
 #include <type_traits>
+#include <utility>
 
 namespace sandphys::samples {
 
@@ -106,6 +109,25 @@ nlohmann::json metricsJson(const RunSummary& summary, scenes::Scene& scene) {
     series.push_back({{"time", sample.time}, {"bodies", bodiesJson(sample.bodies)}});
   }
   metrics["bodies_series"] = series;
+  // A scene's series sit beside the run's own numbers, where a plot script looks first; a name
+  // the runner already uses would silently replace a number, so it is refused.
+  auto addTopLevel = [&](const std::string& key, nlohmann::json value) {
+    if (metrics.contains(key)) {
+      throw std::logic_error("scene '" + summary.scene + "': series key '" + key +
+                             "' is already a key of the metrics");
+    }
+    metrics[key] = std::move(value);
+  };
+  for (const scenes::SceneSeries& sceneSeries : summary.sceneSeries) {
+    nlohmann::json points = nlohmann::json::array();
+    for (const std::array<double, 2>& point : sceneSeries.points) {
+      points.push_back({point[0], point[1]});
+    }
+    addTopLevel(sceneSeries.name, std::move(points));
+    for (const scenes::SceneMetric& derived : sceneSeries.derived) {
+      addTopLevel(derived.name, derived.value);
+    }
+  }
   return metrics;
 }
 

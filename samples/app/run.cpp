@@ -156,6 +156,7 @@ RunSummary runScene(const GpuContext& gpu, scenes::Scene& scene, std::uint64_t f
   summary.gpuMemoryBytes = world.gpuMemoryBytes();
   summary.sceneFinished = scene.finished();
   summary.sceneMetrics = scene.metrics(summary.bodies);
+  summary.sceneSeries = scene.series();
   summary.sceneBodies = scene.bodies(world);
   return summary;
 }

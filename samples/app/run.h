@@ -33,7 +33,8 @@ struct RunSummary {
   std::string gpu;                   ///< GpuContext::description
   bool sceneFinished = false;        ///< Scene::finished at the end
   std::vector<scenes::SceneMetric> sceneMetrics;
-  std::vector<BodyState> bodies;  ///< World::readBodies at the end (for exports)
+  std::vector<scenes::SceneSeries> sceneSeries;  ///< Scene::series at the end
+  std::vector<BodyState> bodies;                 ///< World::readBodies at the end (for exports)
   /// The scene's rigid bodies that are not sand (Scene::bodies) at the end, and every
   /// kBodySeriesFrames frames with the simulated time, s.
   std::vector<scenes::SceneBody> sceneBodies;

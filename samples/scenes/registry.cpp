@@ -7,7 +7,10 @@
 #include "scenes/block_avalanche.h"
 #endif
 #include "scenes/box_drop.h"
+#include "scenes/bulldozer.h"
 #include "scenes/cylinder_pile.h"
+#include "scenes/hourglass.h"
+#include "scenes/rock_drop.h"
 #include "scenes/sand_box_pour.h"
 #include "scenes/slope_avalanche.h"
 
@@ -43,6 +46,17 @@ constexpr std::array kScenes{
                "batches of granules poured into a cylinder on a rough floor (Longmore et al. "
                "2013, section 5)",
                &make<CylinderPile>},
+    SceneEntry{"Bodies", "bulldozer",
+               "a kinematic blade pushes a berm of sand along the floor; its drag is recorded",
+               &make<Bulldozer>},
+    SceneEntry{"Bodies", "rock-drop",
+               "a rock (a mesh file, assets/rock.obj unless --mesh names another) dropped into a "
+               "settled bed of sand, where it digs in and comes to rest",
+               &make<RockDrop>},
+    SceneEntry{"Validation", "hourglass",
+               "granules drain from a 45 degree funnel through its outlet at a constant mean rate "
+               "(Longmore et al. 2013, Fig. 16); --metrics records the granules remaining",
+               &make<Hourglass>},
 };
 
 }  // namespace

@@ -51,6 +51,18 @@ struct SceneMetric {
   double value = 0.0;
 };
 
+/// A quantity a scene records over a run (the granules left in a funnel against time) and the
+/// numbers derived from it (a flow rate fitted to it), written at the top level of the metrics
+/// JSON: `name` as a list of [x, y] pairs and each derived number under its own name.
+struct SceneSeries {
+  /// snake_case key of the points ("remaining"); must not be a key the runner writes itself.
+  std::string name;
+  /// [x, y] pairs in the order recorded, in the units the scene documents ([s, granules]).
+  std::vector<std::array<double, 2>> points;
+  /// Numbers fitted to or read from the points ("flow_rate"), each a top-level key.
+  std::vector<SceneMetric> derived;
+};
+
 /// Axis-aligned box around everything a scene puts in the world, m. The viewer frames its camera
 /// on it.
 struct SceneBounds {
@@ -109,6 +121,10 @@ class Scene {
   virtual std::vector<SceneMetric> metrics(std::span<const BodyState> /*bodies*/) const {
     return {};
   }
+
+  /// The scene's time series and what was derived from them, at the end of a run (no read-back:
+  /// a scene records them in update()). The default has none.
+  virtual std::vector<SceneSeries> series() const { return {}; }
 
   /// The scene's rigid bodies that are not sand, now, in `world` (the one build() filled), for
   /// the metrics and their time series. Bodies that sandphys simulates are read back from `world`

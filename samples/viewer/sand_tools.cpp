@@ -4,9 +4,14 @@
 #include <cmath>
 #include <vector>
 
+#include "scenes/eigen_conversions.h"
+
 namespace sandphys::viewer {
 
 namespace {
+
+using scenes::toEigen;
+using scenes::toVec3;
 
 constexpr float kPourHalfExtent = 4.0f;  // d: a 9 d square, a handful of granules per layer
 constexpr float kPourHeight = 40.0f;     // d above the floor plane
@@ -14,14 +19,6 @@ constexpr float kPourSpeed = 1.0f;       // m/s downward at the emitter
 // The sphere hovers this far (d) above the floor plane, so that it never touches a rough floor's
 // particles (their contacts would count in the stats) but still scrapes the lowest sand.
 constexpr float kSphereClearance = 2.5f;
-
-Vec3 toVec3(const Eigen::Vector3f& v) {
-  return {v.x(), v.y(), v.z()};
-}
-
-Eigen::Vector3f toEigen(const Vec3& v) {
-  return {v.x, v.y, v.z};
-}
 
 // Particle centres on a cubic lattice of spacing d inside a ball: solid, so that fast sand meets
 // particles at any depth rather than slipping between those of a shell.

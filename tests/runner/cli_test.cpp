@@ -2,7 +2,10 @@
 // None of these reach the GPU.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "process.h"
@@ -66,6 +69,53 @@ TEST(SamplesCli, UnwritablePathsAreRefusedBeforeRunning) {
   expectUsageError("--metrics " + directory, {"--metrics", directory.c_str()});
 }
 
+// A file in the temporary folder, unique to this process, removed when the test ends.
+class TemporaryFile {
+ public:
+  TemporaryFile(const std::string& name, const std::string& contents)
+      : m_path(std::filesystem::temp_directory_path() /
+               ("sandphys-cli-" + std::to_string(::getpid()) + "-" + name)) {
+    std::ofstream(m_path) << contents;
+  }
+  ~TemporaryFile() { std::filesystem::remove(m_path); }
+  TemporaryFile(const TemporaryFile&) = delete;
+  TemporaryFile& operator=(const TemporaryFile&) = delete;
+  std::string path() const { return m_path.string(); }
+
+ private:
+  std::filesystem::path m_path;
+};
+
+TEST(SamplesCli, MissingMeshFileIsNamed) {
+  expectUsageError("--headless --scene rock-drop --mesh /nonexistent-sandphys.obj",
+                   {"--mesh", "/nonexistent-sandphys.obj", "does not exist"});
+}
+
+TEST(SamplesCli, MeshThatCannotMakeABodyIsNamedWithItsProblem) {
+  // A tetrahedron with one corner not a number.
+  const TemporaryFile nan("nan.obj",
+                          "v 0 0 0\nv nan 0 0\nv 0 1 0\nv 0 0 1\n"
+                          "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  expectUsageError("--headless --scene rock-drop --mesh " + nan.path(),
+                   {"--mesh", nan.path().c_str(), "not finite"});
+  const TemporaryFile points("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  expectUsageError("--headless --scene rock-drop --mesh " + points.path(),
+                   {"--mesh", points.path().c_str(), "no triangles"});
+}
+
+TEST(SamplesCli, MeshScaleMustBeAPositiveNumberThatFitsTheBox) {
+  expectUsageError("--headless --scene rock-drop --scale -1", {"--scale", "-1", "range"});
+  expectUsageError("--headless --scene rock-drop --scale 0", {"--scale", "0", "range"});
+  expectUsageError("--headless --scene rock-drop --scale nan", {"--scale", "nan", "not finite"});
+  // 1 m across: wider than the box around the default bed.
+  expectUsageError("--headless --scene rock-drop --scale 1", {"scale 1", "half width"});
+}
+
+TEST(SamplesCli, MeshOnASceneWithoutOne) {
+  expectUsageError("--headless --scene box-drop --mesh rock.obj", {"--mesh", "mesh", "box-drop"});
+  expectUsageError("--headless --scene box-drop --scale 2", {"--scale", "scale", "box-drop"});
+}
+
 TEST(SamplesCli, ListPrintsTheRegistry) {
   const ProcessResult result = runSamples("--list");
   EXPECT_EQ(result.exitCode, 0) << result.output;
@@ -77,8 +127,9 @@ TEST(SamplesCli, ListPrintsTheRegistry) {
 TEST(SamplesCli, HelpNamesTheFlags) {
   const ProcessResult result = runSamples("--help");
   EXPECT_EQ(result.exitCode, 0) << result.output;
-  for (const char* flag : {"--scene", "--headless", "--frames", "--frame-dt", "--metrics",
-                           "--export", "--batches", "--batch", "--seed", "--list"}) {
+  for (const char* flag :
+       {"--scene", "--headless", "--frames", "--frame-dt", "--metrics", "--export", "--batches",
+        "--batch", "--seed", "--mesh", "--scale", "--list"}) {
     EXPECT_NE(result.output.find(flag), std::string::npos) << flag;
   }
 }

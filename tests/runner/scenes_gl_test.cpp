@@ -14,8 +14,11 @@ TEST(RegisteredScenes, BuildInsideTheirContainerAndStep) {
     std::unique_ptr<Scene> scene = entry.create();
     // Small batches keep this quick on llvmpipe; the scene's own geometry stays as it is.
     for (const SceneParameter& parameter : scene->parameters()) {
-      if (parameter.name == "batch" || parameter.name == "block") {
+      if (parameter.name == "batch" || parameter.name == "block" || parameter.name == "berm" ||
+          parameter.name == "bed") {
         setSceneParameter(*scene, parameter.name, "4,2,4");
+      } else if (parameter.name == "granules") {
+        setSceneParameter(*scene, parameter.name, "32");
       }
     }
     World world(gpu, scene->settings());

@@ -1,0 +1,120 @@
+// The rock-drop scene with a small bed: the default rock (assets/rock.obj at 0.14 m, 7 d long,
+// 706 particles) dropped 8 d onto a settled bed of 8 x 4 x 8 = 256 granules. It comes to rest on
+// the sand, sunk into it: granules under it (not on the box floor), below the bed's top, and none
+// inside it. Without contacts with the sand it would fall through to the floor, and the "granules
+// under it" bound would fail. About 35 s on two cores: 1.7 s simulated, 10,000 substeps.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "scenes/rock_drop.h"
+#include "support/test_world.h"
+
+namespace sandphys::scenes {
+namespace {
+
+constexpr float kFrame = 1.0f / 60.0f;
+
+// Winding number of a closed, outward-wound mesh about `p`: 1 inside, 0 outside. The sum of
+// the solid angles of its triangles seen from p (Van Oosterom & Strackee 1983), over 4π.
+double windingNumber(const TriangleMesh& mesh, const Vec3& p) {
+  double total = 0.0;
+  for (const auto& triangle : mesh.triangles) {
+    double r[3][3];
+    double len[3];
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& v = mesh.vertices[triangle[k]];
+      r[k][0] = double(v.x) - p.x;
+      r[k][1] = double(v.y) - p.y;
+      r[k][2] = double(v.z) - p.z;
+      len[k] = std::sqrt(r[k][0] * r[k][0] + r[k][1] * r[k][1] + r[k][2] * r[k][2]);
+    }
+    const auto dot = [](const double* a, const double* b) {
+      return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    };
+    const double det = r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1]) -
+                       r[0][1] * (r[1][0] * r[2][2] - r[1][2] * r[2][0]) +
+                       r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0]);
+    const double denominator = len[0] * len[1] * len[2] + dot(r[0], r[1]) * len[2] +
+                               dot(r[1], r[2]) * len[0] + dot(r[2], r[0]) * len[1];
+    total += 2.0 * std::atan2(det, denominator);
+  }
+  return total / (4.0 * std::numbers::pi);
+}
+
+TEST(RockDrop, RockSinksIntoTheBedAndComesToRestOnSand) {
+  RockDrop scene;
+  scene.config().bed = {8, 4, 8};
+  const float d = scene.config().particleDiameter;
+  // The asset is a closed surface, so the rock is a solid (filled, with a solid's mass).
+  const MeshEdges edges = analyseEdges(scene.rockMesh());
+  EXPECT_TRUE(edges.closed()) << edges.openEdges << " open, " << edges.misorientedEdges
+                              << " misoriented edges of " << edges.edges;
+  World world(testing::gpu(), scene.settings());
+  scene.build(world);
+  ASSERT_EQ(world.granulesSpawned(), 256u);
+
+  // The bed settles (0.4 to 0.5 s), the rock falls 8 d (0.13 s) and stops within about a
+  // second; 4 s is far more.
+  int frame = 0;
+  while (!scene.finished() && world.simulatedTime() < 4.0) {
+    const StepReport report = scene.step(world, kFrame);
+    scene.update(world, report, world.simulatedTime());
+    if (++frame % 12 == 0 && scene.dropped()) {
+      const BodyState rock = world.readBody(scene.rock());
+      std::printf("t %.2f s (%s): rock lowest point %.4f m, bed top %.4f m, speed %.4f m/s\n",
+                  world.simulatedTime(), scene.status().c_str(), scene.lowestPoint(rock),
+                  scene.bedTop(), std::hypot(rock.velocity.x, rock.velocity.y, rock.velocity.z));
+    }
+  }
+  ASSERT_TRUE(scene.dropped()) << "the rock was never dropped: " << scene.status();
+  ASSERT_TRUE(scene.finished()) << "the rock did not stop within 4 s: " << scene.status();
+  const double restedAt = world.simulatedTime();
+
+  // A further 0.2 s: at rest means it stays where it is.
+  const BodyState before = world.readBody(scene.rock());
+  while (world.simulatedTime() < restedAt + 0.2) {
+    const StepReport report = scene.step(world, kFrame);
+    scene.update(world, report, world.simulatedTime());
+  }
+  const BodyState rock = world.readBody(scene.rock());
+  const float speed = std::hypot(rock.velocity.x, rock.velocity.y, rock.velocity.z);
+  const float heightChange = std::abs(rock.position.y - before.position.y);
+  const float lowest = scene.lowestPoint(rock);
+  const float depth = scene.bedTop() - lowest;
+
+  std::uint32_t inside = 0;
+  const std::vector<BodyState> bodies = world.readBodies();
+  for (const BodyState& body : bodies) {
+    if (!body.granule) continue;
+    if (windingNumber(scene.rockMesh(), scene.toRockFrame(rock, body.position)) > 0.5) ++inside;
+  }
+  std::printf(
+      "rock: %u particles, at rest %.2f s after the drop, speed %.4f m/s, height change over "
+      "0.2 s %.5f m; lowest point %.4f m (%.2f d) above the floor, %.4f m (%.2f d) below the "
+      "bed's top %.4f m; %u granule centres inside it\n",
+      scene.rockParticles(), restedAt - scene.droppedAt(), speed, heightChange, lowest, lowest / d,
+      depth, depth / d, scene.bedTop(), inside);
+
+  // At rest: creeping slower than the scene's rest speed (0.01 m/s), and 0.2 s at 0.01 m/s is
+  // 0.1 d of height, the bound on how much it may settle further.
+  EXPECT_LT(speed, 0.01f) << "m/s";
+  EXPECT_LT(heightChange, 0.1f * d) << "m over the last 0.2 s";
+  // On the sand: on the bare floor its lowest vertex would be one particle radius (0.5 d) above
+  // it; a grain between them lifts it to at least 1.5 d.
+  EXPECT_GT(lowest, 1.0f * d) << "the rock's lowest point is on the box floor (m)";
+  // In the sand: the bed's top (4 layers settle to about 3.4 d) is above its lowest point.
+  EXPECT_GT(depth, 0.25f * d) << "the rock did not sink into the bed (m below the top)";
+  EXPECT_EQ(inside, 0u) << "granule centres inside the rock";
+  for (const BodyState& body : bodies) {
+    if (!body.granule) continue;
+    EXPECT_TRUE(scene.contains(body.position)) << "granule " << body.index;
+  }
+}
+
+}  // namespace
+}  // namespace sandphys::scenes
