@@ -250,9 +250,7 @@ StepReport Bulldozer::step(World& world, float frameDt) {
 
 void Bulldozer::update(World& /*world*/, const StepReport& report, double simTime) {
   if (m_finished || m_phase != Phase::Stopped) return;
-  const double settleEnergy = 0.5 * m_granuleMass * m_config.settleSpeed * m_config.settleSpeed;
-  // Without per-frame stats only the time limit applies.
-  const bool calm = report.hasStats && report.stats.kineticEnergy / bermGranules() < settleEnergy;
+  const bool calm = granulesCalm(report, bermGranules(), m_granuleMass, m_config.settleSpeed);
   const double sinceStop = simTime - m_stoppedAt;
   if (sinceStop < kMinRestSeconds) return;
   if (!calm && sinceStop < m_config.maxSettleSeconds) return;

@@ -166,9 +166,8 @@ void CylinderPile::update(World& world, const StepReport& report, double simTime
 
   // Energy per granule of the newest batch: the older batches are at rest, so the world's kinetic
   // energy is essentially the newest batch's; dividing by all granules would call a batch settled
-  // too early once the pile is large. Without per-frame stats only the time limit applies.
-  const double settleEnergy = 0.5 * m_granuleMass * m_config.settleSpeed * m_config.settleSpeed;
-  const bool calm = report.hasStats && report.stats.kineticEnergy / batchGranules() < settleEnergy;
+  // too early once the pile is large.
+  const bool calm = granulesCalm(report, batchGranules(), m_granuleMass, m_config.settleSpeed);
   if (!calm && sinceDrop < m_config.maxSecondsPerBatch) return;
 
   m_settleTimes.push_back(sinceDrop);

@@ -231,10 +231,8 @@ void Hourglass::update(World& world, const StepReport& report, double simTime) {
   if (m_finished) return;
   if (!m_released) {
     if (simTime < m_config.releaseTime) return;
-    const double settleEnergy = 0.5 * m_granuleMass * m_config.settleSpeed * m_config.settleSpeed;
     const bool calm =
-        report.hasStats &&
-        report.stats.kineticEnergy / std::max(report.stats.granulesAlive, 1u) < settleEnergy;
+        granulesCalm(report, report.stats.granulesAlive, m_granuleMass, m_config.settleSpeed);
     if (!calm && simTime < m_config.releaseTime + m_config.maxSettleSeconds) return;
     // The fill as it settled, for startFrom of later runs: one read-back per run.
     for (const BodyState& body : world.readBodies()) {

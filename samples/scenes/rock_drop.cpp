@@ -261,9 +261,7 @@ void RockDrop::update(World& world, const StepReport& report, double simTime) {
   const double g = gravityMagnitude(world.settings());
   if (!dropped()) {
     if (simTime < m_config.settleTime) return;
-    const double settleEnergy = 0.5 * m_granuleMass * m_config.settleSpeed * m_config.settleSpeed;
-    // Without per-frame stats only the time limit applies.
-    const bool calm = report.hasStats && report.stats.kineticEnergy / bedGranules() < settleEnergy;
+    const bool calm = granulesCalm(report, bedGranules(), m_granuleMass, m_config.settleSpeed);
     if (!calm && simTime < m_config.settleTime + m_config.maxSettleSeconds) return;
 
     // The bed's top: one read-back, at the drop only. Before the drop every particle is sand.

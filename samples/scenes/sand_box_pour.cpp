@@ -187,10 +187,8 @@ void SandBoxPour::startPour(World& world, double simTime) {
 
 void SandBoxPour::update(World& world, const StepReport& report, double simTime) {
   if (m_finished) return;
-  const double settleEnergy = 0.5 * m_granuleMass * m_config.settleSpeed * m_config.settleSpeed;
-  // Without per-frame stats only the time limits apply.
   auto calm = [&](std::uint32_t granules) {
-    return report.hasStats && granules > 0 && report.stats.kineticEnergy / granules < settleEnergy;
+    return granulesCalm(report, granules, m_granuleMass, m_config.settleSpeed);
   };
 
   if (m_pourStart < 0.0) {

@@ -110,6 +110,12 @@ std::string formatSceneParameter(const SceneParameter& parameter) {
       parameter.value);
 }
 
+bool granulesCalm(const StepReport& report, std::uint32_t granules, float granuleMass,
+                  float settleSpeed) {
+  const double settleEnergy = 0.5 * granuleMass * settleSpeed * settleSpeed;
+  return report.hasStats && granules > 0 && report.stats.kineticEnergy / granules < settleEnergy;
+}
+
 float gravityMagnitude(const WorldSettings& settings) {
   const Vec3 g = settings.gravity;
   return std::sqrt(g.x * g.x + g.y * g.y + g.z * g.z);

@@ -138,6 +138,13 @@ class Scene {
   virtual SceneBounds bounds() const = 0;
 };
 
+/// Whether `granules` granules of mass `granuleMass` (kg) are calm after the step that gave
+/// `report`: the world's kinetic energy (from the step's stats) per granule is below that of one
+/// granule moving at `settleSpeed` (m/s). False without per-frame stats (a scene's time limits
+/// apply then) or without granules.
+bool granulesCalm(const StepReport& report, std::uint32_t granules, float granuleMass,
+                  float settleSpeed);
+
 /// Length of the world's gravity vector, m/s².
 float gravityMagnitude(const WorldSettings& settings);
 

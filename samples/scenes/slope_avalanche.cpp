@@ -133,9 +133,7 @@ void SlopeAvalanche::build(World& world) {
 
 void SlopeAvalanche::update(World& world, const StepReport& report, double simTime) {
   if (m_finished) return;
-  const double settleEnergy = 0.5 * m_granuleMass * m_config.settleSpeed * m_config.settleSpeed;
-  // Without per-frame stats only the time limits apply.
-  const bool calm = report.hasStats && report.stats.kineticEnergy / blockGranules() < settleEnergy;
+  const bool calm = granulesCalm(report, blockGranules(), m_granuleMass, m_config.settleSpeed);
   if (!m_released) {
     if (simTime < m_config.releaseTime) return;
     if (!calm && simTime < m_config.releaseTime + m_config.maxSettleSeconds) return;

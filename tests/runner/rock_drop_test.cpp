@@ -1,5 +1,5 @@
 // The rock-drop scene with a small bed: the default rock (assets/rock.obj at 0.14 m, 7 d long,
-// 706 particles) dropped 8 d onto a settled bed of 8 x 4 x 8 = 256 granules. It comes to rest on
+// 708 particles) dropped 8 d onto a settled bed of 8 x 4 x 8 = 256 granules. It comes to rest on
 // the sand, sunk into it: granules under it (not on the box floor), below the bed's top, and none
 // inside it. Without contacts with the sand it would fall through to the floor, and the "granules
 // under it" bound would fail. About 35 s on two cores: 1.7 s simulated, 10,000 substeps.
