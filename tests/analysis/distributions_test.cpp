@@ -11,19 +11,12 @@
 #include <sandphys/analysis.h>
 #include <sandphys/error.h>
 
+#include "error_of.h"
+
 namespace sandphys::analysis {
 namespace {
 
-template <typename Call>
-std::string errorOf(Call call) {
-  try {
-    call();
-  } catch (const InvalidArgument& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "no InvalidArgument thrown";
-  return {};
-}
+using testing::errorOf;
 
 double integral(const Density& density) {
   double sum = 0.0;

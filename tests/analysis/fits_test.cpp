@@ -12,20 +12,12 @@
 #include <sandphys/analysis.h>
 #include <sandphys/error.h>
 
+#include "error_of.h"
+
 namespace sandphys::analysis {
 namespace {
 
-// Runs `call`, expects InvalidArgument, and returns its message.
-template <typename Call>
-std::string errorOf(Call call) {
-  try {
-    call();
-  } catch (const InvalidArgument& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "no InvalidArgument thrown";
-  return {};
-}
+using testing::errorOf;
 
 TEST(LineFit, ExactLineFarFromTheOriginComesBackToRounding) {
   // Times in seconds late in a long run: a raw-moment formula would lose the slope here.
