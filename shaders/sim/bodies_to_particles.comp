@@ -8,13 +8,13 @@
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 
-BODY_POSITION(readonly)
-BODY_ORIENTATION(readonly)
-BODY_VELOCITY(readonly)
-BODY_ANGULAR_VELOCITY(readonly)
-BODY_INFO(readonly)
-PARTICLE_LOCAL(readonly)
-PARTICLE_BODY(readonly)
+BODY_POSITION_TEXTURE
+BODY_ORIENTATION_TEXTURE
+BODY_VELOCITY_TEXTURE
+BODY_ANGULAR_VELOCITY_TEXTURE
+BODY_INFO_TEXTURE
+PARTICLE_LOCAL_TEXTURE
+PARTICLE_BODY_TEXTURE
 PARTICLE_POSITION(writeonly)
 PARTICLE_VELOCITY(writeonly)
 PARTICLE_CELL(writeonly)
@@ -23,14 +23,16 @@ CELL_COUNT(coherent)
 void main() {
   uint i = threadIndex();
   if (i >= counts.x) return;
-  uint body = particleBody[i];
-  if ((bodyInfo[body].z & BODY_ALIVE) == 0u) {
+  int body = int(texelFetch(particleBodyTexture, int(i)).x);
+  if ((texelFetch(bodyInfoTexture, body).z & BODY_ALIVE) == 0u) {
     particleCell[i] = INVALID_CELL;
     return;
   }
-  vec3 offset = quatRotate(bodyOrientation[body], particleLocal[i].xyz);
-  vec3 position = bodyPosition[body].xyz + offset;
-  vec3 velocity = bodyVelocity[body].xyz + cross(bodyAngularVelocity[body].xyz, offset);
+  vec3 offset = quatRotate(texelFetch(bodyOrientationTexture, body),
+                           texelFetch(particleLocalTexture, int(i)).xyz);
+  vec3 position = texelFetch(bodyPositionTexture, body).xyz + offset;
+  vec3 velocity = texelFetch(bodyVelocityTexture, body).xyz +
+                  cross(texelFetch(bodyAngularVelocityTexture, body).xyz, offset);
   particlePosition[i] = vec4(position, 0.0);
   particleVelocity[i] = vec4(velocity, 0.0);
   uint bucket = bucketOf(cellOf(position));

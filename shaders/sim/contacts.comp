@@ -15,7 +15,7 @@
 layout(local_size_x = WORKGROUP_SIZE) in;
 
 CELL_START_TEXTURE
-CELL_PARTICLES(readonly)
+CELL_PARTICLES_TEXTURE
 SORTED_POSITION_TEXTURE
 SORTED_VELOCITY_TEXTURE
 COLLIDERS(readonly)
@@ -77,7 +77,7 @@ void main() {
   // Static particles (rough floors) never move: nobody needs their force. Their neighbours still
   // see them, since the gather of a sand particle reads the floor particle, not its result.
   if (selfVelocity.w < 0.0) {
-    particleForce[cellParticles[i]] = vec4(0.0);
+    particleForce[texelFetch(cellParticlesTexture, int(i)).x] = vec4(0.0);
     return;
   }
 #endif
@@ -86,7 +86,7 @@ void main() {
   float maxOverlap = particleGeom.w;
   ivec3 cell = cellOf(self.xyz);
 #ifdef CONTACT_LIST
-  uint selfId = cellParticles[i];
+  uint selfId = texelFetch(cellParticlesTexture, int(i)).x;
 #endif
 
   vec3 force = vec3(0.0);
@@ -127,7 +127,7 @@ void main() {
           ContactResult r = contactForce(xi, n, selfVelocity.xyz - otherVelocity.xyz, grainContact.x,
                                          grainContact.y, invMassSum, grainContact.z, grainContact.w);
 #ifdef CONTACT_LIST
-          uint otherId = cellParticles[s];
+          uint otherId = texelFetch(cellParticlesTexture, int(s)).x;
           if (selfId < otherId) {
             record(selfId, otherId, selfBody, floatBitsToUint(other.w), 0xffffffffu,
                    self.xyz - n * (radius - 0.5 * xi), n, diameter - dist, r);
@@ -141,24 +141,31 @@ void main() {
     }
   }
 
-  // Each collider type in its own loop (uniform control flow; see colliders.glsl).
-#define COLLIDER_LOOP(BEGIN, END, HITS)                                                          \
-  for (uint k = BEGIN; k < END; ++k) {                                                         \
-    Collider c = colliders[k];                                                                 \
-    vec4 hits[MAX_COLLIDER_HITS];                                                              \
-    uint hitCount = HITS(c, self.xyz, radius, hits);                                           \
-    for (uint h = 0u; h < hitCount; ++h) {                                                     \
-      COLLIDER_CONTACT(c, hits[h])                                                             \
-    }                                                                                          \
+  // Each collider type in its own loop (uniform control flow; see colliders.glsl). Every
+  // particle runs the loops and only movable ones take the contacts: loads inside a divergent
+  // branch run lane by lane on llvmpipe.
+  bool movable = selfVelocity.w > 0.0;
+  for (uint k = 0u; k < colliderEnds.x; ++k) {
+    Collider c = colliders[k];
+    vec4 hit = planeHit(c, self.xyz, radius);
+    if (movable && hit.w > 0.0) COLLIDER_CONTACT(c, hit)
   }
-  if (selfVelocity.w > 0.0) {
-    COLLIDER_LOOP(0u, colliderEnds.x, planeHits)
-    COLLIDER_LOOP(colliderEnds.x, colliderEnds.y, boxHits)
-    COLLIDER_LOOP(colliderEnds.y, colliderEnds.z, revolutionHits)
+  for (uint k = colliderEnds.x; k < colliderEnds.y; ++k) {
+    Collider c = colliders[k];
+    vec3 local = boxLocal(c, self.xyz);
+    for (int axis = 0; axis < BOX_AXES; ++axis) {
+      vec4 hit = boxHit(c, local, radius, axis);
+      if (movable && hit.w > 0.0) COLLIDER_CONTACT(c, hit)
+    }
+  }
+  for (uint k = colliderEnds.y; k < colliderEnds.z; ++k) {
+    Collider c = colliders[k];
+    vec4 hit = revolutionHit(c, self.xyz, radius);
+    if (movable && hit.w > 0.0) COLLIDER_CONTACT(c, hit)
   }
 
 #ifndef CONTACT_LIST
-  uint id = cellParticles[i];
+  uint id = texelFetch(cellParticlesTexture, int(i)).x;
   particleForce[id] = vec4(force, 0.0);
   uvec4 stats = particleStats[id];
   stats.x = pairContacts;

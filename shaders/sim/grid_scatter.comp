@@ -8,7 +8,7 @@ layout(local_size_x = WORKGROUP_SIZE) in;
 
 PARTICLE_CELL(readonly)
 CELL_COUNT(coherent)
-CELL_START(readonly)
+CELL_START_TEXTURE
 CELL_PARTICLES(writeonly)
 
 void main() {
@@ -17,5 +17,5 @@ void main() {
   uint bucket = particleCell[i];
   if (bucket == INVALID_CELL) return;
   uint previous = atomicAdd(cellCount[bucket], 0xffffffffu);
-  cellParticles[cellStart[bucket] + previous - 1u] = i;
+  cellParticles[texelFetch(cellStartTexture, int(bucket)).x + previous - 1u] = i;
 }

@@ -1,26 +1,19 @@
 #version 450
-// Pass 4. One thread per bucket sorts its particle ids ascending (insertion sort: buckets hold a
-// handful of particles; there is no cap) and writes the bucket-ordered copies of position, body,
-// velocity and inverse mass that the contact gather reads. After this pass the whole grid is a
-// pure function of the particle positions: the step is deterministic.
+// Pass 4a. One thread per bucket sorts its particle ids ascending (insertion sort: buckets hold a
+// handful of particles; there is no cap). After this pass the bucket order is a pure function of
+// the particle positions: the step is deterministic.
 #include "common/layout.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 
-CELL_START(readonly)
+CELL_START_TEXTURE
 CELL_PARTICLES(coherent)
-PARTICLE_POSITION(readonly)
-PARTICLE_VELOCITY(readonly)
-PARTICLE_BODY(readonly)
-PARTICLE_LOCAL(readonly)
-SORTED_POSITION(writeonly)
-SORTED_VELOCITY(writeonly)
 
 void main() {
   uint bucket = threadIndex();
   if (bucket >= counts2.y) return;
-  uint begin = cellStart[bucket];
-  uint end = cellStart[bucket + 1u];
+  uint begin = texelFetch(cellStartTexture, int(bucket)).x;
+  uint end = texelFetch(cellStartTexture, int(bucket + 1u)).x;
   for (uint s = begin + 1u; s < end; ++s) {
     uint id = cellParticles[s];
     uint t = s;
@@ -29,10 +22,5 @@ void main() {
       --t;
     }
     cellParticles[t] = id;
-  }
-  for (uint s = begin; s < end; ++s) {
-    uint id = cellParticles[s];
-    sortedPosition[s] = vec4(particlePosition[id].xyz, uintBitsToFloat(particleBody[id]));
-    sortedVelocity[s] = vec4(particleVelocity[id].xyz, particleLocal[id].w);
   }
 }

@@ -13,8 +13,8 @@ BODY_VELOCITY(coherent)
 BODY_ANGULAR_VELOCITY(coherent)
 BODY_INERTIA(readonly)
 BODY_INFO(coherent)
-PARTICLE_POSITION(readonly)
-PARTICLE_FORCE(readonly)
+PARTICLE_POSITION_TEXTURE
+PARTICLE_FORCE_TEXTURE
 SINKS(readonly)
 COUNTERS(coherent)
 
@@ -34,9 +34,9 @@ void main() {
   vec3 torque = vec3(0.0);
   if (motion == MOTION_DYNAMIC) {
     for (uint k = info.x; k < info.x + info.y; ++k) {
-      vec3 f = particleForce[k].xyz;
+      vec3 f = texelFetch(particleForceTexture, int(k)).xyz;
       force += f;
-      torque += cross(particlePosition[k].xyz - centre, f);
+      torque += cross(texelFetch(particlePositionTexture, int(k)).xyz - centre, f);
     }
   }
   integrateBody(b, info, force, torque);

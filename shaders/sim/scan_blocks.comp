@@ -6,7 +6,7 @@
 #define SCAN_THREADS 256
 layout(local_size_x = SCAN_THREADS) in;
 
-CELL_COUNT(readonly)
+CELL_COUNT_TEXTURE
 CELL_START(writeonly)
 SCAN_BLOCK_SUMS(writeonly)
 
@@ -16,9 +16,9 @@ void main() {
   uint local = gl_LocalInvocationID.x;
   uint group = gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x;
   uint base = group * (SCAN_THREADS * 4u) + local * 4u;
-  uint size = counts2.y;
-  uvec4 v = uvec4(base < size ? cellCount[base] : 0u, base + 1u < size ? cellCount[base + 1u] : 0u,
-                  base + 2u < size ? cellCount[base + 2u] : 0u, base + 3u < size ? cellCount[base + 3u] : 0u);
+  // The table size is a power of two of at least 4096, so every block is full.
+  uvec4 v = uvec4(texelFetch(cellCountTexture, int(base)).x, texelFetch(cellCountTexture, int(base + 1u)).x,
+                  texelFetch(cellCountTexture, int(base + 2u)).x, texelFetch(cellCountTexture, int(base + 3u)).x);
   uint threadSum = v.x + v.y + v.z + v.w;
   partial[local] = threadSum;
   barrier();
@@ -30,9 +30,9 @@ void main() {
     barrier();
   }
   uint exclusive = partial[local] - threadSum;
-  if (base < size) cellStart[base] = exclusive;
-  if (base + 1u < size) cellStart[base + 1u] = exclusive + v.x;
-  if (base + 2u < size) cellStart[base + 2u] = exclusive + v.x + v.y;
-  if (base + 3u < size) cellStart[base + 3u] = exclusive + v.x + v.y + v.z;
+  cellStart[base] = exclusive;
+  cellStart[base + 1u] = exclusive + v.x;
+  cellStart[base + 2u] = exclusive + v.x + v.y;
+  cellStart[base + 3u] = exclusive + v.x + v.y + v.z;
   if (local == SCAN_THREADS - 1u) scanBlockSums[group] = partial[local];
 }

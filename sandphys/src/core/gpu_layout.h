@@ -39,6 +39,29 @@ enum Binding : unsigned {
   kBindingCount = 26,
 };
 
+/// Texture units of the read-only buffer-texture views of some of the buffers above (layout.glsl,
+/// *_TEXTURE). On llvmpipe an SSBO load at a per-invocation offset runs lane by lane, while a
+/// texel fetch is one vector gather; on GPUs it is the cached read path. A kernel reads through a
+/// view only what earlier dispatches wrote.
+enum TextureUnit : unsigned {
+  kSortedPositionTexture = 0,
+  kSortedVelocityTexture = 1,
+  kCellStartTexture = 2,
+  kBodyPositionTexture = 3,
+  kBodyOrientationTexture = 4,
+  kBodyVelocityTexture = 5,
+  kBodyAngularVelocityTexture = 6,
+  kBodyInfoTexture = 7,
+  kParticleLocalTexture = 8,
+  kParticleBodyTexture = 9,
+  kParticlePositionTexture = 10,
+  kParticleVelocityTexture = 11,
+  kParticleForceTexture = 12,
+  kCellParticlesTexture = 13,
+  kCellCountTexture = 14,
+  kTextureCount = 15,
+};
+
 inline constexpr unsigned kSimParamsBinding = 0;
 inline constexpr unsigned kWorkgroupSize = 64;
 inline constexpr unsigned kScanBlock = 1024;      // elements per scan workgroup (256 x 4)

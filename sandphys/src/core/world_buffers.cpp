@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <bit>
+#include <iterator>
 
 #include "core/world_impl.h"
 #include "gl/gl_check.h"
@@ -48,9 +49,38 @@ constexpr BufferSpec kSpecs[kBindingCount] = {
 
 }  // namespace
 
+struct TextureView {
+  TextureUnit unit;
+  Binding buffer;
+  GLenum format;  // the element type the buffer's GLSL declaration gives it
+};
+constexpr TextureView kTextureViews[] = {
+    {kSortedPositionTexture, kSortedPosition, GL_RGBA32F},
+    {kSortedVelocityTexture, kSortedVelocity, GL_RGBA32F},
+    {kCellStartTexture, kCellStart, GL_R32UI},
+    {kBodyPositionTexture, kBodyPosition, GL_RGBA32F},
+    {kBodyOrientationTexture, kBodyOrientation, GL_RGBA32F},
+    {kBodyVelocityTexture, kBodyVelocity, GL_RGBA32F},
+    {kBodyAngularVelocityTexture, kBodyAngularVelocity, GL_RGBA32F},
+    {kBodyInfoTexture, kBodyInfo, GL_RGBA32UI},
+    {kParticleLocalTexture, kParticleLocal, GL_RGBA32F},
+    {kParticleBodyTexture, kParticleBody, GL_R32UI},
+    {kParticlePositionTexture, kParticlePosition, GL_RGBA32F},
+    {kParticleVelocityTexture, kParticleVelocity, GL_RGBA32F},
+    {kParticleForceTexture, kParticleForce, GL_RGBA32F},
+    {kCellParticlesTexture, kCellParticles, GL_R32UI},
+    {kCellCountTexture, kCellCount, GL_R32UI},
+};
+static_assert(std::size(kTextureViews) == kTextureCount);
+
+// scan_blocks.comp reads whole blocks of the table without bounds checks.
+constexpr std::uint32_t kMinTableSize = 4096;
+static_assert(kMinTableSize % kScanBlock == 0);
+
 HashTable HashTable::forParticles(std::uint32_t particles) {
   HashTable t;
-  t.size = std::max<std::uint32_t>(4096u, std::bit_ceil(std::max<std::uint32_t>(particles, 1u)));
+  t.size =
+      std::max<std::uint32_t>(kMinTableSize, std::bit_ceil(std::max<std::uint32_t>(particles, 1u)));
   const std::uint32_t mask = t.size - 1u;
   // Like a dense grid of side ~size^(1/3): nearby cells get nearby buckets.
   std::uint32_t side = 1;
@@ -126,9 +156,8 @@ void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::
   // The texture views follow the buffers (a grown buffer is a new buffer object).
   if (textures[0] == 0)
     glCreateTextures(GL_TEXTURE_BUFFER, GLsizei(textures.size()), textures.data());
-  glTextureBuffer(textures[0], GL_RGBA32F, storage[kSortedPosition].id());
-  glTextureBuffer(textures[1], GL_RGBA32F, storage[kSortedVelocity].id());
-  glTextureBuffer(textures[2], GL_R32UI, storage[kCellStart].id());
+  for (const TextureView& view : kTextureViews)
+    glTextureBuffer(textures[view.unit], view.format, storage[view.buffer].id());
   gl::check("allocating world buffers");
 }
 
@@ -156,6 +185,7 @@ void WorldKernels::compile() {
   scanAdd = library.compileCompute("sim/scan_add.comp");
   gridScatter = library.compileCompute("sim/grid_scatter.comp");
   gridSort = library.compileCompute("sim/grid_sort.comp");
+  gridCopy = library.compileCompute("sim/grid_copy.comp");
   contacts = library.compileCompute("sim/contacts.comp");
   contactList = library.compileCompute("sim/contacts.comp", {"CONTACT_LIST 1"});
   integrateBodies = library.compileCompute("sim/integrate_bodies.comp");
@@ -164,8 +194,9 @@ void WorldKernels::compile() {
 }
 
 void WorldKernels::release() {
-  for (GLuint p : {bodiesToParticles, scanBlocks, scanBlockSums, scanAdd, gridScatter, gridSort,
-                   contacts, contactList, integrateBodies, integrateLargeBodies, statsReduce}) {
+  for (GLuint p :
+       {bodiesToParticles, scanBlocks, scanBlockSums, scanAdd, gridScatter, gridSort, gridCopy,
+        contacts, contactList, integrateBodies, integrateLargeBodies, statsReduce}) {
     if (p) glDeleteProgram(p);
   }
   *this = {};

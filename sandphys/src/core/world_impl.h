@@ -22,8 +22,8 @@ namespace detail {
 struct WorldBuffers {
   std::array<gl::Buffer, kBindingCount> storage;
   gl::Buffer params;  // uniform SimParams
-  // Buffer-texture views (layout.glsl, *_TEXTURE) of sortedPosition, sortedVelocity, cellStart.
-  std::array<GLuint, 3> textures{};
+  // Buffer-texture views (layout.glsl, *_TEXTURE), indexed by TextureUnit.
+  std::array<GLuint, kTextureCount> textures{};
 
   WorldBuffers() = default;
   ~WorldBuffers();
@@ -48,6 +48,7 @@ struct WorldKernels {
   GLuint scanAdd = 0;
   GLuint gridScatter = 0;
   GLuint gridSort = 0;
+  GLuint gridCopy = 0;
   GLuint contacts = 0;
   GLuint contactList = 0;
   GLuint integrateBodies = 0;

@@ -48,7 +48,7 @@ void World::Impl::dispatch(GLuint program, const char* name, std::uint32_t threa
   profiler.begin(name);
   glDispatchCompute(gx, gy, 1);
   profiler.end();
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 void World::Impl::runSubstep() {
@@ -60,9 +60,11 @@ void World::Impl::runSubstep() {
   dispatch(kernels.scanBlocks, "scan_blocks", blocks * 256u, 256u);
   dispatch(kernels.scanBlockSums, "scan_block_sums", 1024u, 1024u);
   dispatch(kernels.scanAdd, "scan_add", blocks * 256u, 256u);
-  // 3. Scatter into buckets; 4. deterministic order inside each bucket + sorted copies.
+  // 3. Scatter into buckets; 4. deterministic order inside each bucket, then the bucket-ordered
+  // copies that the contact gather reads.
   dispatch(kernels.gridScatter, "grid_scatter", particleCount, kWorkgroupSize);
   dispatch(kernels.gridSort, "grid_sort", table.size, kWorkgroupSize);
+  dispatch(kernels.gridCopy, "grid_copy", particleCount, kWorkgroupSize);
   // 5. Contact forces (eq. 9, 10) and colliders, gathered per particle.
   dispatch(kernels.contacts, "contacts", particleCount, kWorkgroupSize);
   // 6. Body sums (eq. 2, 3) and integration (eq. 4-6), guards, sinks.

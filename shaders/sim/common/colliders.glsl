@@ -1,7 +1,8 @@
 // Implicit, smooth colliders (docs/architecture.md, "colliders"). World keeps them sorted by
 // type (SimParams.colliderEnds) so that kernels loop over each type in turn, every invocation
-// running the same code. Each function returns the surfaces a
-// sphere of radius r at p overlaps: hit = (unit normal towards the sphere, overlap xi > 0).
+// running the same code. Each function returns one surface that a sphere of radius r at p may
+// overlap: hit = (unit normal towards the sphere, overlap xi), a contact when xi > 0. A value, not
+// an array of hits: llvmpipe runs dynamically indexed arrays lane by lane.
 // Types and parameters (written by World, see gpu_layout.h):
 //   PLANE       a = (n, offset): solid where dot(n, x) < offset
 //   BOX         a = (centre, inside ? 1 : 0), b = (half extents, 0), c = orientation (x, y, z, w)
@@ -12,50 +13,44 @@
 #define COLLIDER_PLANE 1
 #define COLLIDER_BOX 2
 #define COLLIDER_REVOLUTION 3
-#define MAX_COLLIDER_HITS 3
+// A container box touches a sphere in a corner with up to three walls: boxHit is asked per axis.
+#define BOX_AXES 3
 
-uint planeHits(Collider c, vec3 p, float r, out vec4 hits[MAX_COLLIDER_HITS]) {
-  float xi = r - (dot(c.a.xyz, p) - c.a.w);
-  hits[0] = vec4(c.a.xyz, xi);
-  return xi > 0.0 ? 1u : 0u;
+vec4 planeHit(Collider c, vec3 p, float r) {
+  return vec4(c.a.xyz, r - (dot(c.a.xyz, p) - c.a.w));
 }
 
-uint boxHits(Collider c, vec3 p, float r, out vec4 hits[MAX_COLLIDER_HITS]) {
-  vec3 local = quatRotateInverse(c.c, p - c.a.xyz);
+// The sphere's centre in the box's frame, for boxHit.
+vec3 boxLocal(Collider c, vec3 p) {
+  return quatRotateInverse(c.c, p - c.a.xyz);
+}
+
+vec4 boxHit(Collider c, vec3 local, float r, int axis) {
   vec3 h = c.b.xyz;
-  uint count = 0u;
   if (c.a.w > 0.5) {
-    // Container: each wall pushes inwards; a sphere in a corner touches up to three walls.
-    for (int axis = 0; axis < 3; ++axis) {
-      float toMax = h[axis] - local[axis];
-      float toMin = h[axis] + local[axis];
-      vec3 axisDir = vec3(0.0);
-      axisDir[axis] = 1.0;
-      if (toMax < toMin) {
-        if (r - toMax > 0.0 && count < MAX_COLLIDER_HITS) hits[count++] = vec4(quatRotate(c.c, -axisDir), r - toMax);
-      } else {
-        if (r - toMin > 0.0 && count < MAX_COLLIDER_HITS) hits[count++] = vec4(quatRotate(c.c, axisDir), r - toMin);
-      }
-    }
-    return count;
+    // Container: the nearer of the two walls across this axis pushes inwards.
+    float toMax = h[axis] - local[axis];
+    float toMin = h[axis] + local[axis];
+    vec3 axisDir = vec3(0.0);
+    axisDir[axis] = 1.0;
+    return toMax < toMin ? vec4(quatRotate(c.c, -axisDir), r - toMax)
+                         : vec4(quatRotate(c.c, axisDir), r - toMin);
   }
-  // Solid obstacle: push out of the nearest face, or away from the nearest point outside.
+  // Solid obstacle, one contact (asked for on the first axis): push out of the nearest face, or
+  // away from the nearest point outside.
+  if (axis != 0) return vec4(0.0);
   vec3 nearest = clamp(local, -h, h);
   vec3 delta = local - nearest;
   float dist = length(delta);
-  if (dist > 0.0) {
-    hits[0] = vec4(quatRotate(c.c, delta / dist), r - dist);
-    return r - dist > 0.0 ? 1u : 0u;
-  }
+  if (dist > 0.0) return vec4(quatRotate(c.c, delta / dist), r - dist);
   vec3 depth = h - abs(local);
-  int axis = depth.x < depth.y ? (depth.x < depth.z ? 0 : 2) : (depth.y < depth.z ? 1 : 2);
+  int nearestAxis = depth.x < depth.y ? (depth.x < depth.z ? 0 : 2) : (depth.y < depth.z ? 1 : 2);
   vec3 normal = vec3(0.0);
-  normal[axis] = local[axis] >= 0.0 ? 1.0 : -1.0;
-  hits[0] = vec4(quatRotate(c.c, normal), r + depth[axis]);
-  return 1u;
+  normal[nearestAxis] = local[nearestAxis] >= 0.0 ? 1.0 : -1.0;
+  return vec4(quatRotate(c.c, normal), r + depth[nearestAxis]);
 }
 
-uint revolutionHits(Collider c, vec3 p, float r, out vec4 hits[MAX_COLLIDER_HITS]) {
+vec4 revolutionHit(Collider c, vec3 p, float r) {
   vec3 rel = p - c.a.xyz;
   float radial = length(rel.xz);
   vec2 q = vec2(radial, rel.y);
@@ -65,7 +60,7 @@ uint revolutionHits(Collider c, vec3 p, float r, out vec4 hits[MAX_COLLIDER_HITS
   float t = clamp(dot(q - s0, seg) / dot(seg, seg), 0.0, 1.0);
   vec2 delta = q - (s0 + t * seg);
   float dist = length(delta);
-  if (dist >= r) return 0u;
+  if (dist >= r) return vec4(0.0);
   vec2 n2;
   if (dist > 0.0) {
     n2 = delta / dist;
@@ -74,6 +69,5 @@ uint revolutionHits(Collider c, vec3 p, float r, out vec4 hits[MAX_COLLIDER_HITS
     if (n2.x > 0.0) n2 = -n2;
   }
   vec2 radialDir = radial > 0.0 ? rel.xz / radial : vec2(1.0, 0.0);
-  hits[0] = vec4(n2.x * radialDir.x, n2.y, n2.x * radialDir.y, r - dist);
-  return 1u;
+  return vec4(n2.x * radialDir.x, n2.y, n2.x * radialDir.y, r - dist);
 }

@@ -59,12 +59,25 @@
 // Per-workgroup sums of the block scan.
 #define SCAN_BLOCK_SUMS(access) layout(std430, binding = 18) access buffer ScanBlockSumsBuffer { uint scanBlockSums[]; };
 
-// Read-only views of three buffers above as buffer textures, for the contact gather: a texel
-// fetch is the fast gather path on GPUs and on llvmpipe (whose SSBO loads at per-invocation
-// offsets run lane by lane). Same memory, no copy.
+// Read-only views of some of the buffers above as buffer textures (same memory, no copy); the
+// units are TextureUnit in gpu_layout.h. A texel fetch is the fast gather path on GPUs and on
+// llvmpipe, whose SSBO loads at per-invocation offsets run lane by lane. A kernel reads through a
+// view only what earlier dispatches wrote, never a buffer it writes itself.
 #define SORTED_POSITION_TEXTURE layout(binding = 0) uniform samplerBuffer sortedPositionTexture;
 #define SORTED_VELOCITY_TEXTURE layout(binding = 1) uniform samplerBuffer sortedVelocityTexture;
 #define CELL_START_TEXTURE layout(binding = 2) uniform usamplerBuffer cellStartTexture;
+#define BODY_POSITION_TEXTURE layout(binding = 3) uniform samplerBuffer bodyPositionTexture;
+#define BODY_ORIENTATION_TEXTURE layout(binding = 4) uniform samplerBuffer bodyOrientationTexture;
+#define BODY_VELOCITY_TEXTURE layout(binding = 5) uniform samplerBuffer bodyVelocityTexture;
+#define BODY_ANGULAR_VELOCITY_TEXTURE layout(binding = 6) uniform samplerBuffer bodyAngularVelocityTexture;
+#define BODY_INFO_TEXTURE layout(binding = 7) uniform usamplerBuffer bodyInfoTexture;
+#define PARTICLE_LOCAL_TEXTURE layout(binding = 8) uniform samplerBuffer particleLocalTexture;
+#define PARTICLE_BODY_TEXTURE layout(binding = 9) uniform usamplerBuffer particleBodyTexture;
+#define PARTICLE_POSITION_TEXTURE layout(binding = 10) uniform samplerBuffer particlePositionTexture;
+#define PARTICLE_VELOCITY_TEXTURE layout(binding = 11) uniform samplerBuffer particleVelocityTexture;
+#define PARTICLE_FORCE_TEXTURE layout(binding = 12) uniform samplerBuffer particleForceTexture;
+#define CELL_PARTICLES_TEXTURE layout(binding = 13) uniform usamplerBuffer cellParticlesTexture;
+#define CELL_COUNT_TEXTURE layout(binding = 14) uniform usamplerBuffer cellCountTexture;
 
 struct Collider {
   vec4 a;         // meaning depends on the type (see colliders.glsl)
