@@ -3,3 +3,4 @@
 /// The analysis tools of the validation experiments: curve fits and empirical distributions.
 #include "sandphys/analysis/distributions.h"
 #include "sandphys/analysis/fits.h"
+#include "sandphys/analysis/heap.h"
