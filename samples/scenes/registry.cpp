@@ -10,6 +10,7 @@
 #include "scenes/bulldozer.h"
 #include "scenes/cylinder_pile.h"
 #include "scenes/hourglass.h"
+#include "scenes/repose_heap.h"
 #include "scenes/rock_drop.h"
 #include "scenes/sand_box_pour.h"
 #include "scenes/slope_avalanche.h"
@@ -57,6 +58,10 @@ constexpr std::array kScenes{
                "granules drain from a 45 degree funnel through its outlet at a constant mean rate "
                "(Longmore et al. 2013, Fig. 16); --metrics records the granules remaining",
                &make<Hourglass>},
+    SceneEntry{"Validation", "repose-heap",
+               "a narrow emitter pours granules onto a rough floor; the heap's flank stands at the "
+               "angle of repose (Longmore et al. 2013, Fig. 22), which --metrics reports",
+               &make<ReposeHeap>},
 };
 
 }  // namespace

@@ -44,11 +44,6 @@ constexpr float kRestSpeed = 0.3f;
 // still slide and bounce for a while.
 constexpr double kLandingMargin = 0.5;
 
-// Time a body needs to fall `height` (m) starting at `speed` (m/s, downward) under gravity `g`.
-double fallTime(double height, double speed, double g) {
-  return (std::sqrt(speed * speed + 2.0 * g * std::max(height, 0.0)) - speed) / g;
-}
-
 std::string text(float value) {
   std::string s = std::to_string(value);
   s.erase(s.find_last_not_of('0') + 1);
@@ -68,14 +63,7 @@ std::uint32_t SandBoxPour::bedGranules() const {
 }
 
 std::uint32_t SandBoxPour::layerGranules() const {
-  // The same lattice, with the same float and double arithmetic, as the emitter's
-  // (sandphys/src/core/emitter.cpp): one slot every kDefaultGranuleSpacing diameters across the
-  // rectangle, corners included. A width that is a whole number of spacings sits on the edge of
-  // the floor, so the rounding has to match.
-  const double spacing = kDefaultGranuleSpacing * d();
-  const auto perSide =
-      static_cast<std::uint32_t>(1 + std::floor(2.0 * emitterHalfExtent() / spacing));
-  return perSide * perSide;
+  return emitterLayerGranules(emitterHalfExtent(), d());
 }
 
 float SandBoxPour::emitterSpeed() const {

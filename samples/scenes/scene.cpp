@@ -116,6 +116,17 @@ bool granulesCalm(const StepReport& report, std::uint32_t granules, float granul
   return report.hasStats && granules > 0 && report.stats.kineticEnergy / granules < settleEnergy;
 }
 
+double fallTime(double height, double speed, double g) {
+  return (std::sqrt(speed * speed + 2.0 * g * std::max(height, 0.0)) - speed) / g;
+}
+
+std::uint32_t emitterLayerGranules(float halfExtent, float particleDiameter) {
+  // As sandphys/src/core/emitter.cpp: double arithmetic on the float inputs.
+  const double spacing = kDefaultGranuleSpacing * particleDiameter;
+  const auto perSide = static_cast<std::uint32_t>(1 + std::floor(2.0 * halfExtent / spacing));
+  return perSide * perSide;
+}
+
 float gravityMagnitude(const WorldSettings& settings) {
   const Vec3 g = settings.gravity;
   return std::sqrt(g.x * g.x + g.y * g.y + g.z * g.z);

@@ -145,6 +145,14 @@ class Scene {
 bool granulesCalm(const StepReport& report, std::uint32_t granules, float granuleMass,
                   float settleSpeed);
 
+/// Time a body needs to fall `height` (m; none when <= 0) starting at `speed` (m/s, downward)
+/// under gravity `g` (m/s²), s.
+double fallTime(double height, double speed, double g);
+/// Granules in one layer of a square emitter of half extent `halfExtent` (m) for particles of
+/// diameter `particleDiameter` (m): its lattice has a slot every kDefaultGranuleSpacing diameters
+/// across the square, corners included (the same arithmetic as the emitter's, so that a width
+/// that is a whole number of spacings rounds alike).
+std::uint32_t emitterLayerGranules(float halfExtent, float particleDiameter);
 /// Length of the world's gravity vector, m/s².
 float gravityMagnitude(const WorldSettings& settings);
 

@@ -1,0 +1,207 @@
+#include "scenes/repose_heap.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "scenes/cylinder_pile.h"
+
+namespace sandphys::scenes {
+
+namespace {
+
+// Slowest emitter, m/s, and the margin over the speed its lattice strictly needs for the rate (so
+// that float rounding never makes EmitterSettings refuse it); as in sand-box-pour.
+constexpr float kMinEmitterSpeed = 0.5f;
+constexpr float kEmitterSpeedMargin = 1.1f;
+// Fastest emitter the scene accepts, m/s: faster impacts overlap grains past the d/10 guard.
+constexpr float kMaxEmitterSpeed = 3.0f;
+// The speed guard is the fastest impact with this margin for rebounds, and at least kMinGuard.
+constexpr float kGuardMargin = 1.25f;
+constexpr float kMinGuardSpeed = 2.0f;
+// Fraction of the last granule's fall added before the heap may count as settled.
+constexpr double kLandingMargin = 0.5;
+// Depth of the sink's top below the floor's particle centres, d: past the floor's edge a grain
+// that deep has left.
+constexpr float kSinkDepth = 3.0f;
+
+std::string text(float value) {
+  std::string s = std::to_string(value);
+  s.erase(s.find_last_not_of('0') + 1);
+  if (!s.empty() && s.back() == '.') s.pop_back();
+  return s;
+}
+
+}  // namespace
+
+float ReposeHeap::emitterSpeed() const {
+  const float half = 0.5f * m_config.outlet * d();
+  const float needed = m_config.rate * kDefaultGranuleSpacing * d() /
+                       static_cast<float>(emitterLayerGranules(half, d()));
+  return std::max(kMinEmitterSpeed, kEmitterSpeedMargin * needed);
+}
+
+WorldSettings ReposeHeap::settings() const {
+  const std::string scene = "repose-heap: ";
+  const std::uint64_t floorParticles =
+      CylinderPile::roughFloorParticles(m_config.floorRadius * d(), d());
+  const std::uint64_t particles = 4ull * m_config.granules + floorParticles;
+  if (m_config.granules == 0 || particles > std::numeric_limits<std::uint32_t>::max()) {
+    throw InvalidArgument(scene + "granules = " + std::to_string(m_config.granules) +
+                          " must be >= 1 and, with the floor's " + std::to_string(floorParticles) +
+                          " particles, fit a World's 2^32 particles");
+  }
+  if (0.5f * m_config.outlet + static_cast<float>(kGranuleReach) > m_config.floorRadius) {
+    throw InvalidArgument(scene + "outlet " + text(m_config.outlet) +
+                          " d is wider than the floor (floor-radius " + text(m_config.floorRadius) +
+                          " d)");
+  }
+  if (m_config.pourHeight < 2.0f * static_cast<float>(kGranuleReach)) {
+    throw InvalidArgument(scene + "pour-height " + text(m_config.pourHeight) +
+                          " d leaves no room for a granule above the floor (at least " +
+                          text(2.0f * static_cast<float>(kGranuleReach)) + " d)");
+  }
+  const float speed = emitterSpeed();
+  if (speed > kMaxEmitterSpeed) {
+    throw InvalidArgument(scene + "rate " + text(m_config.rate) +
+                          " granules/s needs the emitter's " +
+                          std::to_string(emitterLayerGranules(0.5f * m_config.outlet * d(), d())) +
+                          " slots to move at " + text(speed) + " m/s, more than " +
+                          text(kMaxEmitterSpeed) + " m/s; lower the rate or widen the outlet");
+  }
+  WorldSettings settings;
+  settings.particleDiameter = d();
+  settings.material.youngsModulus = m_config.youngsModulus;
+  settings.material.friction = m_config.friction;
+  settings.material.restitution = m_config.restitution;
+  settings.maxBodies = m_config.granules + 1;  // + the floor
+  settings.maxParticles = static_cast<std::uint32_t>(particles);
+  // Settling is judged from every frame's kinetic energy.
+  settings.statsEachFrame = true;
+  const float impact =
+      std::sqrt(speed * speed + 2.0f * gravityMagnitude(settings) * m_config.pourHeight * d());
+  settings.maxSpeed = std::max(kMinGuardSpeed, kGuardMargin * impact);
+  settings.stepsPerContact = m_config.stepsPerContact;
+  return settings;
+}
+
+void ReposeHeap::build(World& world) {
+  m_poured = 0;
+  m_pourEnd = -1.0;
+  m_finished = false;
+  m_granuleMass = tetrahedronTemplate(d(), world.settings().material.density).mass;
+  const float radius = m_config.floorRadius * d();
+  world.addRoughFloor(RoughFloor{.center = {0.0f, 0.0f, 0.0f}, .radius = radius, .spacing = d()});
+  // Everything that rolls off the floor's edge (or, by a fault, through it) ends here.
+  const float wide = radius + m_config.pourHeight * d();
+  world.addSink(Sink{.min = {-wide, -(kSinkDepth + 10.0f) * d(), -wide},
+                     .max = {wide, -kSinkDepth * d(), wide}});
+  const float half = 0.5f * m_config.outlet * d();
+  world.addEmitter(EmitterSettings{.center = {0.0f, m_config.pourHeight * d(), 0.0f},
+                                   .halfExtentX = half,
+                                   .halfExtentZ = half,
+                                   .rate = m_config.rate,
+                                   .velocity = {0.0f, -emitterSpeed(), 0.0f},
+                                   .maxGranules = m_config.granules,
+                                   .seed = m_config.seed});
+}
+
+void ReposeHeap::update(World& world, const StepReport& report, double simTime) {
+  if (m_finished) return;
+  m_poured = world.granulesSpawned();
+  if (m_poured < m_config.granules) return;
+  if (m_pourEnd < 0.0) {
+    m_pourEnd = simTime;
+    const double g = gravityMagnitude(world.settings());
+    m_minSettleTime =
+        (1.0 + kLandingMargin) * fallTime(m_config.pourHeight * d(), emitterSpeed(), g);
+  }
+  const double sincePour = simTime - m_pourEnd;
+  if (sincePour < m_minSettleTime) return;
+  const std::uint32_t alive = report.hasStats ? report.stats.granulesAlive : m_config.granules;
+  if (!granulesCalm(report, alive, m_granuleMass, m_config.settleSpeed) &&
+      sincePour < m_minSettleTime + m_config.maxSettleSeconds) {
+    return;
+  }
+  m_finished = true;
+}
+
+std::string ReposeHeap::status() const {
+  if (m_pourEnd < 0.0) {
+    return "pouring " + std::to_string(m_poured) + "/" + std::to_string(m_config.granules);
+  }
+  return m_finished ? "settled" : "settling";
+}
+
+bool ReposeHeap::contains(const Vec3& centre) const {
+  return centre.y >= 0.0f && std::hypot(centre.x, centre.z) <= m_config.floorRadius * d();
+}
+
+analysis::HeapAngle ReposeHeap::heapAngle(std::span<const BodyState> bodies) const {
+  std::vector<Vec3> centres;
+  centres.reserve(bodies.size());
+  for (const BodyState& body : bodies) {
+    if (body.alive && body.granule && contains(body.position)) centres.push_back(body.position);
+  }
+  // The floor's surface is the top of its particles; cells one granule wide.
+  return analysis::angleOfRepose(centres, {.floorY = 0.5 * d(),
+                                           .binWidth = 2.0 * kGranuleReach * d(),
+                                           .maxRadius = m_config.floorRadius * d()});
+}
+
+std::vector<SceneMetric> ReposeHeap::metrics(std::span<const BodyState> bodies) const {
+  std::uint32_t onFloor = 0;
+  std::uint32_t elsewhere = 0;
+  for (const BodyState& body : bodies) {
+    if (!body.granule || !body.alive) continue;
+    (contains(body.position) ? onFloor : elsewhere) += 1;
+  }
+  std::vector<SceneMetric> result{
+      {"granules_poured", static_cast<double>(m_poured)},
+      {"granules_on_floor", static_cast<double>(onFloor)},
+      {"granules_off_floor", static_cast<double>(m_poured - std::min(m_poured, onFloor))},
+      {"granules_in_flight", static_cast<double>(elsewhere)},
+      {"pour_end_s", m_pourEnd},
+      {"friction", m_config.friction},
+      {"settled", m_finished ? 1.0 : 0.0},
+  };
+  try {
+    const analysis::HeapAngle heap = heapAngle(bodies);
+    result.push_back({"angle_of_repose_deg", heap.degrees});
+    result.push_back({"angle_fit_r2", heap.fit.line.rSquared});
+    result.push_back({"angle_fit_points", static_cast<double>(heap.radius.size())});
+    result.push_back({"heap_height_d", heap.peakHeight / d()});
+  } catch (const InvalidArgument&) {
+    // No heap yet (an early stop): the metrics leave the angle out.
+  }
+  return result;
+}
+
+std::vector<SceneParameter> ReposeHeap::parameters() {
+  return {
+      {"granules", "granules poured", &m_config.granules, 1, 1e8},
+      {"friction", "Coulomb friction coefficient of every contact", &m_config.friction, 0.0, 10.0},
+      {"outlet", "width of the emitter's square, d", &m_config.outlet, 0.5, 1e4},
+      {"rate", "pour rate, granules/s", &m_config.rate, 1.0, 1e5},
+      {"pour-height", "height of the emitter above the floor, d", &m_config.pourHeight, 1.0, 1e4},
+      {"floor-radius", "radius of the rough floor, d", &m_config.floorRadius, 2.0, 1e4},
+      {"youngs-modulus", "Young's modulus of the grains, Pa", &m_config.youngsModulus, 1e4, 1e12},
+      {"restitution", "coefficient of restitution", &m_config.restitution, 0.01, 1.0},
+      {"settle-speed", "the heap has settled below this rms speed, m/s", &m_config.settleSpeed, 0.0,
+       10.0},
+      {"max-settle-seconds", "longest wait for the heap to settle after the pour, s",
+       &m_config.maxSettleSeconds, 0.0, 1e6},
+      {"steps-per-contact", "substeps per Hertz contact time at the speed guard",
+       &m_config.stepsPerContact, kMinStepsPerContact, 1e4},
+      {"seed", "random seed of the emitter", &m_config.seed, 0, 1.8446744073709552e19},
+      {"diameter", "particle diameter d, m", &m_config.particleDiameter, 1e-4, 1.0},
+  };
+}
+
+SceneBounds ReposeHeap::bounds() const {
+  const float r = m_config.floorRadius * d();
+  return {{-r, -kSinkDepth * d(), -r}, {r, (m_config.pourHeight + 1.0f) * d(), r}};
+}
+
+}  // namespace sandphys::scenes
