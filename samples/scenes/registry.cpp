@@ -8,7 +8,9 @@
 #endif
 #include "scenes/box_drop.h"
 #include "scenes/bulldozer.h"
+#include "scenes/compression.h"
 #include "scenes/cylinder_pile.h"
+#include "scenes/dunes.h"
 #include "scenes/hourglass.h"
 #include "scenes/repose_heap.h"
 #include "scenes/rock_drop.h"
@@ -62,6 +64,15 @@ constexpr std::array kScenes{
                "a narrow emitter pours granules onto a rough floor; the heap's flank stands at the "
                "angle of repose (Longmore et al. 2013, Fig. 22), which --metrics reports",
                &make<ReposeHeap>},
+    SceneEntry{"Validation", "dunes",
+               "sand dropped in two columns onto a rough floor forms a dune with two crests and a "
+               "saddle between them (Longmore et al. 2013, Fig. 25)",
+               &make<Dunes>},
+    SceneEntry{
+        "Validation", "compression",
+        "a plunger compresses a settled pile in a cylinder and lets it go: the stress-strain "
+        "loop and the strain recovered (Longmore et al. 2013, Fig. 21)",
+        &make<Compression>},
 };
 
 }  // namespace

@@ -6,40 +6,22 @@
 #include <string>
 
 #include "scenes/cylinder_pile.h"
+#include "scenes/pour.h"
 
 namespace sandphys::scenes {
 
 namespace {
 
-// Slowest emitter, m/s, and the margin over the speed its lattice strictly needs for the rate (so
-// that float rounding never makes EmitterSettings refuse it); as in sand-box-pour.
-constexpr float kMinEmitterSpeed = 0.5f;
-constexpr float kEmitterSpeedMargin = 1.1f;
-// Fastest emitter the scene accepts, m/s: faster impacts overlap grains past the d/10 guard.
-constexpr float kMaxEmitterSpeed = 3.0f;
-// The speed guard is the fastest impact with this margin for rebounds, and at least kMinGuard.
-constexpr float kGuardMargin = 1.25f;
-constexpr float kMinGuardSpeed = 2.0f;
 // Fraction of the last granule's fall added before the heap may count as settled.
 constexpr double kLandingMargin = 0.5;
 // Depth of the sink's top below the floor's particle centres, d: past the floor's edge a grain
 // that deep has left.
 constexpr float kSinkDepth = 3.0f;
 
-std::string text(float value) {
-  std::string s = std::to_string(value);
-  s.erase(s.find_last_not_of('0') + 1);
-  if (!s.empty() && s.back() == '.') s.pop_back();
-  return s;
-}
-
 }  // namespace
 
 float ReposeHeap::emitterSpeed() const {
-  const float half = 0.5f * m_config.outlet * d();
-  const float needed = m_config.rate * kDefaultGranuleSpacing * d() /
-                       static_cast<float>(emitterLayerGranules(half, d()));
-  return std::max(kMinEmitterSpeed, kEmitterSpeedMargin * needed);
+  return pourSpeed(0.5f * m_config.outlet * d(), m_config.rate, d());
 }
 
 WorldSettings ReposeHeap::settings() const {
@@ -53,23 +35,16 @@ WorldSettings ReposeHeap::settings() const {
                           " particles, fit a World's 2^32 particles");
   }
   if (0.5f * m_config.outlet + static_cast<float>(kGranuleReach) > m_config.floorRadius) {
-    throw InvalidArgument(scene + "outlet " + text(m_config.outlet) +
-                          " d is wider than the floor (floor-radius " + text(m_config.floorRadius) +
-                          " d)");
+    throw InvalidArgument(scene + "outlet " + numberText(m_config.outlet) +
+                          " d is wider than the floor (floor-radius " +
+                          numberText(m_config.floorRadius) + " d)");
   }
   if (m_config.pourHeight < 2.0f * static_cast<float>(kGranuleReach)) {
-    throw InvalidArgument(scene + "pour-height " + text(m_config.pourHeight) +
+    throw InvalidArgument(scene + "pour-height " + numberText(m_config.pourHeight) +
                           " d leaves no room for a granule above the floor (at least " +
-                          text(2.0f * static_cast<float>(kGranuleReach)) + " d)");
+                          numberText(2.0f * static_cast<float>(kGranuleReach)) + " d)");
   }
-  const float speed = emitterSpeed();
-  if (speed > kMaxEmitterSpeed) {
-    throw InvalidArgument(scene + "rate " + text(m_config.rate) +
-                          " granules/s needs the emitter's " +
-                          std::to_string(emitterLayerGranules(0.5f * m_config.outlet * d(), d())) +
-                          " slots to move at " + text(speed) + " m/s, more than " +
-                          text(kMaxEmitterSpeed) + " m/s; lower the rate or widen the outlet");
-  }
+  checkPourSpeed("repose-heap", "the outlet", 0.5f * m_config.outlet * d(), m_config.rate, d());
   WorldSettings settings;
   settings.particleDiameter = d();
   settings.material.youngsModulus = m_config.youngsModulus;
@@ -79,9 +54,8 @@ WorldSettings ReposeHeap::settings() const {
   settings.maxParticles = static_cast<std::uint32_t>(particles);
   // Settling is judged from every frame's kinetic energy.
   settings.statsEachFrame = true;
-  const float impact =
-      std::sqrt(speed * speed + 2.0f * gravityMagnitude(settings) * m_config.pourHeight * d());
-  settings.maxSpeed = std::max(kMinGuardSpeed, kGuardMargin * impact);
+  settings.maxSpeed =
+      pourGuardSpeed(emitterSpeed(), m_config.pourHeight * d(), gravityMagnitude(settings));
   settings.stepsPerContact = m_config.stepsPerContact;
   return settings;
 }

@@ -5,7 +5,6 @@
 #include <limits>
 #include <map>
 #include <numbers>
-#include <sstream>
 #include <utility>
 
 #include "scenes/eigen_conversions.h"
@@ -58,17 +57,6 @@ float radians(float degrees) {
   return degrees * std::numbers::pi_v<float> / 180.0f;
 }
 
-std::string text(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
-// Time to fall `height` m from rest under gravity `g`, s.
-double fallTime(double height, double g) {
-  return std::sqrt(2.0 * std::max(height, 0.0) / g);
-}
-
 }  // namespace
 
 // The mesh as loaded and sampled for one set of parameters (the key), shared by settings() and
@@ -98,11 +86,11 @@ const RockDrop::LoadedRock& RockDrop::loadedRock() const {
   // The parameter ranges are checked when they are set from text; a Config set in code is
   // checked here, where a bad value would otherwise surface as a confusing mesh error.
   if (!(m_config.scale > 0.0f) || !std::isfinite(m_config.scale)) {
-    throw InvalidArgument("rock-drop: scale = " + text(m_config.scale) +
+    throw InvalidArgument("rock-drop: scale = " + numberText(m_config.scale) +
                           " must be finite and > 0 (m per mesh unit)");
   }
   if (!(m_config.density > 0.0f) || !std::isfinite(m_config.density)) {
-    throw InvalidArgument("rock-drop: density = " + text(m_config.density) +
+    throw InvalidArgument("rock-drop: density = " + numberText(m_config.density) +
                           " must be finite and > 0 (kg/m^3)");
   }
   auto rock = std::make_shared<LoadedRock>();
@@ -127,11 +115,11 @@ const RockDrop::LoadedRock& RockDrop::loadedRock() const {
   // has shorter contacts than the step resolves and would be thrown about.
   const float lightest = tetrahedronTemplate(d(), Material{}.density).mass / 4.0f;
   if (rock->sampled.shape.mass < lightest) {
-    throw InvalidArgument("rock-drop: the rock from '" + m_config.mesh + "' at scale " +
-                          text(m_config.scale) + " and density " + text(m_config.density) +
-                          " kg/m^3 weighs " + text(rock->sampled.shape.mass) +
-                          " kg, less than one sand particle (" + text(lightest) +
-                          " kg), which the time step cannot resolve: raise scale or density");
+    throw InvalidArgument(
+        "rock-drop: the rock from '" + m_config.mesh + "' at scale " + numberText(m_config.scale) +
+        " and density " + numberText(m_config.density) + " kg/m^3 weighs " +
+        numberText(rock->sampled.shape.mass) + " kg, less than one sand particle (" +
+        numberText(lightest) + " kg), which the time step cannot resolve: raise scale or density");
   }
   m_loaded = std::move(rock);
   return *m_loaded;
@@ -216,9 +204,9 @@ WorldSettings RockDrop::settings() const {
   for (const auto& [axis, reach] : {std::pair{0, reachX}, std::pair{2, reachZ}}) {
     if (reach + radius > halfWidth(axis)) {
       throw InvalidArgument("rock-drop: the rock from '" + m_config.mesh + "' at scale " +
-                            text(m_config.scale) + " reaches " + text(reach + radius) +
+                            numberText(m_config.scale) + " reaches " + numberText(reach + radius) +
                             " m from the box's centre along " + (axis == 0 ? "x" : "z") +
-                            ", beyond the box's inner half width " + text(halfWidth(axis)) +
+                            ", beyond the box's inner half width " + numberText(halfWidth(axis)) +
                             " m (a bed of " + std::to_string(m_config.bed[axis]) +
                             " granules along it): lower scale or widen bed");
     }
@@ -293,7 +281,7 @@ void RockDrop::update(World& world, const StepReport& report, double simTime) {
     m_droppedAt = simTime;
     // The first check after the fall onto the bed: before it the rock is in the air (and calm
     // at the very start).
-    m_nextCheck = simTime + fallTime(m_config.dropHeight * d(), g) + kCheckSeconds;
+    m_nextCheck = simTime + fallTime(m_config.dropHeight * d(), 0.0, g) + kCheckSeconds;
     return;
   }
 
@@ -320,10 +308,10 @@ std::string RockDrop::status() const {
   if (!dropped()) return "bed settling";
   if (!m_finished) return "rock moving";
   if (m_calmChecks >= kCalmChecks) {
-    return "rock at rest " + text(std::round((m_restedAt - m_droppedAt) * 100.0) / 100.0) +
+    return "rock at rest " + numberText(std::round((m_restedAt - m_droppedAt) * 100.0) / 100.0) +
            " s after the drop";
   }
-  return "rock still moving " + text(m_config.maxRestSeconds) + " s after the drop";
+  return "rock still moving " + numberText(m_config.maxRestSeconds) + " s after the drop";
 }
 
 bool RockDrop::contains(const Vec3& centre) const {

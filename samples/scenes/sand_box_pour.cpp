@@ -1,5 +1,7 @@
 #include "scenes/sand_box_pour.h"
 
+#include "scenes/pour.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -16,19 +18,6 @@ constexpr float kReach = static_cast<float>(kGranuleReach);
 // block's jitter (0.03 of 2.4 d), so that no granule starts inside the floor.
 constexpr float kBedClearance = 1.4f;
 
-// The emitter moves this much faster than its lattice strictly needs for the rate, so that float
-// rounding never makes EmitterSettings refuse the rate.
-constexpr float kEmitterSpeedMargin = 1.1f;
-// Slowest emitter, m/s: a fresh layer has to clear the rectangle before the next one starts.
-constexpr float kMinEmitterSpeed = 0.5f;
-// Fastest emitter the scene accepts, m/s: beyond it the impacts overlap the grains by well over
-// the d/10 that the penetration guard allows; a wider emitter takes the rate more gently.
-constexpr float kMaxEmitterSpeed = 3.0f;
-
-// The speed guard is the fastest impact (emitter speed plus the free fall) with this margin for
-// rebounds and the rim speed of spinning grains, and never below kMinGuardSpeed.
-constexpr float kGuardMargin = 1.25f;
-constexpr float kMinGuardSpeed = 2.0f;
 // Substeps per Hertz contact time at the guard speed. The guard is the worst impact; slower
 // contacts last longer and so get more substeps. 10 (the minimum is 8) halves the cost of the
 // default 20, which a pour of thousands of granules on llvmpipe needs, as the cylinder-pile
@@ -36,20 +25,13 @@ constexpr float kMinGuardSpeed = 2.0f;
 constexpr float kStepsPerContact = 10.0f;
 
 // Granules slower than this (m/s) belong to the pile; the ones falling from the emitter leave it
-// at kMinEmitterSpeed or more and only speed up, so a pile measured during the pour leaves them
+// at kMinPourSpeed or more and only speed up, so a pile measured during the pour leaves them
 // out.
 constexpr float kRestSpeed = 0.3f;
 
 // Fraction of a fall's time added before the pile may count as settled: after landing the grains
 // still slide and bounce for a while.
 constexpr double kLandingMargin = 0.5;
-
-std::string text(float value) {
-  std::string s = std::to_string(value);
-  s.erase(s.find_last_not_of('0') + 1);
-  if (!s.empty() && s.back() == '.') s.pop_back();
-  return s;
-}
 
 bool atRest(const BodyState& body) {
   const Vec3& v = body.velocity;
@@ -67,10 +49,7 @@ std::uint32_t SandBoxPour::layerGranules() const {
 }
 
 float SandBoxPour::emitterSpeed() const {
-  // A layer of layerGranules() slots leaves every spacing / speed seconds.
-  const float needed =
-      m_config.rate * kDefaultGranuleSpacing * d() / static_cast<float>(layerGranules());
-  return std::max(kMinEmitterSpeed, kEmitterSpeedMargin * needed);
+  return pourSpeed(emitterHalfExtent(), m_config.rate, d());
 }
 
 WorldSettings SandBoxPour::settings() const {
@@ -86,13 +65,14 @@ WorldSettings SandBoxPour::settings() const {
   }
   const float boxWidth = m_config.boxWidth;
   if (m_config.emitterSize + 2.0f * kReach > boxWidth) {
-    throw InvalidArgument(scene + "emitter-size " + text(m_config.emitterSize) +
-                          " d does not fit in box-width " + text(boxWidth) +
-                          " d (it needs the emitter's width plus " + text(2.0f * kReach) + " d)");
+    throw InvalidArgument(scene + "emitter-size " + numberText(m_config.emitterSize) +
+                          " d does not fit in box-width " + numberText(boxWidth) +
+                          " d (it needs the emitter's width plus " + numberText(2.0f * kReach) +
+                          " d)");
   }
   if (m_config.emitterHeight + kReach > m_config.boxHeight) {
-    throw InvalidArgument(scene + "emitter-height " + text(m_config.emitterHeight) +
-                          " d is not inside the box (box-height " + text(m_config.boxHeight) +
+    throw InvalidArgument(scene + "emitter-height " + numberText(m_config.emitterHeight) +
+                          " d is not inside the box (box-height " + numberText(m_config.boxHeight) +
                           " d)");
   }
   if (bedGranules() > 0) {
@@ -102,31 +82,25 @@ WorldSettings SandBoxPour::settings() const {
                            jitter + 2.0f * kReach;
       if (extent > boxWidth) {
         throw InvalidArgument(scene + "bed (block) of " + std::to_string(m_config.block[axis]) +
-                              " granules along " + (axis == 0 ? "x" : "z") + " is " + text(extent) +
-                              " d wide, more than box-width " + text(boxWidth) + " d");
+                              " granules along " + (axis == 0 ? "x" : "z") + " is " +
+                              numberText(extent) + " d wide, more than box-width " +
+                              numberText(boxWidth) + " d");
       }
     }
     const float bedTop =
         kBedClearance + static_cast<float>(m_config.block[1] - 1) * kDefaultGranuleSpacing + kReach;
     if (bedTop + kReach > m_config.emitterHeight) {
       throw InvalidArgument(scene + "bed (block) of " + std::to_string(m_config.block[1]) +
-                            " layers reaches " + text(bedTop) + " d, into the emitter at " +
-                            text(m_config.emitterHeight) + " d");
+                            " layers reaches " + numberText(bedTop) + " d, into the emitter at " +
+                            numberText(m_config.emitterHeight) + " d");
     }
   }
-  const float speed = emitterSpeed();
-  if (speed > kMaxEmitterSpeed) {
-    throw InvalidArgument(scene + "rate " + text(m_config.rate) +
-                          " granules/s needs the emitter's " + std::to_string(layerGranules()) +
-                          " slots to move at " + text(speed) + " m/s, more than " +
-                          text(kMaxEmitterSpeed) + " m/s; lower the rate or widen emitter-size");
-  }
+  checkPourSpeed("sand-box-pour", "emitter-size", emitterHalfExtent(), m_config.rate, d());
 
   settings.maxBodies = static_cast<std::uint32_t>(granules);
   settings.maxParticles = static_cast<std::uint32_t>(4 * granules);
-  const float impact =
-      std::sqrt(speed * speed + 2.0f * gravityMagnitude(settings) * m_config.emitterHeight * d());
-  settings.maxSpeed = std::max(kMinGuardSpeed, kGuardMargin * impact);
+  settings.maxSpeed =
+      pourGuardSpeed(emitterSpeed(), m_config.emitterHeight * d(), gravityMagnitude(settings));
   settings.stepsPerContact = kStepsPerContact;
   return settings;
 }

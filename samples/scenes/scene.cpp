@@ -127,6 +127,12 @@ std::uint32_t emitterLayerGranules(float halfExtent, float particleDiameter) {
   return perSide * perSide;
 }
 
+std::string numberText(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
 float gravityMagnitude(const WorldSettings& settings) {
   const Vec3 g = settings.gravity;
   return std::sqrt(g.x * g.x + g.y * g.y + g.z * g.z);

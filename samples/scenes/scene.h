@@ -153,6 +153,8 @@ double fallTime(double height, double speed, double g);
 /// across the square, corners included (the same arithmetic as the emitter's, so that a width
 /// that is a whole number of spacings rounds alike).
 std::uint32_t emitterLayerGranules(float halfExtent, float particleDiameter);
+/// Short text of a number for messages ("2.5", "0.1", "1e+06").
+std::string numberText(double value);
 /// Length of the world's gravity vector, m/s².
 float gravityMagnitude(const WorldSettings& settings);
 

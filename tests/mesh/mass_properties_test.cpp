@@ -144,6 +144,33 @@ TEST(MassProperties, SphereMatchesThePolyhedronAndTheIdealSphere) {
               sampled.centres.size(), 100 * (sampled.shape.principalInertia.x / idealMoment - 1.0));
 }
 
+TEST(MassProperties, CylinderIsTheInscribedPrismWoundOutward) {
+  // A prism on a regular n-gon inscribed in a circle of radius r: area n r² sin(2π/n) / 2; its
+  // polar moment about the axis per unit mass r² (2 + cos(2π/n)) / 6 (the n triangles from the
+  // centre); the moment about a transverse axis through the centre adds h²/12.
+  const double r = 0.05, h = 0.02, density = 1000.0;
+  const int n = 24;
+  const Vec3 centre{0.1f, -0.2f, 0.3f};
+  const TriangleMesh cylinder = cylinderMesh(r, h, n, centre);
+  EXPECT_EQ(cylinder.triangles.size(), 4u * n);
+  const SolidProperties solid = solidProperties(cylinder, density);
+  // The vertices are floats: the solid is the prism to about 1e-7 of each length.
+  const double tolerance = 1e-5;
+  EXPECT_FALSE(solid.woundInward);
+  const double area = 0.5 * n * r * r * std::sin(2.0 * std::numbers::pi / n);
+  EXPECT_NEAR(solid.volume, area * h, tolerance * area * h);
+  EXPECT_LT((toVector(solid.massProperties.centreOfMass) - toEigen(centre)).norm(), 1e-7);
+  const double mass = density * area * h;
+  const double polar = r * r * (2.0 + std::cos(2.0 * std::numbers::pi / n)) / 6.0;
+  const Eigen::Matrix3d inertia = toMatrix(solid.massProperties.inertia);
+  EXPECT_NEAR(inertia(1, 1), mass * polar, tolerance * mass * polar);
+  EXPECT_NEAR(inertia(0, 0), mass * (0.5 * polar + h * h / 12.0), tolerance * mass * polar);
+  EXPECT_NEAR(inertia(2, 2), inertia(0, 0), tolerance * mass * polar);
+  EXPECT_TRUE(sampleMesh(cylinder, 0.01f).closed);
+  EXPECT_THROW(cylinderMesh(r, h, 2), InvalidArgument);
+  EXPECT_THROW(cylinderMesh(-r, h, n), InvalidArgument);
+}
+
 TEST(MassProperties, InwardWindingIsTheSameSolid) {
   TriangleMesh box = boxMesh({0, 0, 0}, {0.2f, 0.1f, 0.1f});
   for (auto& tri : box.triangles) std::swap(tri[1], tri[2]);

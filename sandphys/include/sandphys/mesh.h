@@ -92,6 +92,12 @@ TriangleMesh boxMesh(Vec3 lo, Vec3 hi);
 /// inside the sphere; source "icosphere".
 TriangleMesh icosphereMesh(double radius, int subdivisions, Vec3 centre = {});
 
+/// A closed upright cylinder of `radius` and `height` (m, > 0) about `centre`, its axis along y:
+/// `segments` (3..4096) side quads on two rings, each cut in two triangles, and a fan of
+/// `segments` triangles on each cap around a centre vertex, all wound outward; the ring's
+/// polygon is inscribed in the circle. Source "cylinder".
+TriangleMesh cylinderMesh(double radius, double height, int segments, Vec3 centre = {});
+
 /// Default largest distance between neighbouring surface samples, in particle diameters d (see
 /// MeshSampling::spacing for the geometry behind it).
 inline constexpr float kDefaultMeshSpacing = 0.8f;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <numbers>
 #include <utility>
 
 #include "core/validation.h"
@@ -31,6 +32,37 @@ TriangleMesh boxMesh(Vec3 lo, Vec3 hi) {
     }
   }
   mesh.source = "box";
+  return mesh;
+}
+
+TriangleMesh cylinderMesh(double radius, double height, int segments, Vec3 centre) {
+  detail::requirePositive("cylinderMesh radius", radius, "(m)");
+  detail::requirePositive("cylinderMesh height", height, "(m)");
+  detail::require(segments >= 3 && segments <= 4096, "cylinderMesh segments", segments,
+                  "must be in 3..4096");
+  TriangleMesh mesh;
+  const auto n = static_cast<std::uint32_t>(segments);
+  // Vertices: bottom ring 0..n-1, top ring n..2n-1, then the bottom and top cap centres.
+  for (std::uint32_t ring = 0; ring < 2; ++ring) {
+    const double y = centre.y + (ring ? 0.5 : -0.5) * height;
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const double angle = 2.0 * std::numbers::pi * i / n;
+      mesh.vertices.push_back({float(centre.x + radius * std::cos(angle)), float(y),
+                               float(centre.z + radius * std::sin(angle))});
+    }
+  }
+  const std::uint32_t bottom = 2 * n, top = 2 * n + 1;
+  mesh.vertices.push_back({centre.x, float(centre.y - 0.5 * height), centre.z});
+  mesh.vertices.push_back({centre.x, float(centre.y + 0.5 * height), centre.z});
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t next = (i + 1) % n;
+    // With the angle running from +x towards +z, (b_i, t_i, b_next) faces outward.
+    mesh.triangles.push_back({i, n + i, next});
+    mesh.triangles.push_back({next, n + i, n + next});
+    mesh.triangles.push_back({bottom, i, next});
+    mesh.triangles.push_back({top, n + next, n + i});
+  }
+  mesh.source = "cylinder";
   return mesh;
 }
 

@@ -1,0 +1,70 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <sandphys/sandphys.h>
+#include <nlohmann/json.hpp>
+
+#include "app/progress.h"
+
+namespace sandphys::validation {
+
+/// What every experiment needs: the GPU, a progress line, and the frame length of its runs.
+struct ExperimentContext {
+  const GpuContext& gpu;
+  samples::ProgressLine& progress;
+  double frameDt = 1.0 / 120.0;
+};
+
+/// The hourglass against friction (the paper's Fig. 23): one fill per μ over a fixed outlet, each
+/// drained; the granules remaining over time and the flow rate of the steady part.
+struct FlowFrictionOptions {
+  std::uint32_t granules = 3000;
+  float outlet = 16.0f;  ///< d
+  std::vector<double> frictions{0.0, 0.2, 0.4, 0.6, 0.8};
+};
+nlohmann::json flowAgainstFriction(const ExperimentContext& context,
+                                   const FlowFrictionOptions& options);
+
+/// The hourglass against the outlet diameter (the paper's Fig. 24) at one μ, and the fit of
+/// Beverloo's law W = C (D − k)^{5/2} beside the paper's.
+struct FlowOutletOptions {
+  std::uint32_t granules = 3000;
+  float friction = 0.2f;
+  std::vector<double> outlets{8.0, 12.0, 16.0, 20.0, 24.0};  ///< d
+};
+nlohmann::json flowAgainstOutlet(const ExperimentContext& context,
+                                 const FlowOutletOptions& options);
+
+/// The angle of repose of poured heaps against friction (the paper's Fig. 22) and a power law
+/// fitted to it beside the paper's exponent.
+struct ReposeOptions {
+  std::uint32_t granules = 1500;
+  std::vector<double> frictions{0.1, 0.2, 0.4, 0.6, 0.8};
+};
+nlohmann::json reposeAgainstFriction(const ExperimentContext& context,
+                                     const ReposeOptions& options);
+
+/// Two columns of sand poured side by side (the paper's Fig. 25): the dune's profile, its two
+/// crests and the saddle between them.
+struct DuneOptions {
+  std::uint32_t granulesPerColumn = 1500;
+  float separation = 24.0f;  ///< d
+};
+nlohmann::json duneProfile(const ExperimentContext& context, const DuneOptions& options);
+
+/// A pile settled in a cylinder, then compressed by a plunger and released (the paper's Figs.
+/// 17-21): contact-force distributions at rest (μ = 0.5 and μ = 0) and at the peak of the load,
+/// at particle and at granule level, with their fits; the force-force correlation, the contact
+/// angles and the weak and strong networks at rest; the stress-strain loop.
+struct CompressionOptions {
+  std::uint32_t layers = 16;
+  float radius = 14.0f;        ///< d
+  float maxStress = 20000.0f;  ///< Pa
+  float friction = 0.5f;
+};
+nlohmann::json compressionAndForces(const ExperimentContext& context,
+                                    const CompressionOptions& options);
+
+}  // namespace sandphys::validation

@@ -1,0 +1,142 @@
+// sandphys-validation: runs the validation experiments of Longmore et al. 2013 (section 6)
+// headless and writes their measurements and fits to one JSON file, from which
+// scripts/validation/make_report.py draws the plots and writes docs/validation/README.md.
+// scripts/validation-report.sh runs both.
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "experiments.h"
+
+namespace {
+
+using namespace sandphys;
+using namespace sandphys::validation;
+
+const std::vector<std::string> kExperiments{"flow-friction", "flow-outlet", "repose", "dunes",
+                                            "compression"};
+
+std::string utcNow() {
+  const std::time_t now = std::time(nullptr);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return text;
+}
+
+void write(const std::filesystem::path& path, const nlohmann::json& results) {
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+  std::ofstream out(path);
+  out << results.dump(1) << '\n';
+  if (!out) throw std::runtime_error("cannot write " + path.string());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "sandphys-validation: the paper's validation experiments (Longmore et al. 2013, section 6) "
+      "run headless; writes the measurements and fits as JSON for "
+      "scripts/validation/make_report.py"};
+  std::string out = "build/validation/results.json";
+  std::vector<std::string> only = kExperiments;
+  FlowFrictionOptions flowFriction;
+  FlowOutletOptions flowOutlet;
+  ReposeOptions repose;
+  DuneOptions dunes;
+  CompressionOptions compression;
+  bool quiet = false;
+  app.add_option("--out", out, "results file (JSON)")->capture_default_str();
+  app.add_option("--only", only, "experiments to run, comma-separated")
+      ->delimiter(',')
+      ->check(CLI::IsMember(kExperiments))
+      ->capture_default_str();
+  app.add_option("--hourglass-granules", flowFriction.granules,
+                 "granules in the funnel of every hourglass run")
+      ->check(CLI::Range(1u, 1u << 28))
+      ->capture_default_str();
+  app.add_option("--flow-frictions", flowFriction.frictions,
+                 "flow-friction: the grains' friction coefficients, comma-separated")
+      ->delimiter(',')
+      ->check(CLI::Range(0.0, 10.0))
+      ->capture_default_str();
+  app.add_option("--flow-outlet", flowFriction.outlet, "flow-friction: outlet diameter, d")
+      ->check(CLI::Range(1.0, 1000.0))
+      ->capture_default_str();
+  app.add_option("--outlets", flowOutlet.outlets,
+                 "flow-outlet: outlet diameters, d, comma-separated")
+      ->delimiter(',')
+      ->check(CLI::Range(1.0, 1000.0))
+      ->capture_default_str();
+  app.add_option("--outlet-friction", flowOutlet.friction, "flow-outlet: friction coefficient")
+      ->check(CLI::Range(0.0, 10.0))
+      ->capture_default_str();
+  app.add_option("--heap-granules", repose.granules, "repose: granules poured into each heap")
+      ->check(CLI::Range(1u, 1u << 28))
+      ->capture_default_str();
+  app.add_option("--heap-frictions", repose.frictions,
+                 "repose: friction coefficients, comma-separated (each > 0: the power law)")
+      ->delimiter(',')
+      ->check(CLI::Range(1e-3, 10.0))
+      ->capture_default_str();
+  app.add_option("--dune-granules", dunes.granulesPerColumn,
+                 "dunes: granules poured by each column")
+      ->check(CLI::Range(1u, 1u << 28))
+      ->capture_default_str();
+  app.add_option("--dune-separation", dunes.separation, "dunes: distance between the columns, d")
+      ->check(CLI::Range(0.0, 1000.0))
+      ->capture_default_str();
+  app.add_option("--compression-layers", compression.layers,
+                 "compression: lattice layers the pile is dropped from")
+      ->check(CLI::Range(1u, 100000u))
+      ->capture_default_str();
+  app.add_option("--compression-radius", compression.radius,
+                 "compression: radius of the cylinder, d")
+      ->check(CLI::Range(2.0, 1000.0))
+      ->capture_default_str();
+  app.add_option("--max-stress", compression.maxStress,
+                 "compression: axial stress at which the plunger turns back, Pa")
+      ->check(CLI::Range(1.0, 1e9))
+      ->capture_default_str();
+  app.add_flag("--quiet", quiet, "no progress lines");
+  CLI11_PARSE(app, argc, argv);
+  flowOutlet.granules = flowFriction.granules;
+
+  try {
+    const std::set<std::string> chosen(only.begin(), only.end());
+    const GpuContext gpu = GpuContext::headless();
+    samples::ProgressLine progress(!quiet);
+    const ExperimentContext context{gpu, progress};
+    std::string command;
+    for (int i = 0; i < argc; ++i) command += (i ? " " : "") + std::string(argv[i]);
+    nlohmann::json results = {
+        {"gpu", gpu.description()}, {"started", utcNow()}, {"command", command}};
+    const auto start = std::chrono::steady_clock::now();
+    auto run = [&](const std::string& name, auto experiment) {
+      if (!chosen.count(name)) return;
+      std::fprintf(stderr, "sandphys-validation: %s\n", name.c_str());
+      results[name] = experiment();
+      results["wall_seconds"] =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      write(out, results);  // after each experiment, so that a long run keeps what it has
+    };
+    run("flow-friction", [&] { return flowAgainstFriction(context, flowFriction); });
+    run("flow-outlet", [&] { return flowAgainstOutlet(context, flowOutlet); });
+    run("repose", [&] { return reposeAgainstFriction(context, repose); });
+    run("dunes", [&] { return duneProfile(context, dunes); });
+    run("compression", [&] { return compressionAndForces(context, compression); });
+    std::fprintf(stderr, "sandphys-validation: wrote %s\n", out.c_str());
+    return 0;
+  } catch (const std::exception& error) {
+    std::cerr << "sandphys-validation: " << error.what() << '\n';
+    return 1;
+  }
+}

@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# The validation report in one command: installs what is missing (and python3-matplotlib),
+# builds sandphys-validation with the `release` preset, runs the paper's validation experiments
+# headless into build/validation/results.json, then draws the plots and writes
+# docs/validation/README.md from them (scripts/validation/make_report.py).
+# Usage: scripts/validation-report.sh [sandphys-validation options, e.g. --heap-granules 800]
+# (sandphys-validation --help lists them; the defaults take about an hour on 2 cores without a GPU).
+set -euo pipefail
+
+cd -- "$(dirname -- "${BASH_SOURCE[0]}")/.."
+
+scripts/install-deps.sh python3-matplotlib
+cmake --preset release
+cmake --build --preset release --target sandphys-validation
+build/release/samples/sandphys-validation --out build/validation/results.json "$@"
+# Debian's Python, where apt installed matplotlib (a python3 earlier in PATH, from pyenv or a
+# virtualenv, may not have it).
+python=/usr/bin/python3
+[[ -x "${python}" ]] || python=python3
+"${python}" scripts/validation/make_report.py build/validation/results.json docs/validation

@@ -1,0 +1,69 @@
+// The compression scene at CI size: a plunger loads a settled pile and lets it go. Sand is not
+// elastic: the unloading curve lies below the loading one (hysteresis) and the stress is back at
+// zero before the strain is (only part of it is recovered). 144 granules in a cylinder 12 d wide,
+// pressed to 3 kPa at 0.1 m/s; about 30 s on two llvmpipe cores.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+
+#include "scenes/compression.h"
+#include "support/test_world.h"
+
+namespace sandphys::scenes {
+namespace {
+
+constexpr float kFrame = 1.0f / 120.0f;
+constexpr double kLongestRun = 8.0;
+
+TEST(Compression, UnloadingFollowsAnotherPathAndLeavesAResidualStrain) {
+  Compression::Config config;
+  config.radius = 6.0f;
+  config.layers = 16;
+  config.maxStress = 3000.0f;
+  config.plungerSpeed = 0.1f;
+  config.stepsPerContact = kMinStepsPerContact;
+  Compression scene(config);
+  World world(testing::gpu(), scene.settings());
+  scene.build(world);
+  while (!scene.finished() && world.simulatedTime() < kLongestRun) {
+    const StepReport report = scene.step(world, kFrame);
+    scene.update(world, report, world.simulatedTime());
+  }
+  ASSERT_TRUE(scene.finished()) << scene.status();
+  const auto& curve = scene.stressStrain();
+  const std::size_t turn = scene.turnIndex();
+  ASSERT_GT(turn, 5u) << "a loading curve of a few frames at least";
+  ASSERT_GT(curve.size(), turn + 2);
+  std::printf(
+      "granules %u: peak %.0f Pa at strain %.4f; residual strain %.4f, recovered %.2f; "
+      "%zu contacts at rest, %zu at the peak\n",
+      scene.granulesPerLayer() * config.layers, curve[turn - 1][1], scene.maxStrain(),
+      scene.residualStrain(), scene.recoveredFraction(), scene.atRest().contacts.size(),
+      scene.atPeak().contacts.size());
+  EXPECT_GE(curve[turn - 1][1], config.maxStress);
+  // Loading raises the stress with the strain (allowing for the noise of single frames).
+  EXPECT_GT(curve[turn - 1][1], 1.5 * curve[turn / 2][1]);
+  // Hysteresis: at half the peak strain, unloading carries less stress than loading did.
+  const double halfway = 0.5 * scene.maxStrain();
+  auto stressAt = [&](std::size_t from, std::size_t to) {
+    double best = 1e300, stress = 0.0;
+    for (std::size_t i = from; i < to; ++i) {
+      const double gap = std::abs(curve[i][0] - halfway);
+      if (gap < best) best = gap, stress = curve[i][1];
+    }
+    return stress;
+  };
+  const double loading = stressAt(0, turn);
+  const double unloading = stressAt(turn, curve.size());
+  std::printf("at strain %.4f: loading %.0f Pa, unloading %.0f Pa\n", halfway, loading, unloading);
+  EXPECT_LT(unloading, 0.8 * loading);
+  // Only part of the strain comes back.
+  EXPECT_GT(scene.residualStrain(), 0.05 * scene.maxStrain());
+  EXPECT_LT(scene.residualStrain(), scene.maxStrain());
+  EXPECT_GT(scene.atRest().contacts.size(), 0u);
+  EXPECT_GT(scene.atPeak().contacts.size(), scene.atRest().contacts.size() / 2);
+}
+
+}  // namespace
+}  // namespace sandphys::scenes
