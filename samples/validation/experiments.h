@@ -20,7 +20,7 @@ struct ExperimentContext {
 /// The hourglass against friction (the paper's Fig. 23): one fill per μ over a fixed outlet, each
 /// drained; the granules remaining over time and the flow rate of the steady part.
 struct FlowFrictionOptions {
-  std::uint32_t granules = 3000;
+  std::uint32_t granules = 2000;
   float outlet = 16.0f;  ///< d
   std::vector<double> frictions{0.0, 0.2, 0.4, 0.6, 0.8};
 };
@@ -30,7 +30,7 @@ nlohmann::json flowAgainstFriction(const ExperimentContext& context,
 /// The hourglass against the outlet diameter (the paper's Fig. 24) at one μ, and the fit of
 /// Beverloo's law W = C (D − k)^{5/2} beside the paper's.
 struct FlowOutletOptions {
-  std::uint32_t granules = 3000;
+  std::uint32_t granules = 2000;
   float friction = 0.2f;
   std::vector<double> outlets{8.0, 12.0, 16.0, 20.0, 24.0};  ///< d
 };
