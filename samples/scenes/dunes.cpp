@@ -11,8 +11,6 @@ namespace sandphys::scenes {
 
 namespace {
 
-// Fraction of the last granule's fall added before the sand may count as settled.
-constexpr double kLandingMargin = 0.5;
 // Depth of the sink's top below the floor's particle centres, d.
 constexpr float kSinkDepth = 3.0f;
 // kGranuleReach in float, as the scene's geometry is computed.
@@ -68,10 +66,11 @@ WorldSettings Dunes::settings() const {
 
 void Dunes::build(World& world) {
   m_poured = 0;
-  m_pourEnd = -1.0;
-  m_finished = false;
   m_profile = {};
-  m_granuleMass = tetrahedronTemplate(d(), world.settings().material.density).mass;
+  m_settling = PourSettling(
+      fallTime(m_config.pourHeight * d(), emitterSpeed(), gravityMagnitude(world.settings())),
+      tetrahedronTemplate(d(), world.settings().material.density).mass, m_config.settleSpeed,
+      m_config.maxSettleSeconds);
   const float halfX = m_config.floorHalfLength * d();
   const float halfZ = m_config.floorHalfWidth * d();
   world.addRoughFloor(RoughFloor{
@@ -95,32 +94,15 @@ void Dunes::build(World& world) {
 }
 
 void Dunes::update(World& world, const StepReport& report, double simTime) {
-  if (m_finished) return;
+  if (m_settling.settled()) return;
   m_poured = world.granulesSpawned();
-  if (m_poured < 2 * m_config.granules) return;
-  if (m_pourEnd < 0.0) {
-    m_pourEnd = simTime;
-    const double g = gravityMagnitude(world.settings());
-    m_minSettleTime =
-        (1.0 + kLandingMargin) * fallTime(m_config.pourHeight * d(), emitterSpeed(), g);
-  }
-  const double sincePour = simTime - m_pourEnd;
-  if (sincePour < m_minSettleTime) return;
-  const std::uint32_t alive = report.hasStats ? report.stats.granulesAlive : m_poured;
-  if (!granulesCalm(report, alive, m_granuleMass, m_config.settleSpeed) &&
-      sincePour < m_minSettleTime + m_config.maxSettleSeconds) {
-    return;
-  }
-  m_finished = true;
+  if (!m_settling.update(report, simTime, m_poured, 2 * m_config.granules)) return;
   // Once per run: the settled sand's profile for series().
   m_profile = profile(world.readBodies());
 }
 
 std::string Dunes::status() const {
-  if (m_pourEnd < 0.0) {
-    return "pouring " + std::to_string(m_poured) + "/" + std::to_string(2 * m_config.granules);
-  }
-  return m_finished ? "settled" : "settling";
+  return m_settling.status(m_poured, 2 * m_config.granules);
 }
 
 bool Dunes::contains(const Vec3& centre) const {
@@ -183,7 +165,7 @@ std::vector<SceneMetric> Dunes::metrics(std::span<const BodyState> bodies) const
       {"saddle_x_d", p.saddle[0] / d()},
       {"saddle_depth_d", (lowerCrest - p.saddle[1]) / d()},
       {"crest_separation_d", (p.rightCrest[0] - p.leftCrest[0]) / d()},
-      {"settled", m_finished ? 1.0 : 0.0},
+      {"settled", m_settling.settled() ? 1.0 : 0.0},
   };
 }
 

@@ -5,6 +5,7 @@
 #include <span>
 #include <vector>
 
+#include "scenes/pour.h"
 #include "scenes/scene.h"
 
 namespace sandphys::scenes {
@@ -80,7 +81,7 @@ class Dunes final : public Scene {
   /// Waits for the pours to end and the sand to settle, then reads the bodies once for the
   /// profile.
   void update(World& world, const StepReport& report, double simTime) override;
-  bool finished() const override { return m_finished; }
+  bool finished() const override { return m_settling.settled(); }
   /// "pouring n/N", "settling", "settled".
   std::string status() const override;
   /// On or above the floor.
@@ -103,11 +104,8 @@ class Dunes final : public Scene {
 
   Config m_config;
   Profile m_profile;
-  float m_granuleMass = 0.0f;
-  double m_pourEnd = -1.0;
-  double m_minSettleTime = 0.0;
+  PourSettling m_settling{0.0, 0.0f, 0.0f, 0.0f};  // set by build()
   std::uint32_t m_poured = 0;
-  bool m_finished = false;
 };
 
 }  // namespace sandphys::scenes

@@ -13,6 +13,9 @@ namespace {
 constexpr float kPourSpeedMargin = 1.1f;
 constexpr float kGuardMargin = 1.25f;
 constexpr float kMinGuardSpeed = 2.0f;
+// Fraction of the last granule's fall added before the sand may count as settled: after landing
+// the grains still slide and bounce for a while.
+constexpr double kLandingMargin = 0.5;
 
 }  // namespace
 
@@ -36,6 +39,25 @@ void checkPourSpeed(std::string_view scene, std::string_view widthName, float ha
 float pourGuardSpeed(float speed, float height, float g) {
   const float impact = std::sqrt(speed * speed + 2.0f * g * height);
   return std::max(kMinGuardSpeed, kGuardMargin * impact);
+}
+
+bool PourSettling::update(const StepReport& report, double simTime, std::uint32_t poured,
+                          std::uint32_t budget) {
+  if (m_settled) return true;
+  if (poured < budget) return false;
+  if (m_pourEnd < 0.0) m_pourEnd = simTime;
+  const double sincePour = simTime - m_pourEnd;
+  const double landing = (1.0 + kLandingMargin) * m_fallSeconds;
+  if (sincePour < landing) return false;
+  const std::uint32_t alive = report.hasStats ? report.stats.granulesAlive : poured;
+  m_settled = granulesCalm(report, alive, m_granuleMass, m_settleSpeed) ||
+              sincePour >= landing + m_maxSettleSeconds;
+  return m_settled;
+}
+
+std::string PourSettling::status(std::uint32_t poured, std::uint32_t budget) const {
+  if (m_pourEnd < 0.0) return "pouring " + std::to_string(poured) + "/" + std::to_string(budget);
+  return m_settled ? "settled" : "settling";
 }
 
 }  // namespace sandphys::scenes

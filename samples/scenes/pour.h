@@ -1,5 +1,7 @@
 #pragma once
 
+#include <cstdint>
+#include <string>
 #include <string_view>
 
 #include <sandphys/sandphys.h>
@@ -32,5 +34,35 @@ void checkPourSpeed(std::string_view scene, std::string_view widthName, float ha
 /// fall `height` (m) under gravity `g` (m/s²): the impact with a margin for rebounds and the rim
 /// speed of spinning grains, and at least 2 m/s.
 float pourGuardSpeed(float speed, float height, float g);
+
+/// When a pour has ended and the sand it made has settled (repose-heap, dunes): the last granule
+/// leaves the emitter, falls (fallTime with a margin for the grains to slide and bounce), and
+/// then the sand is calm (granulesCalm) or maxSettleSeconds more have passed.
+class PourSettling {
+ public:
+  /// `fallSeconds`: the fall of the last granule from the emitter onto the floor, s.
+  PourSettling(double fallSeconds, float granuleMass, float settleSpeed, float maxSettleSeconds)
+      : m_fallSeconds(fallSeconds),
+        m_granuleMass(granuleMass),
+        m_settleSpeed(settleSpeed),
+        m_maxSettleSeconds(maxSettleSeconds) {}
+
+  /// After each frame: `poured` granules so far of the pour's `budget`, `report` the frame's
+  /// step (its stats tell the kinetic energy). True from the frame the sand has settled on.
+  bool update(const StepReport& report, double simTime, std::uint32_t poured, std::uint32_t budget);
+  /// Simulated time at which the last granule was poured, s; negative while pouring.
+  double pourEnd() const { return m_pourEnd; }
+  bool settled() const { return m_settled; }
+  /// "pouring n/N", "settling" or "settled".
+  std::string status(std::uint32_t poured, std::uint32_t budget) const;
+
+ private:
+  double m_fallSeconds;
+  float m_granuleMass;
+  float m_settleSpeed;
+  float m_maxSettleSeconds;
+  double m_pourEnd = -1.0;
+  bool m_settled = false;
+};
 
 }  // namespace sandphys::scenes

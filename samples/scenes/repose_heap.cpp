@@ -12,8 +12,6 @@ namespace sandphys::scenes {
 
 namespace {
 
-// Fraction of the last granule's fall added before the heap may count as settled.
-constexpr double kLandingMargin = 0.5;
 // Depth of the sink's top below the floor's particle centres, d: past the floor's edge a grain
 // that deep has left.
 constexpr float kSinkDepth = 3.0f;
@@ -62,9 +60,10 @@ WorldSettings ReposeHeap::settings() const {
 
 void ReposeHeap::build(World& world) {
   m_poured = 0;
-  m_pourEnd = -1.0;
-  m_finished = false;
-  m_granuleMass = tetrahedronTemplate(d(), world.settings().material.density).mass;
+  m_settling = PourSettling(
+      fallTime(m_config.pourHeight * d(), emitterSpeed(), gravityMagnitude(world.settings())),
+      tetrahedronTemplate(d(), world.settings().material.density).mass, m_config.settleSpeed,
+      m_config.maxSettleSeconds);
   const float radius = m_config.floorRadius * d();
   world.addRoughFloor(RoughFloor{.center = {0.0f, 0.0f, 0.0f}, .radius = radius, .spacing = d()});
   // Everything that rolls off the floor's edge (or, by a fault, through it) ends here.
@@ -82,30 +81,12 @@ void ReposeHeap::build(World& world) {
 }
 
 void ReposeHeap::update(World& world, const StepReport& report, double simTime) {
-  if (m_finished) return;
   m_poured = world.granulesSpawned();
-  if (m_poured < m_config.granules) return;
-  if (m_pourEnd < 0.0) {
-    m_pourEnd = simTime;
-    const double g = gravityMagnitude(world.settings());
-    m_minSettleTime =
-        (1.0 + kLandingMargin) * fallTime(m_config.pourHeight * d(), emitterSpeed(), g);
-  }
-  const double sincePour = simTime - m_pourEnd;
-  if (sincePour < m_minSettleTime) return;
-  const std::uint32_t alive = report.hasStats ? report.stats.granulesAlive : m_config.granules;
-  if (!granulesCalm(report, alive, m_granuleMass, m_config.settleSpeed) &&
-      sincePour < m_minSettleTime + m_config.maxSettleSeconds) {
-    return;
-  }
-  m_finished = true;
+  m_settling.update(report, simTime, m_poured, m_config.granules);
 }
 
 std::string ReposeHeap::status() const {
-  if (m_pourEnd < 0.0) {
-    return "pouring " + std::to_string(m_poured) + "/" + std::to_string(m_config.granules);
-  }
-  return m_finished ? "settled" : "settling";
+  return m_settling.status(m_poured, m_config.granules);
 }
 
 bool ReposeHeap::contains(const Vec3& centre) const {
@@ -136,9 +117,9 @@ std::vector<SceneMetric> ReposeHeap::metrics(std::span<const BodyState> bodies) 
       {"granules_on_floor", static_cast<double>(onFloor)},
       {"granules_off_floor", static_cast<double>(m_poured - std::min(m_poured, onFloor))},
       {"granules_in_flight", static_cast<double>(elsewhere)},
-      {"pour_end_s", m_pourEnd},
+      {"pour_end_s", m_settling.pourEnd()},
       {"friction", m_config.friction},
-      {"settled", m_finished ? 1.0 : 0.0},
+      {"settled", m_settling.settled() ? 1.0 : 0.0},
   };
   try {
     const analysis::HeapAngle heap = heapAngle(bodies);

@@ -6,6 +6,7 @@
 
 #include <sandphys/analysis/heap.h>
 
+#include "scenes/pour.h"
 #include "scenes/scene.h"
 
 namespace sandphys::scenes {
@@ -77,7 +78,7 @@ class ReposeHeap final : public Scene {
   void build(World& world) override;
   /// Waits for the pour to end and the heap to settle.
   void update(World& world, const StepReport& report, double simTime) override;
-  bool finished() const override { return m_finished; }
+  bool finished() const override { return m_settling.settled(); }
   /// "pouring n/N", "settling", "settled".
   std::string status() const override;
   /// On or above the floor, within its radius.
@@ -99,11 +100,8 @@ class ReposeHeap final : public Scene {
   float d() const { return m_config.particleDiameter; }
 
   Config m_config;
-  float m_granuleMass = 0.0f;
-  double m_pourEnd = -1.0;
-  double m_minSettleTime = 0.0;
+  PourSettling m_settling{0.0, 0.0f, 0.0f, 0.0f};  // set by build()
   std::uint32_t m_poured = 0;
-  bool m_finished = false;
 };
 
 }  // namespace sandphys::scenes

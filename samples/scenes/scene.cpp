@@ -110,6 +110,14 @@ std::string formatSceneParameter(const SceneParameter& parameter) {
       parameter.value);
 }
 
+bool runUntilFinished(Scene& scene, World& world, float frameDt, double maxSeconds) {
+  while (!scene.finished() && world.simulatedTime() < maxSeconds) {
+    const StepReport report = scene.step(world, frameDt);
+    scene.update(world, report, world.simulatedTime());
+  }
+  return scene.finished();
+}
+
 bool granulesCalm(const StepReport& report, std::uint32_t granules, float granuleMass,
                   float settleSpeed) {
   const double settleEnergy = 0.5 * granuleMass * settleSpeed * settleSpeed;

@@ -138,6 +138,10 @@ class Scene {
   virtual SceneBounds bounds() const = 0;
 };
 
+/// Runs `scene` in `world` (the one its build() filled) frame by frame, Scene::step then
+/// Scene::update, until the scene finishes or the world has simulated `maxSeconds` s in all.
+/// Returns Scene::finished.
+bool runUntilFinished(Scene& scene, World& world, float frameDt, double maxSeconds);
 /// Whether `granules` granules of mass `granuleMass` (kg) are calm after the step that gave
 /// `report`: the world's kinetic energy (from the step's stats) per granule is below that of one
 /// granule moving at `settleSpeed` (m/s). False without per-frame stats (a scene's time limits

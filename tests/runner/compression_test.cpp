@@ -26,10 +26,7 @@ TEST(Compression, UnloadingFollowsAnotherPathAndLeavesAResidualStrain) {
   Compression scene(config);
   World world(testing::gpu(), scene.settings());
   scene.build(world);
-  while (!scene.finished() && world.simulatedTime() < kLongestRun) {
-    const StepReport report = scene.step(world, kFrame);
-    scene.update(world, report, world.simulatedTime());
-  }
+  runUntilFinished(scene, world, kFrame, kLongestRun);
   ASSERT_TRUE(scene.finished()) << scene.status();
   const auto& curve = scene.stressStrain();
   const std::size_t turn = scene.turnIndex();

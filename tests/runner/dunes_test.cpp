@@ -26,10 +26,7 @@ TEST(Dunes, TwoColumnsMakeTwoCrestsWithASaddleBetween) {
   Dunes scene(config);
   World world(testing::gpu(), scene.settings());
   scene.build(world);
-  while (!scene.finished() && world.simulatedTime() < kLongestRun) {
-    const StepReport report = scene.step(world, kFrame);
-    scene.update(world, report, world.simulatedTime());
-  }
+  runUntilFinished(scene, world, kFrame, kLongestRun);
   ASSERT_TRUE(scene.finished()) << scene.status();
   const Dunes::Profile p = scene.profile(world.readBodies());
   const double d = config.particleDiameter;

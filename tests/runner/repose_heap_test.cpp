@@ -38,10 +38,7 @@ Heap pour(float friction, std::uint64_t seed) {
   ReposeHeap scene(config);
   World world(testing::gpu(), scene.settings());
   scene.build(world);
-  while (!scene.finished() && world.simulatedTime() < kLongestRun) {
-    const StepReport report = scene.step(world, kFrame);
-    scene.update(world, report, world.simulatedTime());
-  }
+  runUntilFinished(scene, world, kFrame, kLongestRun);
   Heap heap;
   heap.settled = scene.finished();
   const std::vector<BodyState> bodies = world.readBodies();
