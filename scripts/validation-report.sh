@@ -2,7 +2,8 @@
 # The validation report in one command: installs what is missing (and python3-matplotlib),
 # builds sandphys-validation with the `release` preset, runs the paper's validation experiments
 # headless into build/validation/results.json, then draws the plots and writes
-# docs/validation/README.md from them (scripts/validation/make_report.py).
+# docs/validation/README.md from them (scripts/validation/make_report.py), with the measurements
+# beside it (docs/validation/results.json).
 # Usage: scripts/validation-report.sh [sandphys-validation options, e.g. --heap-granules 800]
 # (sandphys-validation --help lists them; the defaults take about an hour on 2 cores without a GPU).
 set -euo pipefail
@@ -18,3 +19,5 @@ build/release/samples/sandphys-validation --out build/validation/results.json "$
 python=/usr/bin/python3
 [[ -x "${python}" ]] || python=python3
 "${python}" scripts/validation/make_report.py build/validation/results.json docs/validation
+# The measurements go with the report, so that make_report.py can redraw it without a rerun.
+cp build/validation/results.json docs/validation/results.json

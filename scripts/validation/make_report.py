@@ -207,7 +207,10 @@ def rows_repose(section):
     ]
 
 
-PENDING = []
+PENDING = [
+    ("Angle of repose in the reservoir, scupper and sump (Fig. 15)",
+     "the angle measured in the sump"),
+]
 
 # The paper's Table 4, as printed: exponential (a, b), Gaussian (beta, alpha), gamma (a, b).
 TABLE4 = {
@@ -529,7 +532,9 @@ def main():
             "",
             f"The `compression` scene: a lattice of {rough['granules']} granules ({s['layers']} layers) "
             f"drops into a smooth cylinder of radius {s['radius_d']:g} d on a rough floor and settles; "
-            "every contact is read (\"rest\"). A flat plunger then comes down at 5 cm/s until the mean "
+            "every contact is read (\"rest\"). A flat plunger then presses the top flat (to half the peak "
+            "stress, see `Compression::Config::preloadFraction`), eases back up to the lowest height "
+            "without compression (the paper's protocol), and comes down from there at 5 cm/s until the mean "
             f"axial stress reaches {s['max_stress_pa'] / 1000:g} kPa, where every contact is read again "
             "(\"peak\"), and goes back up until the sand no longer pushes on it. The same pile at μ = 0 "
             "gives the frictionless distributions.",
@@ -549,8 +554,8 @@ def main():
             "",
             "![contact network](structure.png)",
             "",
-            f"Stress–strain: the strain is the plunger's travel since it first touched the sand over the "
-            f"pile's height then; {100 * rough['max_strain']:.2f}% at the peak, "
+            f"Stress–strain: the strain is the plunger's travel from that eased height over the pile's "
+            f"height there; {100 * rough['max_strain']:.2f}% at the peak, "
             f"{100 * rough['residual_strain']:.2f}% when the stress was back at zero "
             f"({rough['recovered_fraction']:.0%} recovered). Run: {rough['simulated_seconds']:.2f} s "
             f"simulated, {rough['wall_seconds']:.0f} s wall.",
@@ -571,6 +576,9 @@ def main():
         "",
         f"- Run started {results['started']}, {wall / 60:.1f} min wall, on {results['gpu']}.",
         f"- Command: `{results['command']}`",
+        "- The measurements: [results.json](results.json); "
+        "`scripts/validation/make_report.py docs/validation/results.json docs/validation` redraws "
+        "this report from them.",
         "",
         "## Summary",
         "",
@@ -578,12 +586,12 @@ def main():
         "",
         f"Verdicts: a steady part agrees at R² ≥ {MIN_STEADY_R2}; a law (Beverloo, power law) "
         f"at R² ≥ {MIN_LAW_R2}; the power law's exponent within ±{EXPONENT_TOLERANCE} of the "
-        "paper's. Rows without a measurement are experiments not yet built.",
+        "paper's. Rows without a measurement are experiments not yet built (issue 5 is open).",
         "",
         *[s + "\n" for s in sections],
     ])
     (out / "README.md").write_text(report)
-    print(f"make_report: wrote {out / 'README.md'} and {len(sections)} plots")
+    print(f"make_report: wrote {out / 'README.md'} and {len(list(out.glob('*.png')))} plots")
 
 
 if __name__ == "__main__":
