@@ -7,6 +7,7 @@
 #include <string>
 
 #include "scenes/cylinder_pile.h"
+#include "scenes/pour.h"
 
 namespace sandphys::scenes {
 
@@ -28,20 +29,24 @@ constexpr float kHeadroom = 6.0f;
 // until then it comes down kApproachFactor times faster than plungerSpeed.
 constexpr double kContactFraction = 0.005;
 constexpr double kApproachFactor = 4.0;
-// Speed guard: the fall of the lattice's top onto the pile, with a margin, at least 2 m/s.
-constexpr float kGuardMargin = 1.25f;
-constexpr float kMinGuardSpeed = 2.0f;
 constexpr double kLandingMargin = 0.5;
 
 }  // namespace
 
 std::uint32_t Compression::granulesPerLayer() const {
+  return latticeSide() * latticeSide();
+}
+
+std::uint32_t Compression::latticeSide() const {
   // A square lattice of spacing s whose granules (reach r) fit in the circle of radius R: its
   // half diagonal ((k - 1) s / 2 + r) √2 <= R.
   const double spacing = kDefaultGranuleSpacing;
   const double room = 2.0 * (m_config.radius / std::numbers::sqrt2 - kReach) / spacing;
-  const auto k = room < 0.0 ? 0u : 1u + static_cast<std::uint32_t>(std::floor(room));
-  return k * k;
+  return room < 0.0 ? 0u : 1u + static_cast<std::uint32_t>(std::floor(room));
+}
+
+SampledMesh Compression::plungerShape() const {
+  return sampleMesh(cylinderMesh(plungerRadius(), kPlungerThickness * d(), kPlungerSegments), d());
 }
 
 double Compression::area() const {
@@ -67,8 +72,7 @@ WorldSettings Compression::settings() const {
                           " m/s and max-stress " + numberText(m_config.maxStress) +
                           " Pa must be > 0");
   }
-  const SampledMesh plunger =
-      sampleMesh(cylinderMesh(plungerRadius(), kPlungerThickness * d(), kPlungerSegments), d());
+  const SampledMesh plunger = plungerShape();
   const std::uint64_t granules = std::uint64_t(perLayer) * m_config.layers;
   const std::uint64_t particles = 4 * granules +
                                   CylinderPile::roughFloorParticles(m_config.radius * d(), d()) +
@@ -86,8 +90,8 @@ WorldSettings Compression::settings() const {
   settings.statsEachFrame = true;
   const float blockHeight =
       (static_cast<float>(m_config.layers) * kDefaultGranuleSpacing + kClearance) * d();
-  settings.maxSpeed = std::max(
-      kMinGuardSpeed, kGuardMargin * std::sqrt(2.0f * gravityMagnitude(settings) * blockHeight));
+  // The lattice's top falls onto the pile like grains from an emitter at rest.
+  settings.maxSpeed = pourGuardSpeed(0.0f, blockHeight, gravityMagnitude(settings));
   settings.stepsPerContact = m_config.stepsPerContact;
   return settings;
 }
@@ -110,7 +114,7 @@ void Compression::build(World& world) {
   const float wallHeight = (kClearance + kHeadroom) * d() + blockHeight + kReach * d();
   world.addRoughFloor(RoughFloor{.center = {0.0f, 0.0f, 0.0f}, .radius = radius, .spacing = d()});
   world.addCollider(Cylinder{.base = {0.0f, 0.0f, 0.0f}, .radius = radius, .height = wallHeight});
-  const auto side = static_cast<std::uint32_t>(std::lround(std::sqrt(granulesPerLayer())));
+  const std::uint32_t side = latticeSide();
   world.addGranules(GranuleBlock{.center = {0.0f, kClearance * d() + 0.5f * blockHeight, 0.0f},
                                  .countX = side,
                                  .countY = m_config.layers,
@@ -119,8 +123,7 @@ void Compression::build(World& world) {
                                  .seed = m_config.seed});
   // Parked above the wall until the pile has settled.
   m_bottomY = wallHeight + d();
-  const SampledMesh plunger =
-      sampleMesh(cylinderMesh(plungerRadius(), kPlungerThickness * d(), kPlungerSegments), d());
+  const SampledMesh plunger = plungerShape();
   m_plunger = world.addBody(
       plunger.shape, BodyDesc{.position = plungerCentre(m_bottomY + 0.5 * kPlungerThickness * d()),
                               .motion = Motion::Kinematic});

@@ -120,6 +120,10 @@ class Compression final : public Scene {
  private:
   float d() const { return m_config.particleDiameter; }
   float plungerRadius() const;
+  /// Granules along each side of the square lattice layer inside the cylinder.
+  std::uint32_t latticeSide() const;
+  /// The plunger's body: cylinderMesh sampled into particles.
+  SampledMesh plungerShape() const;
   Vec3 plungerCentre(double y) const { return {0.0f, static_cast<float>(y), 0.0f}; }
   void movePlunger(World& world, double simTime);
   /// Starts a motion of the plunger from where it is now: `direction` -1 down, +1 up, 0 stop.

@@ -1,5 +1,4 @@
 // The dune experiment of the validation report: two columns poured side by side.
-#include "app/run.h"
 #include "experiments.h"
 #include "scenes/dunes.h"
 
@@ -16,10 +15,7 @@ nlohmann::json duneProfile(const ExperimentContext& context, const DuneOptions& 
   config.granules = options.granulesPerColumn;
   config.separation = options.separation;
   scenes::Dunes scene(config);
-  const auto frames = static_cast<std::uint64_t>(kLongestRunSeconds / context.frameDt);
-  const samples::RunSummary run =
-      samples::runScene(context.gpu, scene, frames, context.frameDt, true, context.progress);
-  context.progress.finish();
+  const samples::RunSummary run = runToEnd(context, scene, kLongestRunSeconds);
   const double d = config.particleDiameter;
   const scenes::Dunes::Profile profile = scene.profile(run.bodies);
   nlohmann::json points = nlohmann::json::array();

@@ -7,6 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "app/progress.h"
+#include "app/run.h"
+#include "scenes/scene.h"
 
 namespace sandphys::validation {
 
@@ -16,6 +18,11 @@ struct ExperimentContext {
   samples::ProgressLine& progress;
   double frameDt = 1.0 / 120.0;
 };
+
+/// Runs `scene` headless in a new World until it finishes or `maxSeconds` have been simulated,
+/// with frames of context.frameDt.
+samples::RunSummary runToEnd(const ExperimentContext& context, scenes::Scene& scene,
+                             double maxSeconds);
 
 /// The hourglass against friction (the paper's Fig. 23): one fill per μ over a fixed outlet, each
 /// drained; the granules remaining over time and the flow rate of the steady part.

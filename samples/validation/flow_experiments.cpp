@@ -5,7 +5,6 @@
 
 #include <sandphys/analysis.h>
 
-#include "app/run.h"
 #include "experiments.h"
 #include "scenes/hourglass.h"
 
@@ -22,10 +21,7 @@ constexpr double kPaperBeverlooK = 4.107;
 
 nlohmann::json drain(const ExperimentContext& context, const scenes::Hourglass::Config& config) {
   scenes::Hourglass scene(config);
-  const auto frames = static_cast<std::uint64_t>(kLongestRunSeconds / context.frameDt);
-  const samples::RunSummary run =
-      samples::runScene(context.gpu, scene, frames, context.frameDt, true, context.progress);
-  context.progress.finish();
+  const samples::RunSummary run = runToEnd(context, scene, kLongestRunSeconds);
   const scenes::Hourglass::FlowFit fit = scene.flowFit();
   nlohmann::json remaining = nlohmann::json::array();
   for (const auto& point : scene.remaining()) remaining.push_back({point[0], point[1]});

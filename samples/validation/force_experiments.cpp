@@ -8,7 +8,6 @@
 
 #include <sandphys/analysis.h>
 
-#include "app/run.h"
 #include "experiments.h"
 #include "scenes/compression.h"
 
@@ -184,10 +183,7 @@ nlohmann::json compressionAndForces(const ExperimentContext& context,
     config.maxStress = options.maxStress;
     config.friction = friction;
     scenes::Compression scene(config);
-    const auto frames = static_cast<std::uint64_t>(kLongestRunSeconds / context.frameDt);
-    const samples::RunSummary run =
-        samples::runScene(context.gpu, scene, frames, context.frameDt, true, context.progress);
-    context.progress.finish();
+    const samples::RunSummary run = runToEnd(context, scene, kLongestRunSeconds);
     const double d = config.particleDiameter;
     nlohmann::json curve = nlohmann::json::array();
     for (const auto& point : scene.stressStrain()) curve.push_back({point[0], point[1]});

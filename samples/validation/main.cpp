@@ -41,6 +41,19 @@ void write(const std::filesystem::path& path, const nlohmann::json& results) {
 
 }  // namespace
 
+namespace sandphys::validation {
+
+samples::RunSummary runToEnd(const ExperimentContext& context, scenes::Scene& scene,
+                             double maxSeconds) {
+  const auto frames = static_cast<std::uint64_t>(maxSeconds / context.frameDt);
+  samples::RunSummary run =
+      samples::runScene(context.gpu, scene, frames, context.frameDt, true, context.progress);
+  context.progress.finish();
+  return run;
+}
+
+}  // namespace sandphys::validation
+
 int main(int argc, char** argv) {
   CLI::App app{
       "sandphys-validation: the paper's validation experiments (Longmore et al. 2013, section 6) "

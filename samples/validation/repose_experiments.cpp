@@ -4,7 +4,6 @@
 
 #include <sandphys/analysis.h>
 
-#include "app/run.h"
 #include "experiments.h"
 #include "scenes/repose_heap.h"
 
@@ -28,10 +27,7 @@ nlohmann::json reposeAgainstFriction(const ExperimentContext& context,
     config.granules = options.granules;
     config.friction = static_cast<float>(mu);
     scenes::ReposeHeap scene(config);
-    const auto frames = static_cast<std::uint64_t>(kLongestRunSeconds / context.frameDt);
-    const samples::RunSummary run =
-        samples::runScene(context.gpu, scene, frames, context.frameDt, true, context.progress);
-    context.progress.finish();
+    const samples::RunSummary run = runToEnd(context, scene, kLongestRunSeconds);
     nlohmann::json entry = {{"friction", mu},
                             {"finished", run.sceneFinished},
                             {"wall_seconds", run.wallSeconds},
