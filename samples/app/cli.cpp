@@ -189,16 +189,17 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
   app.add_option("--scale", scale, "rock-drop: scale factor applied to the mesh")->type_name("S");
   app.add_option(
          "--friction", friction,
-         "friction coefficient (hourglass: of the grains and the funnel wall; repose-heap: of "
-         "every contact; "
-         "slope-avalanche, avalanche: of the slope and the walls)")
+         "friction coefficient (hourglass: of the grains and the funnel wall; repose-heap, "
+         "repose-scupper: of every contact; slope-avalanche, avalanche: of the slope and the "
+         "walls)")
       ->type_name("MU");
   app.add_option("--outlet", outlet,
-                 "hourglass: outlet diameter; repose-heap: width of the pouring emitter; particle "
-                 "diameters")
+                 "hourglass: outlet diameter; repose-heap: width of the pouring emitter; "
+                 "repose-scupper: height of the open scupper; particle diameters")
       ->type_name("D");
   app.add_option("--granules", granules,
-                 "granules (hourglass: in the funnel; sand-box-pour, repose-heap: poured in total)")
+                 "granules (hourglass: in the funnel; sand-box-pour, repose-heap: poured in total; "
+                 "repose-scupper: in the reservoir)")
       ->type_name("N");
   app.add_option("--param", assignments, "set a scene parameter NAME=VALUE (see --list)");
   app.add_option("--screenshot", screenshot,

@@ -6,7 +6,6 @@
 #include <numbers>
 #include <string>
 
-#include "scenes/cylinder_pile.h"
 #include "scenes/pour.h"
 
 namespace sandphys::scenes {
@@ -74,9 +73,9 @@ WorldSettings Compression::settings() const {
   }
   const SampledMesh plunger = plungerShape();
   const std::uint64_t granules = std::uint64_t(perLayer) * m_config.layers;
-  const std::uint64_t particles = 4 * granules +
-                                  CylinderPile::roughFloorParticles(m_config.radius * d(), d()) +
-                                  plunger.centres.size();
+  const std::uint64_t particles =
+      4 * granules + roughFloorParticles(RoughFloor{.radius = m_config.radius * d()}, d()) +
+      plunger.centres.size();
   if (particles > std::numeric_limits<std::uint32_t>::max()) {
     throw InvalidArgument(scene + std::to_string(granules) + " granules (layers " +
                           std::to_string(m_config.layers) + ") are more than a World can index");

@@ -61,28 +61,12 @@ float CylinderPile::batchReach() const {
   return static_cast<float>(((farthest + jitter) * m_config.spacing + kGranuleReach) * d());
 }
 
-std::uint32_t CylinderPile::roughFloorParticles(float radius, float spacing) {
-  // Same arithmetic as World::addRoughFloor (double products of the float inputs), so that points
-  // on the rim are counted exactly as the world places them.
-  const double s = spacing;
-  const double r = radius;
-  const auto n = static_cast<std::int64_t>(std::floor(r / s));
-  std::uint32_t count = 0;
-  for (std::int64_t i = -n; i <= n; ++i) {
-    for (std::int64_t j = -n; j <= n; ++j) {
-      const double x = static_cast<double>(i) * s;
-      const double z = static_cast<double>(j) * s;
-      if (x * x + z * z <= r * r) ++count;
-    }
-  }
-  return count;
-}
-
 WorldSettings CylinderPile::settings() const {
   WorldSettings settings;
   settings.particleDiameter = d();
   const std::uint64_t granules = static_cast<std::uint64_t>(batchGranules()) * m_config.batches;
-  const std::uint64_t floorParticles = roughFloorParticles(m_config.cylinderRadius * d(), d());
+  const std::uint64_t floorParticles =
+      roughFloorParticles(RoughFloor{.radius = m_config.cylinderRadius * d()}, d());
   const std::uint64_t particles = 4 * granules + floorParticles;
   if (particles > std::numeric_limits<std::uint32_t>::max()) {
     throw InvalidArgument("cylinder-pile: batches × batch = " + std::to_string(granules) +

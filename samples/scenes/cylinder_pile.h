@@ -93,11 +93,6 @@ class CylinderPile final : public Scene {
   /// Simulated time (s) each batch took to settle or to reach maxSecondsPerBatch.
   const std::vector<double>& settleTimes() const { return m_settleTimes; }
 
-  /// Particles of a RoughFloor disc of radius `radius` and lattice spacing `spacing` (m): the
-  /// lattice points (i·spacing, j·spacing) with i² + j² ≤ (radius / spacing)², as
-  /// World::addRoughFloor places them.
-  static std::uint32_t roughFloorParticles(float radius, float spacing);
-
   /// Height (m) of the top surface of the granules in `bodies` that are alive and inside the
   /// container: the 99th percentile of their centre heights plus the granule's outer radius, so
   /// that a few bouncing granules do not lift the next batch. `floorY` when there are none.

@@ -20,12 +20,6 @@ const float kJitterReach =
     GranuleBlock{}.jitter * kDefaultGranuleSpacing * std::numbers::sqrt3_v<float>;
 // Room between a granule of the fill at its farthest jitter and the funnel wall or the gate, d.
 constexpr float kClearance = 0.2f;
-// Height between two layers of the fill, d. Odd layers are shifted by half the lattice spacing
-// along x and z, so a granule sits over the gap between four below it: centres of neighbouring
-// layers are then sqrt(2 (1.2 d)² + v²) apart, which for v = 1.85 d leaves 2.225 d (the distance
-// at which two granules of any orientation cannot touch) after both move by their largest jitter
-// of 0.072 d along each axis. A denser start than the 2.4 d cubic lattice settles sooner.
-constexpr float kLayerHeight = 1.85f;
 // Funnel wall above the top of the fill, d.
 constexpr float kHeadroom = 6.0f;
 // The gate: a slab this thick, reaching this far beyond the outlet's rim under the wall, d.
@@ -73,7 +67,7 @@ std::vector<Hourglass::Row> Hourglass::fillRows() const {
   std::vector<Row> rows;
   std::uint32_t left = m_config.granules;
   for (std::uint32_t layer = 0; left > 0; ++layer) {
-    const float h = gap + static_cast<float>(layer) * kLayerHeight;
+    const float h = gap + static_cast<float>(layer) * kShiftedLayerHeight;
     // Largest distance of a centre from the axis at height h (all in d).
     const float rho = outletRadius + h * tanAngle - gap / cosAngle;
     if (rho < 0.0f) continue;  // the cone is still too narrow here; halfAngle > 0 ends this

@@ -13,6 +13,7 @@
 #include "scenes/dunes.h"
 #include "scenes/hourglass.h"
 #include "scenes/repose_heap.h"
+#include "scenes/repose_scupper.h"
 #include "scenes/rock_drop.h"
 #include "scenes/sand_box_pour.h"
 #include "scenes/slope_avalanche.h"
@@ -64,6 +65,11 @@ constexpr std::array kScenes{
                "a narrow emitter pours granules onto a rough floor; the heap's flank stands at the "
                "angle of repose (Longmore et al. 2013, Fig. 22), which --metrics reports",
                &make<ReposeHeap>},
+    SceneEntry{"Validation", "repose-scupper",
+               "sand runs from a reservoir through a slot into the sump below, where its pile "
+               "stands at the angle of repose (Longmore et al. 2013, Fig. 15), which --metrics "
+               "reports",
+               &make<ReposeScupper>},
     SceneEntry{"Validation", "dunes",
                "sand dropped in two columns onto a rough floor forms a dune with two crests and a "
                "saddle between them (Longmore et al. 2013, Fig. 25)",

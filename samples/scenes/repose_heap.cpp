@@ -5,7 +5,6 @@
 #include <limits>
 #include <string>
 
-#include "scenes/cylinder_pile.h"
 #include "scenes/pour.h"
 
 namespace sandphys::scenes {
@@ -25,7 +24,7 @@ float ReposeHeap::emitterSpeed() const {
 WorldSettings ReposeHeap::settings() const {
   const std::string scene = "repose-heap: ";
   const std::uint64_t floorParticles =
-      CylinderPile::roughFloorParticles(m_config.floorRadius * d(), d());
+      roughFloorParticles(RoughFloor{.radius = m_config.floorRadius * d()}, d());
   const std::uint64_t particles = 4ull * m_config.granules + floorParticles;
   if (m_config.granules == 0 || particles > std::numeric_limits<std::uint32_t>::max()) {
     throw InvalidArgument(scene + "granules = " + std::to_string(m_config.granules) +

@@ -162,6 +162,20 @@ std::string numberText(double value);
 /// Length of the world's gravity vector, m/s².
 float gravityMagnitude(const WorldSettings& settings);
 
+/// Particles World::addRoughFloor places for `floor` in a world of particles `particleDiameter`
+/// (m) wide: the lattice points (i·s, j·s) within the floor's disc, or its rectangle when the
+/// radius is 0 (s is floor.spacing, or the diameter when that is 0). Scenes size their capacity
+/// with it.
+std::uint32_t roughFloorParticles(const RoughFloor& floor, float particleDiameter);
+
+/// Height between two layers of a loose starting lattice of granules (hourglass, repose-scupper),
+/// d. Odd layers are shifted by half the lattice spacing along x and z, so a granule sits over the
+/// gap between four below it: centres of neighbouring layers are then sqrt(2 (1.2 d)² + v²) apart,
+/// which for v = 1.85 d leaves 2.225 d (the distance at which two granules of any orientation
+/// cannot touch) after both move by their largest jitter of 0.072 d along each axis. A denser
+/// start than the 2.4 d cubic lattice settles sooner.
+inline constexpr float kShiftedLayerHeight = 1.85f;
+
 /// The value below which `fraction` (in [0, 1]) of `values` lie; `values` must not be empty and
 /// is reordered.
 float percentile(std::vector<float>& values, double fraction);

@@ -8,6 +8,7 @@
 
 #include "app/progress.h"
 #include "app/run.h"
+#include "scenes/repose_scupper.h"
 #include "scenes/scene.h"
 
 namespace sandphys::validation {
@@ -52,6 +53,15 @@ struct ReposeOptions {
 };
 nlohmann::json reposeAgainstFriction(const ExperimentContext& context,
                                      const ReposeOptions& options);
+
+/// The angle of repose in the sump of the paper's reservoir-and-scupper setup (Fig. 15) against
+/// friction (Fig. 22), with the scene's default geometry, and its power law.
+struct ScupperOptions {
+  std::uint32_t granules = scenes::ReposeScupper::Config{}.granules;
+  std::vector<double> frictions{0.1, 0.2, 0.4, 0.6, 0.8};
+};
+nlohmann::json scupperAgainstFriction(const ExperimentContext& context,
+                                      const ScupperOptions& options);
 
 /// Two columns of sand poured side by side (the paper's Fig. 25): the dune's profile, its two
 /// crests and the saddle between them.

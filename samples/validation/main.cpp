@@ -22,8 +22,8 @@ namespace {
 using namespace sandphys;
 using namespace sandphys::validation;
 
-const std::vector<std::string> kExperiments{"flow-friction", "flow-outlet", "repose", "dunes",
-                                            "compression"};
+const std::vector<std::string> kExperiments{"flow-friction",  "flow-outlet", "repose",
+                                            "repose-scupper", "dunes",       "compression"};
 
 std::string utcNow() {
   const std::time_t now = std::time(nullptr);
@@ -64,6 +64,7 @@ int main(int argc, char** argv) {
   FlowFrictionOptions flowFriction;
   FlowOutletOptions flowOutlet;
   ReposeOptions repose;
+  ScupperOptions scupper;
   DuneOptions dunes;
   CompressionOptions compression;
   bool quiet = false;
@@ -97,6 +98,15 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--heap-frictions", repose.frictions,
                  "repose: friction coefficients, comma-separated (each > 0: the power law)")
+      ->delimiter(',')
+      ->check(CLI::Range(1e-3, 10.0))
+      ->capture_default_str();
+  app.add_option("--scupper-granules", scupper.granules,
+                 "repose-scupper: granules in the reservoir of each run")
+      ->check(CLI::Range(1u, 1u << 28))
+      ->capture_default_str();
+  app.add_option("--scupper-frictions", scupper.frictions,
+                 "repose-scupper: friction coefficients, comma-separated (each > 0: the power law)")
       ->delimiter(',')
       ->check(CLI::Range(1e-3, 10.0))
       ->capture_default_str();
@@ -144,6 +154,7 @@ int main(int argc, char** argv) {
     run("flow-friction", [&] { return flowAgainstFriction(context, flowFriction); });
     run("flow-outlet", [&] { return flowAgainstOutlet(context, flowOutlet); });
     run("repose", [&] { return reposeAgainstFriction(context, repose); });
+    run("repose-scupper", [&] { return scupperAgainstFriction(context, scupper); });
     run("dunes", [&] { return duneProfile(context, dunes); });
     run("compression", [&] { return compressionAndForces(context, compression); });
     std::fprintf(stderr, "sandphys-validation: wrote %s\n", out.c_str());

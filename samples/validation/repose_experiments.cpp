@@ -1,11 +1,15 @@
-// The angle-of-repose experiment of the validation report: heaps poured at several μ, their
-// angles, and a power law fitted by the library.
+// The angle-of-repose experiments of the validation report: heaps poured at several μ, and piles
+// run into a sump through a scupper (the paper's setup), their angles, and power laws fitted by
+// the library.
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include <sandphys/analysis.h>
 
 #include "experiments.h"
 #include "scenes/repose_heap.h"
+#include "scenes/repose_scupper.h"
 
 namespace sandphys::validation {
 
@@ -15,23 +19,25 @@ constexpr double kLongestRunSeconds = 20.0;
 // The paper's Fig. 22: a power law in μ with this exponent.
 constexpr double kPaperExponent = 0.51;
 
-}  // namespace
-
-nlohmann::json reposeAgainstFriction(const ExperimentContext& context,
-                                     const ReposeOptions& options) {
+// One run per μ of a scene with a heapAngle (ReposeHeap, ReposeScupper) made by `makeScene`, the
+// angle of each, and the power law through them; `granules` and the scene's own metrics go with
+// each run.
+template <typename SceneType, typename MakeScene>
+nlohmann::json angleSweep(const ExperimentContext& context, std::uint32_t granules,
+                          const std::vector<double>& frictionList, MakeScene makeScene) {
   nlohmann::json runs = nlohmann::json::array();
   std::vector<double> frictions;
   std::vector<double> angles;
-  for (double mu : options.frictions) {
-    scenes::ReposeHeap::Config config;
-    config.granules = options.granules;
-    config.friction = static_cast<float>(mu);
-    scenes::ReposeHeap scene(config);
+  for (double mu : frictionList) {
+    SceneType scene = makeScene(static_cast<float>(mu));
     const samples::RunSummary run = runToEnd(context, scene, kLongestRunSeconds);
     nlohmann::json entry = {{"friction", mu},
                             {"finished", run.sceneFinished},
                             {"wall_seconds", run.wallSeconds},
                             {"simulated_seconds", run.stats.simulatedTime}};
+    for (const scenes::SceneMetric& metric : scene.metrics(run.bodies)) {
+      if (metric.name.starts_with("granules_")) entry[metric.name] = metric.value;
+    }
     try {
       const analysis::HeapAngle heap = scene.heapAngle(run.bodies);
       entry["angle_deg"] = heap.degrees;
@@ -51,8 +57,8 @@ nlohmann::json reposeAgainstFriction(const ExperimentContext& context,
     }
     runs.push_back(std::move(entry));
   }
-  nlohmann::json result = {{"granules", options.granules},
-                           {"particle_diameter_m", scenes::ReposeHeap::Config{}.particleDiameter},
+  nlohmann::json result = {{"granules", granules},
+                           {"particle_diameter_m", typename SceneType::Config{}.particleDiameter},
                            {"runs", runs},
                            {"paper", {{"exponent", kPaperExponent}}}};
   try {
@@ -62,6 +68,37 @@ nlohmann::json reposeAgainstFriction(const ExperimentContext& context,
   } catch (const InvalidArgument& error) {
     result["power_law_error"] = error.what();
   }
+  return result;
+}
+
+}  // namespace
+
+nlohmann::json reposeAgainstFriction(const ExperimentContext& context,
+                                     const ReposeOptions& options) {
+  return angleSweep<scenes::ReposeHeap>(context, options.granules, options.frictions,
+                                        [&](float mu) {
+                                          scenes::ReposeHeap::Config config;
+                                          config.granules = options.granules;
+                                          config.friction = mu;
+                                          return scenes::ReposeHeap(config);
+                                        });
+}
+
+nlohmann::json scupperAgainstFriction(const ExperimentContext& context,
+                                      const ScupperOptions& options) {
+  nlohmann::json result = angleSweep<scenes::ReposeScupper>(context, options.granules,
+                                                            options.frictions, [&](float mu) {
+                                                              scenes::ReposeScupper::Config config;
+                                                              config.granules = options.granules;
+                                                              config.friction = mu;
+                                                              return scenes::ReposeScupper(config);
+                                                            });
+  const scenes::ReposeScupper::Config geometry;
+  result["geometry_d"] = {{"depth", geometry.depth},
+                          {"reservoir_width", geometry.reservoirWidth},
+                          {"ledge", geometry.ledge},
+                          {"outlet", geometry.outlet},
+                          {"sump_length", geometry.sumpLength}};
   return result;
 }
 

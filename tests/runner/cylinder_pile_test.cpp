@@ -48,7 +48,8 @@ class CylinderPileOnGpu : public ::testing::Test {
 TEST_F(CylinderPileOnGpu, BuildAddsTheFloorAndTheFirstBatch50DiametersUp) {
   EXPECT_EQ(m_world->bodyCount(), 1u + 32u);
   // The capacity formula (roughFloorParticles) has to match what the world really placed.
-  EXPECT_EQ(m_world->particleCount(), 4u * 32u + CylinderPile::roughFloorParticles(1.0f, kD));
+  EXPECT_EQ(m_world->particleCount(),
+            4u * 32u + roughFloorParticles(RoughFloor{.radius = 1.0f}, kD));
   EXPECT_EQ(m_pile.batchesDropped(), 1u);
 
   const std::vector<BodyState> batch = granules();

@@ -60,7 +60,7 @@ HeapAngle angleOfRepose(std::span<const Vec3> centres, const HeapSurfaceOptions&
   for (const Vec3& c : centres) {
     const double dx = c.x - options.axisX;
     const double dz = c.z - options.axisZ;
-    const double r = std::hypot(dx, dz);
+    const double r = options.shape == HeapShape::ridge ? std::abs(dx) : std::hypot(dx, dz);
     if (r > options.maxRadius) continue;
     const std::pair<std::int64_t, std::int64_t> key{
         static_cast<std::int64_t>(std::floor(dx / options.binWidth)),
