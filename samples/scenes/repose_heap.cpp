@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "scenes/heap_metrics.h"
 #include "scenes/pour.h"
 
 namespace sandphys::scenes {
@@ -120,15 +121,8 @@ std::vector<SceneMetric> ReposeHeap::metrics(std::span<const BodyState> bodies) 
       {"friction", m_config.friction},
       {"settled", m_settling.settled() ? 1.0 : 0.0},
   };
-  try {
-    const analysis::HeapAngle heap = heapAngle(bodies);
-    result.push_back({"angle_of_repose_deg", heap.degrees});
-    result.push_back({"angle_fit_r2", heap.fit.line.rSquared});
-    result.push_back({"angle_fit_points", static_cast<double>(heap.radius.size())});
-    result.push_back({"heap_height_d", heap.peakHeight / d()});
-  } catch (const InvalidArgument&) {
-    // No heap yet (an early stop): the metrics leave the angle out.
-  }
+  appendHeapAngleMetrics(
+      result, [&] { return heapAngle(bodies); }, d());
   return result;
 }
 

@@ -36,7 +36,9 @@ nlohmann::json angleSweep(const ExperimentContext& context, std::uint32_t granul
                             {"wall_seconds", run.wallSeconds},
                             {"simulated_seconds", run.stats.simulatedTime}};
     for (const scenes::SceneMetric& metric : scene.metrics(run.bodies)) {
-      if (metric.name.starts_with("granules_")) entry[metric.name] = metric.value;
+      if (metric.name.starts_with("granules_") || metric.name == "settled") {
+        entry[metric.name] = metric.value;
+      }
     }
     try {
       const analysis::HeapAngle heap = scene.heapAngle(run.bodies);
