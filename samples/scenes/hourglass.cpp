@@ -224,10 +224,9 @@ void Hourglass::addPacking(World& world) const {
 void Hourglass::update(World& world, const StepReport& report, double simTime) {
   if (m_finished) return;
   if (!m_released) {
-    if (simTime < m_config.releaseTime) return;
     const bool calm =
         granulesCalm(report, report.stats.granulesAlive, m_granuleMass, m_config.settleSpeed);
-    if (!calm && simTime < m_config.releaseTime + m_config.maxSettleSeconds) return;
+    if (!releaseDue(calm, simTime, m_config.releaseTime, m_config.maxSettleSeconds)) return;
     // The fill as it settled, for startFrom of later runs: one read-back per run.
     for (const BodyState& body : world.readBodies()) {
       if (body.alive && body.granule) m_packingAtRelease.push_back(body);

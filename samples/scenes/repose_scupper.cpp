@@ -32,19 +32,22 @@ constexpr float kRunout = 20.0f;
 // covers that fall or the one from the scupper to the sump's floor, whichever is longer.
 constexpr float kCollapse = 2.0f / 3.0f;
 
-}  // namespace
-
-std::uint32_t ReposeScupper::rowLength() const {
-  const float room = m_config.reservoirWidth - 2.0f * (kReach + kAxisJitter + kClearance);
-  // Shifted layers lose half a spacing.
+// Lattice slots across a reservoir `width` d wide (x or z), clear of the walls on either side for
+// a granule at its farthest jitter; shifted layers lose half a spacing.
+std::uint32_t latticeSlots(float width) {
+  const float room = width - 2.0f * (kReach + kAxisJitter + kClearance);
   return static_cast<std::uint32_t>(std::max(
       0.0f, std::floor((room - 0.5f * kDefaultGranuleSpacing) / kDefaultGranuleSpacing) + 1.0f));
 }
 
+}  // namespace
+
+std::uint32_t ReposeScupper::rowLength() const {
+  return latticeSlots(m_config.reservoirWidth);
+}
+
 std::uint32_t ReposeScupper::rowsPerLayer() const {
-  const float room = m_config.depth - 2.0f * (kReach + kAxisJitter + kClearance);
-  return static_cast<std::uint32_t>(std::max(
-      0.0f, std::floor((room - 0.5f * kDefaultGranuleSpacing) / kDefaultGranuleSpacing) + 1.0f));
+  return latticeSlots(m_config.depth);
 }
 
 std::vector<ReposeScupper::Layer> ReposeScupper::fillLayers() const {
@@ -220,8 +223,7 @@ void ReposeScupper::update(World& world, const StepReport& report, double simTim
   const bool calm =
       granulesCalm(report, report.stats.granulesAlive, m_granuleMass, m_config.settleSpeed);
   if (!m_released) {
-    if (simTime < m_config.releaseTime) return;
-    if (!calm && simTime < m_config.releaseTime + m_config.maxSettleSeconds) return;
+    if (!releaseDue(calm, simTime, m_config.releaseTime, m_config.maxSettleSeconds)) return;
     world.setCollider(m_gate, gate(true));
     m_released = true;
     m_releasedAt = simTime;
