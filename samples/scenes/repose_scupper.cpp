@@ -72,7 +72,7 @@ float ReposeScupper::wallTop() const {
 }
 
 SurfaceMaterial ReposeScupper::wallMaterial() const {
-  return {.friction = m_config.friction, .restitution = m_config.restitution};
+  return {.friction = m_config.wallFriction, .restitution = m_config.restitution};
 }
 
 Box ReposeScupper::gate(bool open) const {
@@ -305,7 +305,10 @@ std::vector<SceneMetric> ReposeScupper::metrics(std::span<const BodyState> bodie
 std::vector<SceneParameter> ReposeScupper::parameters() {
   return {
       {"granules", "granules in the reservoir", &m_config.granules, 1, 1e8},
-      {"friction", "Coulomb friction coefficient of every contact", &m_config.friction, 0.0, 10.0},
+      {"friction", "Coulomb friction coefficient of the grains and the sump's floor",
+       &m_config.friction, 0.0, 10.0},
+      {"wall-friction", "Coulomb friction coefficient of the walls, the ledge and the gate",
+       &m_config.wallFriction, 0.0, 10.0},
       {"outlet", "height of the open scupper, d", &m_config.outlet, 0.5, 1e4},
       {"depth", "depth of the container across the slot, d", &m_config.depth, 1.0, 1e4},
       {"reservoir-width", "width of the reservoir's inside, d", &m_config.reservoirWidth, 1.0, 1e4},

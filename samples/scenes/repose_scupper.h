@@ -31,8 +31,10 @@ namespace sandphys::scenes {
 /// - The paper's container is 100 d deep and holds 64 K granules, of which about 24 K pass into
 ///   the sump before the scupper is closed. Here the scupper stays open: the pile in the sump
 ///   closes it. The defaults are 1200 granules in a container 16 d deep, so the two side walls
-///   are close and hold the pile up a little (their friction is the grains' μ, as the paper's
-///   containers take the grains' properties); the flank is read away from them (wallMargin).
+///   are close and hold the pile up a little; the flank is read away from them (wallMargin).
+/// - The walls' friction is fixed at 0.5 whatever the grains' μ, as for the paper's Fig. 22;
+///   the sump's floor is made of particles, whose friction is the grains' μ (its roughness holds
+///   the pile's foot whatever μ is).
 ///   A narrow reservoir (12 d) keeps little sand behind the slot, so that a small fill is enough
 ///   to bury it: a sump pile 12 d high at μ = 0.1 takes about a thousand granules.
 /// - The scupper is 10 d high: lower slots jam (at μ = 0.5 a 4 d slot let 34 granules through).
@@ -48,8 +50,11 @@ class ReposeScupper final : public Scene {
     float particleDiameter = 0.02f;
     /// Granules in the reservoir; >= 1.
     std::uint32_t granules = 1200;
-    /// Coulomb friction coefficient μ of every contact (grains, walls, floor particles).
+    /// Coulomb friction coefficient μ of the grains (and of the sump floor's particles).
     float friction = 0.5f;
+    /// Coulomb friction coefficient of the walls, the ledge and the gate; the paper fixes it at
+    /// 0.5 for its angle of repose against μ (Fig. 22).
+    float wallFriction = 0.5f;
     /// Height of the scupper once the gate has risen, d: the "outlet".
     float outlet = 10.0f;
     /// Depth of the container across the slot (z), d.

@@ -49,7 +49,8 @@ nlohmann::json flowAgainstOutlet(const ExperimentContext& context,
 /// fitted to it beside the paper's exponent.
 struct ReposeOptions {
   std::uint32_t granules = 1500;
-  std::vector<double> frictions{0.1, 0.2, 0.4, 0.6, 0.8};
+  /// μ = 0 is measured but left out of the power law.
+  std::vector<double> frictions{0.0, 0.1, 0.2, 0.4, 0.6, 0.8};
 };
 nlohmann::json reposeAgainstFriction(const ExperimentContext& context,
                                      const ReposeOptions& options);
@@ -58,7 +59,8 @@ nlohmann::json reposeAgainstFriction(const ExperimentContext& context,
 /// friction (Fig. 22), with the scene's default geometry, and its power law.
 struct ScupperOptions {
   std::uint32_t granules = scenes::ReposeScupper::Config{}.granules;
-  std::vector<double> frictions{0.1, 0.2, 0.4, 0.6, 0.8};
+  /// μ = 0 is measured but left out of the power law.
+  std::vector<double> frictions{0.0, 0.1, 0.2, 0.4, 0.6, 0.8};
 };
 nlohmann::json scupperAgainstFriction(const ExperimentContext& context,
                                       const ScupperOptions& options);

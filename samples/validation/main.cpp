@@ -97,18 +97,20 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1u, 1u << 28))
       ->capture_default_str();
   app.add_option("--heap-frictions", repose.frictions,
-                 "repose: friction coefficients, comma-separated (each > 0: the power law)")
+                 "repose: friction coefficients, comma-separated (μ = 0 is left out of the "
+                 "power law)")
       ->delimiter(',')
-      ->check(CLI::Range(1e-3, 10.0))
+      ->check(CLI::Range(0.0, 10.0))
       ->capture_default_str();
   app.add_option("--scupper-granules", scupper.granules,
                  "repose-scupper: granules in the reservoir of each run")
       ->check(CLI::Range(1u, 1u << 28))
       ->capture_default_str();
   app.add_option("--scupper-frictions", scupper.frictions,
-                 "repose-scupper: friction coefficients, comma-separated (each > 0: the power law)")
+                 "repose-scupper: friction coefficients of the grains, comma-separated (μ = 0 is "
+                 "left out of the power law)")
       ->delimiter(',')
-      ->check(CLI::Range(1e-3, 10.0))
+      ->check(CLI::Range(0.0, 10.0))
       ->capture_default_str();
   app.add_option("--dune-granules", dunes.granulesPerColumn,
                  "dunes: granules poured by each column")

@@ -50,7 +50,8 @@ nlohmann::json angleSweep(const ExperimentContext& context, std::uint32_t granul
       entry["flank_radius_m"] = heap.radius;
       entry["flank_height_m"] = heap.height;
       entry["flank_weight"] = heap.fit.weights;
-      if (heap.degrees > 0.0) {
+      // A power law through the origin: μ = 0 is measured but has no logarithm.
+      if (mu > 0.0 && heap.degrees > 0.0) {
         frictions.push_back(mu);
         angles.push_back(heap.degrees);
       }
@@ -96,6 +97,7 @@ nlohmann::json scupperAgainstFriction(const ExperimentContext& context,
                                                               return scenes::ReposeScupper(config);
                                                             });
   const scenes::ReposeScupper::Config geometry;
+  result["wall_friction"] = geometry.wallFriction;
   result["geometry_d"] = {{"depth", geometry.depth},
                           {"reservoir_width", geometry.reservoirWidth},
                           {"ledge", geometry.ledge},

@@ -21,7 +21,9 @@ def angle_lines(section):
     """Table rows of an angle sweep: μ, angle, R², flank cells, height, simulated and wall time."""
     lines = []
     for r in section["runs"]:
-        angle = f"{r['angle_deg']:.2f}" if "angle_deg" in r else r.get("angle_error", "n/a")
+        # A heap with no flank to fit (at μ = 0 the sand may spread flat): its error, which
+        # names the peak and the cells, is in results.json.
+        angle = f"{r['angle_deg']:.2f}" if "angle_deg" in r else "no flank to fit"
         r2 = fmt(r.get("angle_fit_r2"), 3)
         height = (f"{r['peak_height_m'] / section['particle_diameter_m']:.1f}"
                   if "peak_height_m" in r else "n/a")
@@ -37,9 +39,11 @@ def power_law_text(section):
     law = section.get("power_law")
     if not law:
         return section.get("power_law_error", "")
+    zero = (" μ = 0, measured above, has no place on a power law and is left out of the fit."
+            if any(r["friction"] == 0 for r in section["runs"]) else "")
     return (f"Power law (`analysis::fitPowerLaw`): angle = {law['coefficient']:.3g}° · "
             f"μ^{law['exponent']:.3f}, R² = {law['r2']:.3f}; the paper's exponent: "
-            f"{section['paper']['exponent']:g}.")
+            f"{section['paper']['exponent']:g}.{zero}")
 
 
 def main():
@@ -142,8 +146,10 @@ def main():
             "slot. The angle is that of the pile's flank, away from the ledge, read as for the "
             "heaps but against the distance from the ledge's face (`HeapShape::ridge`), leaving "
             "out the cells within 3 d of the side walls. The paper's container is 100 d deep and "
-            "holds 64 K granules; ours has walls close on either side, whose friction (the "
-            "grains' μ) holds the pile up a little.",
+            "holds 64 K granules; ours has walls close on either side, whose friction "
+            + (f"(fixed at {s['wall_friction']:g}, as for the paper's Fig. 22)"
+               if "wall_friction" in s else "(the grains' μ)")
+            + " holds the pile up a little.",
             "",
             "| μ | angle (°) | R² | flank cells | height (d) | simulated (s) | wall (s) | granules in the sump |",
             "| --- | --- | --- | --- | --- | --- | --- | --- |",
