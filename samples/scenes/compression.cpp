@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "scenes/pour.h"
 
@@ -18,8 +20,9 @@ constexpr float kReach = static_cast<float>(kGranuleReach);
 constexpr float kClearance = 1.7f;
 // Gap between the plunger's rim and the wall, d: narrower than any granule (reach 1.11 d).
 constexpr float kPlungerGap = 0.75f;
-constexpr float kPlungerThickness = 2.0f;  // d
-constexpr int kPlungerSegments = 64;
+// The plunger's face: one layer of particles on a triangular lattice this far apart, d, as
+// sampleMesh covers a surface by default (kDefaultMeshSpacing: no hole, and it feels smooth).
+constexpr float kPlungerSpacing = kDefaultMeshSpacing;
 // The plunger waits this far above the settled pile, d.
 constexpr float kPlungerStart = 1.0f;
 // The wall stands this far above the lattice's top, d.
@@ -44,8 +47,28 @@ std::uint32_t Compression::latticeSide() const {
   return room < 0.0 ? 0u : 1u + static_cast<std::uint32_t>(std::floor(room));
 }
 
-SampledMesh Compression::plungerShape() const {
-  return sampleMesh(cylinderMesh(plungerRadius(), kPlungerThickness * d(), kPlungerSegments), d());
+ParticleTemplate Compression::plungerShape() const {
+  // Only the face touches the sand. A sampled cylinder (the earlier plunger) had 5880 particles
+  // for a pile of 2352 at the default size, most on its caps' thin fan triangles, and made every
+  // substep 2.5 times dearer; this disc has about 720.
+  const double h = kPlungerSpacing * d();
+  const double rowHeight = h * std::numbers::sqrt3 / 2.0;
+  const double r = plungerRadius();
+  const auto rows = static_cast<std::int64_t>(std::floor(r / rowHeight));
+  const auto across = static_cast<std::int64_t>(std::floor(r / h)) + 1;
+  std::vector<Vec3> centres;
+  for (std::int64_t j = -rows; j <= rows; ++j) {
+    const double z = static_cast<double>(j) * rowHeight;
+    // Odd rows sit half a spacing over: the lattice's triangles are equilateral.
+    const double shift = (j % 2 == 0) ? 0.0 : 0.5 * h;
+    for (std::int64_t i = -across; i <= across; ++i) {
+      const double x = static_cast<double>(i) * h + shift;
+      if (x * x + z * z <= r * r)
+        centres.push_back({static_cast<float>(x), 0.0f, static_cast<float>(z)});
+    }
+  }
+  // A kinematic body: its mass only has to be valid.
+  return makeParticleTemplate(centres, d(), WorldSettings{}.material.density);
 }
 
 double Compression::area() const {
@@ -71,11 +94,11 @@ WorldSettings Compression::settings() const {
                           " m/s and max-stress " + numberText(m_config.maxStress) +
                           " Pa must be > 0");
   }
-  const SampledMesh plunger = plungerShape();
+  const ParticleTemplate plunger = plungerShape();
   const std::uint64_t granules = std::uint64_t(perLayer) * m_config.layers;
   const std::uint64_t particles =
       4 * granules + roughFloorParticles(RoughFloor{.radius = m_config.radius * d()}, d()) +
-      plunger.centres.size();
+      plunger.offsets.size();
   if (particles > std::numeric_limits<std::uint32_t>::max()) {
     throw InvalidArgument(scene + std::to_string(granules) + " granules (layers " +
                           std::to_string(m_config.layers) + ") are more than a World can index");
@@ -122,10 +145,8 @@ void Compression::build(World& world) {
                                  .seed = m_config.seed});
   // Parked above the wall until the pile has settled.
   m_bottomY = wallHeight + d();
-  const SampledMesh plunger = plungerShape();
   m_plunger = world.addBody(
-      plunger.shape, BodyDesc{.position = plungerCentre(m_bottomY + 0.5 * kPlungerThickness * d()),
-                              .motion = Motion::Kinematic});
+      plungerShape(), BodyDesc{.position = plungerCentre(m_bottomY), .motion = Motion::Kinematic});
   const double g = gravityMagnitude(world.settings());
   m_minSettleTime = (1.0 + kLandingMargin) * fallTime(blockHeight + kClearance * d(), 0.0, g);
 }
@@ -140,7 +161,7 @@ void Compression::startMove(double direction, double speed, double simTime) {
 void Compression::movePlunger(World& world, double simTime) {
   m_bottomY = m_moveFromY + m_direction * m_speed * (simTime - m_moveStart);
   world.setBodyState(m_plunger,
-                     BodyDesc{.position = plungerCentre(m_bottomY + 0.5 * kPlungerThickness * d()),
+                     BodyDesc{.position = plungerCentre(m_bottomY),
                               .velocity = {0.0f, static_cast<float>(m_direction * m_speed), 0.0f},
                               .motion = Motion::Kinematic});
 }

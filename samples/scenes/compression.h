@@ -23,8 +23,9 @@ namespace sandphys::scenes {
 ///
 /// Geometry (y up): a rough floor (static particles, centres at y = 0) of the cylinder's radius,
 /// a Cylinder collider around it, the granules laid on a square lattice inside the cylinder and
-/// dropped; the plunger is a kinematic body sampled from cylinderMesh, 2 d thick and 0.75 d
-/// narrower than the cylinder (a gap no granule fits through). Its force comes from
+/// dropped; the plunger is a kinematic disc of particles (a triangular lattice 0.8 d apart, as
+/// sampleMesh covers a surface), 0.75 d narrower than the cylinder (a gap no granule fits
+/// through). Its force comes from
 /// World::takeBodyForces every frame (32 bytes).
 ///
 /// For the force distributions the scene reads every contact twice, a sync point each: when the
@@ -122,8 +123,8 @@ class Compression final : public Scene {
   float plungerRadius() const;
   /// Granules along each side of the square lattice layer inside the cylinder.
   std::uint32_t latticeSide() const;
-  /// The plunger's body: cylinderMesh sampled into particles.
-  SampledMesh plungerShape() const;
+  /// The plunger's body: its face, a disc of particles in the body's y = 0 plane.
+  ParticleTemplate plungerShape() const;
   Vec3 plungerCentre(double y) const { return {0.0f, static_cast<float>(y), 0.0f}; }
   void movePlunger(World& world, double simTime);
   /// Starts a motion of the plunger from where it is now: `direction` -1 down, +1 up, 0 stop.
