@@ -17,6 +17,17 @@ sandphys_require(Eigen3_FOUND "Eigen 3" "libeigen3-dev")
 # Mesh files for sampled bodies (loadMesh). Debian 12 ships assimp 5.2 with a CMake package.
 find_package(assimp 5 CONFIG)
 sandphys_require(assimp_FOUND "assimp (mesh files for sandphys::loadMesh)" "libassimp-dev")
+# Recordings (sandphys/recording.h): zstd compresses their snapshots, xxHash (used inline from its
+# header) checksums them.
+find_package(zstd CONFIG)
+sandphys_require(zstd_FOUND "zstd (recordings)" "libzstd-dev")
+find_package(PkgConfig)
+if(PkgConfig_FOUND)
+  pkg_check_modules(XXHASH IMPORTED_TARGET GLOBAL libxxhash)
+endif()
+sandphys_require(XXHASH_FOUND "xxHash (recordings, found with pkg-config)" "libxxhash-dev")
+# Only xxHash's header is used (XXH_INLINE_ALL), so that a static sandphys does not carry
+# -lxxhash into a game's link.
 
 if(SANDPHYS_SAMPLES OR SANDPHYS_BENCH OR SANDPHYS_TESTS)
   find_package(nlohmann_json 3)

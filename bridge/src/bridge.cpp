@@ -125,12 +125,13 @@ void Bridge::pushPoses() {
   for (const Coupled& c : m_coupled) {
     if (c.body->getInvMass() == btScalar(0)) continue;  // static on both sides
     const btTransform& pose = c.body->getCenterOfMassTransform();
-    m_sand.setBodyState(c.sandBody,
-                        BodyDesc{.position = toSand(pose.getOrigin()),
-                                 .orientation = toSand(pose.getRotation()),
-                                 .velocity = toSand(c.body->getLinearVelocity()),
-                                 .angularVelocity = toSand(c.body->getAngularVelocity()),
-                                 .motion = Motion::Kinematic});
+    const BodyDesc state{.position = toSand(pose.getOrigin()),
+                         .orientation = toSand(pose.getRotation()),
+                         .velocity = toSand(c.body->getLinearVelocity()),
+                         .angularVelocity = toSand(c.body->getAngularVelocity()),
+                         .motion = Motion::Kinematic};
+    m_sand.setBodyState(c.sandBody, state);
+    m_pushes.push_back({c.sandBody.index, state});
   }
 }
 
@@ -167,6 +168,7 @@ StepReport Bridge::step(float frameDt) {
   const float h = frameDt / float(exchanges);
   m_lastStep = h;
   m_lastExchanges = exchanges;
+  m_pushes.clear();
   std::fill(m_frameForce.begin(), m_frameForce.end(), Vec3{});
   std::fill(m_frameTorque.begin(), m_frameTorque.end(), Vec3{});
   for (int i = 0; i < exchanges; ++i) {

@@ -161,6 +161,10 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
   std::optional<std::int64_t> every;
   std::optional<std::string> frameBudget;
   std::optional<std::string> quality;
+  std::string record;
+  std::optional<std::int64_t> snapshotEvery;
+  std::string replay;
+  std::string goldens;
 
   app.add_option("--scene", options.sceneName, "scene to run (see --list)")->capture_default_str();
   app.add_flag("--list", list, "list the scenes and their parameters, then exit");
@@ -219,6 +223,22 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
                  "samples). Window: default auto, which picks it from the render time and the "
                  "frame budget; headless: default high, auto refused")
       ->type_name("QUALITY");
+  app.add_option("--record", record,
+                 "record the run to FILE (docs/recording.md): settings, per-frame inputs and state "
+                 "hashes, snapshots every --snapshot-every frames")
+      ->type_name("FILE");
+  app.add_option("--snapshot-every", snapshotEvery,
+                 "frames between two full snapshots of --record (default 60; 1 lets a replay name "
+                 "the body and field at the very frame that differs)")
+      ->type_name("K");
+  app.add_option("--replay", replay,
+                 "re-simulate the recording FILE headless and check every frame; exit 1 at the "
+                 "first difference, which is named (frame, body, field, both values)")
+      ->type_name("FILE");
+  app.add_option("--write-goldens", goldens,
+                 "run every scene for a fifth of a second at its test size and write its headline "
+                 "metrics to DIR/<scene>.json: regenerates tests/golden on purpose")
+      ->type_name("DIR");
   app.add_flag("--panel-in-screenshots", options.panelInScreenshots,
                "window: screenshots (F, --screenshot, --screenshots) show the whole window with "
                "the panel, not the scene alone");
@@ -238,6 +258,30 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
   }
 
   try {
+    // A replay takes everything from its recording, and the goldens have fixed settings: nothing
+    // else may shape those runs.
+    const std::pair<const char*, const std::string*> wholeRuns[] = {{"--replay", &replay},
+                                                                    {"--write-goldens", &goldens}};
+    for (const auto& [flag, value] : wholeRuns) {
+      if (value->empty()) continue;
+      for (const CLI::Option* option : app.get_options()) {
+        const std::string name = option->get_name();
+        if (option->count() == 0 || name == flag || name == "--quiet") continue;
+        throw UsageError(std::string(flag) + " " + *value + ": " + name +
+                         " cannot be combined with it (only --quiet may be added)");
+      }
+    }
+    if (!goldens.empty()) {
+      options.goldenDir = goldens;
+      checkWritableDirectory("--write-goldens", options.goldenDir);
+      options.headless = true;
+      return std::nullopt;
+    }
+    if (!replay.empty()) {
+      options.replayPath = replay;
+      options.headless = true;
+      return std::nullopt;
+    }
     if (frames < 0) {
       throw UsageError("--frames " + std::to_string(frames) + ": must be 0 or more");
     }
@@ -324,6 +368,21 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
       }
       options.screenshotPath = screenshot;
       checkWritable("--screenshot", options.screenshotPath);
+    }
+    if (snapshotEvery) {
+      if (*snapshotEvery < 1) {
+        throw UsageError("--snapshot-every " + std::to_string(*snapshotEvery) +
+                         ": must be 1 or more frames");
+      }
+      if (record.empty()) {
+        throw UsageError("--snapshot-every " + std::to_string(*snapshotEvery) +
+                         ": only means something with --record FILE");
+      }
+      options.snapshotEvery = static_cast<std::uint64_t>(*snapshotEvery);
+    }
+    if (!record.empty()) {
+      options.recordPath = record;
+      checkWritable("--record", options.recordPath);
     }
     if (!screenshots.empty()) {
       options.screenshotDir = screenshots;

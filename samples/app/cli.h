@@ -66,6 +66,15 @@ struct RunOptions {
   /// Render quality preset (--quality); empty = auto: the viewer picks it from its measured
   /// render times, a headless run draws high.
   std::optional<render::RenderQuality> quality;
+  /// Where to record the run (--record); empty for none. Checked writable.
+  std::filesystem::path recordPath;
+  /// Frames between two full snapshots of a recording (--snapshot-every); >= 1.
+  std::uint64_t snapshotEvery = 60;
+  /// A recording to replay headless and check frame by frame (--replay); the scene and its
+  /// settings come from it, and `scene` stays empty.
+  std::filesystem::path replayPath;
+  /// Folder to write every scene's golden metrics to (--write-goldens); empty for none.
+  std::filesystem::path goldenDir;
   /// A windowed run's screenshots show the whole window, panel included, instead of the scene
   /// alone (--panel-in-screenshots).
   bool panelInScreenshots = false;

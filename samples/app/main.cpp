@@ -4,6 +4,8 @@
 #include <iostream>
 
 #include "app/cli.h"
+#include "app/golden.h"
+#include "app/recording.h"
 #include "app/run.h"
 #ifdef SANDPHYS_HAS_VIEWER
 #include "viewer/viewer.h"
@@ -14,7 +16,14 @@ int main(int argc, char** argv) {
   RunOptions options;
   if (std::optional<int> exitCode = parseCommandLine(argc, argv, options)) return *exitCode;
   try {
+    if (!options.replayPath.empty()) return runReplay(options.replayPath, options.quiet);
+    if (!options.goldenDir.empty()) return writeGoldens(options.goldenDir, options.quiet);
 #ifdef SANDPHYS_HAS_VIEWER
+    if (!options.headless && !options.recordPath.empty()) {
+      std::cerr << "sandphys-samples: --record records headless runs in this version; add "
+                   "--headless\n";
+      return kExitUsage;
+    }
     if (!options.headless) return runViewer(options);
 #else
     if (!options.headless) {

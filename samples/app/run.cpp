@@ -7,6 +7,7 @@
 
 #include "app/export.h"
 #include "app/metrics.h"
+#include "app/recording.h"
 #include "render/offscreen_target.h"
 #include "render/png.h"
 #include "render/render_quality.h"
@@ -98,8 +99,7 @@ std::filesystem::path sequencePath(const std::filesystem::path& directory, std::
 }  // namespace
 
 RunSummary runScene(const GpuContext& gpu, scenes::Scene& scene, std::uint64_t frames,
-                    double frameDt, bool untilDone, ProgressLine& progress,
-                    const FrameHook& afterFrame, const FrameHook& atEnd) {
+                    double frameDt, bool untilDone, ProgressLine& progress, const RunHooks& hooks) {
   RunSummary summary;
   summary.scene = std::string(scene.name());
   summary.frameDt = frameDt;
@@ -111,6 +111,11 @@ RunSummary runScene(const GpuContext& gpu, scenes::Scene& scene, std::uint64_t f
   summary.setupSeconds = secondsSince(setupStart);
   summary.timeStep = world.timeStep();
   summary.particleDiameter = world.settings().particleDiameter;
+  if (hooks.afterBuild) {
+    const Clock::time_point hookStart = Clock::now();
+    hooks.afterBuild(world, 0);
+    summary.hookSeconds += secondsSince(hookStart);
+  }
 
   const Clock::time_point loopStart = Clock::now();
   for (std::uint64_t frame = 0; frame < frames; ++frame) {
@@ -129,9 +134,9 @@ RunSummary runScene(const GpuContext& gpu, scenes::Scene& scene, std::uint64_t f
       std::vector<scenes::SceneBody> bodies = scene.bodies(world);
       if (!bodies.empty()) summary.bodySeries.push_back({world.simulatedTime(), std::move(bodies)});
     }
-    if (afterFrame) {
+    if (hooks.afterFrame) {
       const Clock::time_point hookStart = Clock::now();
-      afterFrame(world, summary.frames);
+      hooks.afterFrame(world, summary.frames);
       summary.hookSeconds += secondsSince(hookStart);
     }
     if (progress.due()) {
@@ -141,9 +146,9 @@ RunSummary runScene(const GpuContext& gpu, scenes::Scene& scene, std::uint64_t f
   }
   summary.wallSeconds = secondsSince(loopStart) - summary.hookSeconds;
   progress.finish();
-  if (atEnd) {
+  if (hooks.atEnd) {
     const Clock::time_point hookStart = Clock::now();
-    atEnd(world, summary.frames);
+    hooks.atEnd(world, summary.frames);
     summary.hookSeconds += secondsSince(hookStart);
   }
 
@@ -169,20 +174,32 @@ int runHeadless(RunOptions& options) {
     screenshots = std::make_unique<Screenshots>(*options.scene, options.size,
                                                 options.quality.value_or(render::kHighestQuality));
   }
-  FrameHook afterFrame;
-  if (!options.screenshotDir.empty()) {
-    afterFrame = [&](World& world, std::uint64_t frame) {
-      if (frame % options.every == 0) {
+  std::unique_ptr<SceneRecorder> recorder;
+  if (!options.recordPath.empty()) {
+    recorder = std::make_unique<SceneRecorder>(options.recordPath, *options.scene, options.frameDt,
+                                               options.snapshotEvery, gpu.description());
+  }
+  RunHooks hooks;
+  if (recorder) hooks.afterBuild = [&](World& world, std::uint64_t) { recorder->begin(world); };
+  if (!options.screenshotDir.empty() || recorder) {
+    hooks.afterFrame = [&](World& world, std::uint64_t frame) {
+      if (recorder) {
+        recorder->recordFrame(world, *options.scene, static_cast<float>(options.frameDt), frame);
+      }
+      if (!options.screenshotDir.empty() && frame % options.every == 0) {
         screenshots->write(world, sequencePath(options.screenshotDir, frame));
       }
     };
   }
-  FrameHook atEnd;
-  if (!options.screenshotPath.empty()) {
-    atEnd = [&](World& world, std::uint64_t) { screenshots->write(world, options.screenshotPath); };
+  std::uint64_t recordingBytes = 0;
+  if (!options.screenshotPath.empty() || recorder) {
+    hooks.atEnd = [&](World& world, std::uint64_t) {
+      if (recorder) recordingBytes = recorder->finish(world);
+      if (!options.screenshotPath.empty()) screenshots->write(world, options.screenshotPath);
+    };
   }
   const RunSummary summary = runScene(gpu, *options.scene, options.frames, options.frameDt,
-                                      options.untilDone, progress, afterFrame, atEnd);
+                                      options.untilDone, progress, hooks);
 
   if (!options.metricsPath.empty()) {
     writeMetrics(options.metricsPath, metricsJson(summary, *options.scene));
@@ -202,6 +219,16 @@ int runHeadless(RunOptions& options) {
                  static_cast<unsigned long long>(summary.stats.steps),
                  static_cast<double>(summary.timeStep), summary.stats.granulesAlive,
                  summary.granulesLost);
+    if (recorder) {
+      const double seconds = std::max(summary.stats.simulatedTime, 1e-9);
+      std::fprintf(stderr,
+                   "%s: recorded %llu frames to %s: %llu bytes (%.1f kB per simulated s), "
+                   "recording took %.2f s wall beside the run's %.2f s\n",
+                   summary.scene.c_str(), static_cast<unsigned long long>(recorder->frames()),
+                   options.recordPath.string().c_str(),
+                   static_cast<unsigned long long>(recordingBytes), 1e-3 * recordingBytes / seconds,
+                   recorder->ownSeconds(), summary.wallSeconds);
+    }
     if (screenshots && screenshots->images() > 0) {
       const double simulationMs =
           1e3 * summary.wallSeconds / double(std::max<std::uint64_t>(summary.frames, 1));

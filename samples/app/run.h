@@ -48,17 +48,23 @@ struct RunSummary {
 /// Frames between two samples of RunSummary::bodySeries (10 per second at 60 frames per second).
 inline constexpr std::uint64_t kBodySeriesFrames = 6;
 
-/// Called by runScene with the world and the number of frames run so far: after every frame
-/// (afterFrame) or once after the loop (atEnd), e.g. to render screenshots. Its wall time is
-/// kept out of the run's simulation timing.
+/// Called by runScene with the world and the number of frames run so far, e.g. to render
+/// screenshots or record the run. Its wall time is kept out of the run's simulation timing.
 using FrameHook = std::function<void(World& world, std::uint64_t frame)>;
+
+/// The hooks of runScene; any may be empty.
+struct RunHooks {
+  FrameHook afterBuild;  ///< once, after Scene::build (frame 0)
+  FrameHook afterFrame;  ///< after every frame's step and update
+  FrameHook atEnd;       ///< once, after the loop
+};
 
 /// Runs `scene` in a new World on `gpu` for `frames` frames of `frameDt` s (stopping early when
 /// `untilDone` and the scene finishes), showing progress on `progress`. Reads the stats and the
 /// bodies once at the end (sync points); never per frame beyond what the World itself does.
 RunSummary runScene(const GpuContext& gpu, scenes::Scene& scene, std::uint64_t frames,
                     double frameDt, bool untilDone, ProgressLine& progress,
-                    const FrameHook& afterFrame = {}, const FrameHook& atEnd = {});
+                    const RunHooks& hooks = {});
 
 /// Runs the scene of `options` headless and writes its metrics, exports and screenshots (rendered
 /// offscreen in the same EGL context); returns the exit code. Throws sandphys::Error and

@@ -130,6 +130,11 @@ void BlockAvalanche::update(World& world, const StepReport& report, double simTi
   m_slope.update(world, report, simTime);
 }
 
+std::vector<RecordedInput> BlockAvalanche::externalInputs() const {
+  if (!m_blocks || !m_blocks->bridge) return {};
+  return m_blocks->bridge->pushes();
+}
+
 std::vector<SceneBody> BlockAvalanche::bodies(const World& /*world*/) const {
   return blockBodies();
 }

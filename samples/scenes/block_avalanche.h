@@ -68,6 +68,8 @@ class BlockAvalanche final : public Scene {
   SceneBounds bounds() const override { return m_slope.bounds(); }
   /// "low-block" and "plank", as Bullet has them now.
   std::vector<SceneBody> bodies(const World& world) const override;
+  /// What the bridge pushed from Bullet in the last step.
+  std::vector<RecordedInput> externalInputs() const override;
 
  private:
   struct Blocks;

@@ -103,6 +103,12 @@ std::string formatSceneParameter(const SceneParameter& parameter) {
         std::ostringstream out;
         if constexpr (std::is_same_v<T, Count3>) {
           out << (*value)[0] << ',' << (*value)[1] << ',' << (*value)[2];
+        } else if constexpr (std::is_same_v<T, float>) {
+          // The shortest text that reads back to the same float: recordings keep parameters as
+          // text and must rebuild the scene bit for bit.
+          char text[32];
+          const auto result = std::to_chars(text, text + sizeof text, *value);
+          out << std::string_view(text, std::size_t(result.ptr - text));
         } else {
           out << *value;
         }

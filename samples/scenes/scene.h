@@ -131,6 +131,12 @@ class Scene {
   /// (a sync point: the runner asks only every few frames). The default has none.
   virtual std::vector<SceneBody> bodies(const World& /*world*/) const { return {}; }
 
+  /// Body states set from outside the sand during the last step, in order: what a Bullet bridge
+  /// pushed (Bridge::pushes). A recording keeps them as the frame's external inputs and a replay
+  /// checks them. Scene logic of its own (a plunger, a blade) is not external. The default has
+  /// none.
+  virtual std::vector<RecordedInput> externalInputs() const { return {}; }
+
   /// The scene's tunable values (see SceneParameter). The default has none.
   virtual std::vector<SceneParameter> parameters() { return {}; }
 

@@ -116,6 +116,44 @@ TEST(SamplesCli, MeshOnASceneWithoutOne) {
   expectUsageError("--headless --scene box-drop --scale 2", {"--scale", "scale", "box-drop"});
 }
 
+TEST(SamplesCli, ReplayAndGoldensTakeNoRunFlags) {
+  expectUsageError("--replay run.sprec --scene box-drop", {"--replay", "--scene"});
+  expectUsageError("--replay run.sprec --frames 5", {"--replay", "--frames"});
+  expectUsageError("--write-goldens /tmp --granules 5", {"--write-goldens", "--granules"});
+  expectUsageError("--headless --snapshot-every 0 --record r.sprec", {"--snapshot-every", "0"});
+  expectUsageError("--headless --snapshot-every 5", {"--snapshot-every", "--record"});
+  expectUsageError("--headless --record /nonexistent-sandphys-dir/r.sprec",
+                   {"--record", "/nonexistent-sandphys-dir/r.sprec"});
+}
+
+// The two commands of docs/recording.md, end to end: a run recorded and replayed from its file
+// (exit 0), and the same file damaged by one byte (exit 1, the file named).
+TEST(SamplesCli, RecordThenReplayAndADamagedRecording) {
+  const TemporaryFile recording("run.sprec", "");
+  ProcessResult result = runSamples(
+      "--headless --quiet --scene box-drop --param block=3,2,3 "
+      "--frames 6 --snapshot-every 2 --record " +
+      recording.path());
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  result = runSamples("--replay " + recording.path());
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_NE(result.output.find("6 frames bit-identical (4 snapshots compared)"), std::string::npos)
+      << result.output;
+
+  std::string bytes;
+  {
+    std::ifstream in(recording.path(), std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  ASSERT_GT(bytes.size(), 100u);
+  bytes[bytes.size() / 2] = char(bytes[bytes.size() / 2] ^ 1);
+  std::ofstream(recording.path(), std::ios::binary | std::ios::trunc) << bytes;
+  result = runSamples("--replay " + recording.path());
+  EXPECT_EQ(result.exitCode, 1) << result.output;
+  EXPECT_NE(result.output.find(recording.path() + "' is damaged"), std::string::npos)
+      << result.output;
+}
+
 TEST(SamplesCli, ListPrintsTheRegistry) {
   const ProcessResult result = runSamples("--list");
   EXPECT_EQ(result.exitCode, 0) << result.output;

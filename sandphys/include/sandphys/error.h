@@ -38,6 +38,13 @@ class MeshError : public Error {
   using Error::Error;
 };
 
+/// A recording cannot be read or replayed: missing, not a recording, another format version,
+/// truncated, damaged (bad checksum) or malformed. The message names the file.
+class RecordingError : public Error {
+ public:
+  using Error::Error;
+};
+
 /// A stale or invalid id was passed to the world.
 class InvalidId : public Error {
  public:

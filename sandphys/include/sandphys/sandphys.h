@@ -10,6 +10,7 @@
 #include "sandphys/math.h"
 #include "sandphys/mesh.h"
 #include "sandphys/readback.h"
+#include "sandphys/recording.h"
 #include "sandphys/settings.h"
 #include "sandphys/spawn.h"
 #include "sandphys/step_report.h"

@@ -11,6 +11,7 @@
 #include "sandphys/gpu_context.h"
 #include "sandphys/ids.h"
 #include "sandphys/readback.h"
+#include "sandphys/recording.h"
 #include "sandphys/settings.h"
 #include "sandphys/spawn.h"
 #include "sandphys/step_report.h"
@@ -109,6 +110,14 @@ class World {
   std::vector<ParticleState> readParticles() const;
   std::vector<ContactRecord> readContacts() const;
   WorldStats readStats();
+  /// Every body slot in use exactly as stored (what readStateHash covers), with the step count
+  /// and simulated time; WorldSnapshot::frame is left 0 for the caller. Sync point.
+  WorldSnapshot readSnapshot() const;
+  /// A 64-bit hash of every body slot in use, bit for bit as stored (position, orientation,
+  /// velocity, angular velocity, alive), reduced on the GPU with integer sums so that it does not
+  /// depend on thread order; stateHash(readSnapshot()) gives the same. A change of any bit of one
+  /// body always changes it. Sync point: 256 bytes, meant once per frame of a recording.
+  std::uint64_t readStateHash();
   /// The sand's force and torque on every body that is neither a granule nor static, summed over
   /// the substeps since the previous call (or the body's creation), in the order the bodies were
   /// added; the sums restart at zero. Sync point: 32 bytes per such body, meant once per frame

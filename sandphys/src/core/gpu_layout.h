@@ -36,7 +36,8 @@ enum Binding : unsigned {
   kContactList = 23,
   kLargeBodies = 24,
   kLargeBodyForces = 25,
-  kBindingCount = 26,
+  kStateHashPartials = 26,
+  kBindingCount = 27,
 };
 
 /// Texture units of the read-only buffer-texture views of some of the buffers above (layout.glsl,

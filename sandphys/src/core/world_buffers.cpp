@@ -45,6 +45,7 @@ constexpr BufferSpec kSpecs[kBindingCount] = {
     {"contactList", 16, SizedBy::Fixed},
     {"largeBodies", 4 * kMaxLargeBodies, SizedBy::Fixed},
     {"largeBodyForces", 32 * kMaxLargeBodies, SizedBy::Fixed},
+    {"stateHashPartials", 8 * kStatsWorkgroups, SizedBy::Fixed},
 };
 
 }  // namespace
@@ -191,12 +192,13 @@ void WorldKernels::compile() {
   integrateBodies = library.compileCompute("sim/integrate_bodies.comp");
   integrateLargeBodies = library.compileCompute("sim/integrate_large_bodies.comp");
   statsReduce = library.compileCompute("sim/stats_reduce.comp");
+  stateHash = library.compileCompute("sim/state_hash.comp");
 }
 
 void WorldKernels::release() {
   for (GLuint p :
        {bodiesToParticles, scanBlocks, scanBlockSums, scanAdd, gridScatter, gridSort, gridCopy,
-        contacts, contactList, integrateBodies, integrateLargeBodies, statsReduce}) {
+        contacts, contactList, integrateBodies, integrateLargeBodies, statsReduce, stateHash}) {
     if (p) glDeleteProgram(p);
   }
   *this = {};

@@ -54,6 +54,7 @@ struct WorldKernels {
   GLuint integrateBodies = 0;
   GLuint integrateLargeBodies = 0;
   GLuint statsReduce = 0;
+  GLuint stateHash = 0;
 
   void compile();
   void release();

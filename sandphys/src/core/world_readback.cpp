@@ -1,6 +1,7 @@
 // Read-back: every function here waits for the GPU (a sync point) and is meant for analysis,
 // tests and debugging, never for every substep.
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "core/world_impl.h"
@@ -58,6 +59,52 @@ std::vector<BodyState> World::readBodies() const {
     s.granule = (info[i].z & kBodyGranule) != 0;
   }
   return out;
+}
+
+WorldSnapshot World::readSnapshot() const {
+  const Impl& w = *m_impl;
+  w.gpu->makeCurrent();
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  auto position = download<GpuVec4>(w.buffers[kBodyPosition], w.bodyCount);
+  auto orientation = download<GpuVec4>(w.buffers[kBodyOrientation], w.bodyCount);
+  auto velocity = download<GpuVec4>(w.buffers[kBodyVelocity], w.bodyCount);
+  auto spin = download<GpuVec4>(w.buffers[kBodyAngularVelocity], w.bodyCount);
+  auto info = download<GpuUVec4>(w.buffers[kBodyInfo], w.bodyCount);
+  gl::check("World::readSnapshot");
+  WorldSnapshot snapshot;
+  snapshot.steps = w.steps;
+  snapshot.simulatedTime = w.simTime;
+  snapshot.bodies.resize(w.bodyCount);
+  for (std::uint32_t i = 0; i < w.bodyCount; ++i) {
+    StoredBody& b = snapshot.bodies[i];
+    b.position = {position[i].x, position[i].y, position[i].z};
+    b.orientation = {orientation[i].x, orientation[i].y, orientation[i].z, orientation[i].w};
+    b.velocity = {velocity[i].x, velocity[i].y, velocity[i].z};
+    b.angularVelocity = {spin[i].x, spin[i].y, spin[i].z};
+    b.alive = (info[i].z & kBodyAlive) != 0;
+  }
+  return snapshot;
+}
+
+std::uint64_t World::readStateHash() {
+  Impl& w = *m_impl;
+  w.gpu->makeCurrent();
+  if (w.paramsDirty) w.uploadParams();
+  w.buffers.bindAll();
+  glUseProgram(w.kernels.stateHash);
+  glDispatchCompute(kStatsWorkgroups, 1, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::array<std::uint32_t, 2 * kStatsWorkgroups> partials{};
+  w.buffers[kStateHashPartials].download(0, sizeof partials, partials.data());
+  gl::check("World::readStateHash");
+  // Integer sums: the same total whatever order the workgroups ran in.
+  std::uint32_t low = 0;
+  std::uint32_t high = 0;
+  for (std::uint32_t g = 0; g < kStatsWorkgroups; ++g) {
+    low += partials[2 * g];
+    high += partials[2 * g + 1];
+  }
+  return (std::uint64_t(high) << 32) | low;
 }
 
 BodyState World::readBody(BodyId id) const {

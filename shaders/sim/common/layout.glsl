@@ -111,6 +111,8 @@ struct StatsPartial {
 // about the centre of mass (xyz, N m), each summed over the substeps since World last read them;
 // the force's w counts those substeps.
 #define LARGE_BODY_FORCES(access) layout(std430, binding = 25) access buffer LargeBodyForcesBuffer { vec4 largeBodyForces[]; };
+// Per workgroup of state_hash.comp, the two 32-bit lanes of its bodies' hash sums.
+#define STATE_HASH_PARTIALS(access) layout(std430, binding = 26) access buffer StateHashPartialsBuffer { uvec2 stateHashPartials[]; };
 
 // Constant for the whole step; set by World when settings or counts change.
 layout(std140, binding = 0) uniform SimParams {

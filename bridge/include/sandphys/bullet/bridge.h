@@ -81,6 +81,10 @@ class Bridge {
   float couplingStep() const { return m_lastStep; }
   int exchanges() const { return m_lastExchanges; }
 
+  /// Every pose and velocity the last step() pushed to the sand, in order (each exchange pushes
+  /// every coupled body that moves): the inputs a recording keeps from Bullet.
+  const std::vector<RecordedInput>& pushes() const { return m_pushes; }
+
   /// What the sand did to one coupled body over the last frame.
   struct Coupled {
     btRigidBody* body = nullptr;
@@ -107,6 +111,7 @@ class Bridge {
   std::vector<Coupled> m_coupled;
   std::vector<Vec3> m_frameForce;
   std::vector<Vec3> m_frameTorque;
+  std::vector<RecordedInput> m_pushes;
 };
 
 }  // namespace sandphys::bullet

@@ -1,0 +1,82 @@
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <sandphys/sandphys.h>
+
+#include "scenes/scene.h"
+
+namespace sandphys::samples {
+
+/// Frames between two full snapshots of a recording by default (one a second at 60 frames per
+/// second); a replay that finds a difference names the body and field at the next snapshot.
+inline constexpr std::uint64_t kDefaultSnapshotEvery = 60;
+
+/// Records a run of a scene (--record FILE): its name, parameters and run flags, and per frame the
+/// frame's duration, the scene's external inputs (Scene::externalInputs) and the state hash; a
+/// full snapshot after build, every `snapshotEvery` frames and at the end.
+class SceneRecorder {
+ public:
+  /// Creates `file` and writes the settings of `scene` (as its parameters are now). Throws
+  /// sandphys::Error naming the file when it cannot be written.
+  SceneRecorder(const std::filesystem::path& file, scenes::Scene& scene, double frameDt,
+                std::uint64_t snapshotEvery, const std::string& device);
+
+  /// After Scene::build: the snapshot of frame 0.
+  void begin(World& world);
+  /// After frame `frame` (1 = the first) was stepped with `frameDt` and the scene updated.
+  void recordFrame(World& world, const scenes::Scene& scene, float frameDt, std::uint64_t frame);
+  /// The last snapshot (unless the last frame had one) and the end record with the wall time of
+  /// the frames since begin() (the recorder's own time left out); returns the file's size, bytes.
+  std::uint64_t finish(World& world);
+
+  std::uint64_t frames() const { return m_frames; }
+  /// Wall time spent recording (hashes, snapshots, writing), s.
+  double ownSeconds() const { return m_ownSeconds; }
+
+ private:
+  RecordingWriter m_writer;
+  std::uint64_t m_snapshotEvery;
+  std::uint64_t m_frames = 0;
+  std::uint64_t m_lastSnapshot = 0;
+  std::chrono::steady_clock::time_point m_start;
+  double m_ownSeconds = 0.0;
+};
+
+/// Makes the scene a recording was made of, with its parameters. Throws RecordingError naming the
+/// file when the scene no longer exists or the current build refuses a setting.
+std::unique_ptr<scenes::Scene> sceneFromRecording(const Recording& recording);
+
+/// What a replay found.
+struct ReplayResult {
+  std::uint64_t frames = 0;  ///< frames replayed (all of the recording's when identical)
+  bool identical = true;
+  /// First frame that differs (1 = the first frame; 0 = the state right after build).
+  std::uint64_t firstDifferentFrame = 0;
+  /// What differs, in words: the quantity, the body or input, the field and both values.
+  std::string difference;
+  double wallSeconds = 0.0;  ///< wall time of the replayed frames, hash and checks included, s
+};
+
+/// Called by replayRecording after each frame's step and update, before the frame is checked
+/// (tests perturb the state here).
+using ReplayHook = std::function<void(World& world, std::uint64_t frame)>;
+
+/// Re-simulates `recording` headless on `gpu` and checks every frame: step count and simulated
+/// time, external inputs, state hash, and every snapshot in full. Stops at the first difference
+/// and names it; with a hash difference the body and field come from the snapshot of that frame or
+/// the next one. Throws RecordingError (see sceneFromRecording).
+ReplayResult replayRecording(const GpuContext& gpu, const Recording& recording,
+                             const ReplayHook& afterFrame = {});
+
+/// --replay FILE: reads, replays and reports; returns the exit code (kExitOk when identical).
+int runReplay(const std::filesystem::path& file, bool quiet);
+
+}  // namespace sandphys::samples

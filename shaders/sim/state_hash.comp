@@ -1,0 +1,64 @@
+#version 450
+// The state hash of a recording (docs/recording.md), once per recorded frame: each body slot's
+// stored bits are absorbed into two 32-bit lanes seeded with its index, and the lanes are summed
+// over the slots. Integer sums do not depend on the order the threads ran in, so the hash is the
+// same on every run; src/recording/state_hash.cpp computes the same function on the CPU.
+#include "common/layout.glsl"
+
+#define HASH_THREADS 256
+layout(local_size_x = HASH_THREADS) in;
+
+BODY_POSITION(readonly)
+BODY_ORIENTATION(readonly)
+BODY_VELOCITY(readonly)
+BODY_ANGULAR_VELOCITY(readonly)
+BODY_INFO(readonly)
+STATE_HASH_PARTIALS(writeonly)
+
+shared uvec2 sharedSums[HASH_THREADS];
+
+// MurmurHash3's finaliser: a bijection of 32-bit words that spreads every input bit.
+uint fmix(uint h) {
+  h ^= h >> 16;
+  h *= 0x85ebca6bu;
+  h ^= h >> 13;
+  h *= 0xc2b2ae35u;
+  h ^= h >> 16;
+  return h;
+}
+
+// Each step is a bijection of the lane for a fixed word and of the word for a fixed lane, so a
+// change of any one word changes the body's hash in both lanes.
+uvec2 absorb(uvec2 h, uint word) {
+  return uvec2(fmix(h.x ^ word) + 0x9e3779b9u, fmix(h.y ^ (word * 0x27d4eb2fu)) + 0x7f4a7c15u);
+}
+
+uvec2 absorb3(uvec2 h, vec4 v) {
+  h = absorb(h, floatBitsToUint(v.x));
+  h = absorb(h, floatBitsToUint(v.y));
+  return absorb(h, floatBitsToUint(v.z));
+}
+
+void main() {
+  uint local = gl_LocalInvocationID.x;
+  uint stride = gl_NumWorkGroups.x * HASH_THREADS;
+  uvec2 sum = uvec2(0u);
+  for (uint b = gl_GlobalInvocationID.x; b < counts.y; b += stride) {
+    uvec2 h = uvec2(fmix(b ^ 0x243f6a88u), fmix(b ^ 0x85a308d3u));
+    h = absorb3(h, bodyPosition[b]);
+    vec4 q = bodyOrientation[b];
+    h = absorb3(h, q);
+    h = absorb(h, floatBitsToUint(q.w));
+    h = absorb3(h, bodyVelocity[b]);
+    h = absorb3(h, bodyAngularVelocity[b]);
+    h = absorb(h, (bodyInfo[b].z & BODY_ALIVE) != 0u ? 1u : 0u);
+    sum += h;
+  }
+  sharedSums[local] = sum;
+  barrier();
+  for (uint width = HASH_THREADS / 2u; width > 0u; width >>= 1u) {
+    if (local < width) sharedSums[local] += sharedSums[local + width];
+    barrier();
+  }
+  if (local == 0u) stateHashPartials[gl_WorkGroupID.x] = sharedSums[0];
+}

@@ -1,0 +1,183 @@
+// Every registered scene, small, recorded through the samples app's recorder and replayed from the
+// file: every frame's hash, input and snapshot agree bit for bit. A replay perturbed by one unit
+// in the last place of one granule's velocity is caught at that frame and names the granule; a
+// recording of a scene this build does not have, or with settings it refuses, is named.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <filesystem>
+#include <fstream>
+
+#include "app/golden.h"
+#include "app/recording.h"
+#include "app/run.h"
+#include "core/world_impl.h"
+#include "scenes/registry.h"
+#include "support/test_world.h"
+
+namespace sandphys::samples {
+namespace {
+
+constexpr double kFrameDt = kGoldenFrameDt;
+
+std::filesystem::path tempFile(const std::string& name) {
+  return std::filesystem::temp_directory_path() / ("sandphys_replay_" + name + ".sprec");
+}
+
+// Records `frames` frames of `scene` to `file` as sandphys-samples --record does.
+RunSummary record(scenes::Scene& scene, const std::filesystem::path& file, std::uint64_t frames,
+                  std::uint64_t snapshotEvery) {
+  const GpuContext& gpu = testing::gpu();
+  SceneRecorder recorder(file, scene, kFrameDt, snapshotEvery, gpu.description());
+  ProgressLine quiet(false);
+  RunHooks hooks;
+  hooks.afterBuild = [&](World& world, std::uint64_t) { recorder.begin(world); };
+  hooks.afterFrame = [&](World& world, std::uint64_t frame) {
+    recorder.recordFrame(world, scene, static_cast<float>(kFrameDt), frame);
+  };
+  hooks.atEnd = [&](World& world, std::uint64_t) { recorder.finish(world); };
+  return runScene(gpu, scene, frames, kFrameDt, false, quiet, hooks);
+}
+
+class SceneReplay : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SceneReplay, ReplaysBitIdenticallyAndKeepsToItsGolden) {
+  const std::string name = GetParam();
+  const std::filesystem::path file = tempFile(name);
+  std::unique_ptr<scenes::Scene> scene = goldenScene(name);
+  const RunSummary run = record(*scene, file, kGoldenFrames, 5);
+  ASSERT_EQ(run.frames, kGoldenFrames);
+
+  const Recording recording = readRecording(file);
+  ASSERT_EQ(recording.frames.size(), kGoldenFrames);
+  // Snapshots after build, at frames 5 and 10, and at the end.
+  ASSERT_EQ(recording.snapshots.size(), 4u);
+  EXPECT_EQ(recording.snapshots.back().frame, kGoldenFrames);
+  EXPECT_EQ(*recording.setting("scene"), name);
+  // The state moved: a hash that did not change would check nothing.
+  EXPECT_NE(recording.frames.front().stateHash, recording.frames.back().stateHash);
+  EXPECT_EQ(recording.frames.back().steps, run.stats.steps);
+
+  const ReplayResult replay = replayRecording(testing::gpu(), recording);
+  EXPECT_TRUE(replay.identical) << replay.difference;
+  EXPECT_EQ(replay.frames, kGoldenFrames);
+  std::filesystem::remove(file);
+
+  const std::filesystem::path goldenFile =
+      std::filesystem::path(SANDPHYS_GOLDEN_DIR) / (name + ".json");
+  std::ifstream in(goldenFile);
+  ASSERT_TRUE(in) << "no golden " << goldenFile
+                  << "; make the goldens on purpose with: sandphys-samples --write-goldens "
+                     "tests/golden (docs/recording.md)";
+  const nlohmann::json golden = nlohmann::json::parse(in);
+  const std::vector<std::string> outside = compareWithGolden(goldenMetrics(run, *scene), golden);
+  std::string text;
+  for (const std::string& line : outside) text += "\n  " + line;
+  EXPECT_TRUE(outside.empty()) << name << " left its golden " << goldenFile << ":" << text;
+}
+
+std::vector<std::string> sceneNames() {
+  std::vector<std::string> names;
+  for (const scenes::SceneEntry& entry : scenes::sceneRegistry()) {
+    names.emplace_back(entry.name);
+  }
+  return names;
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryScene, SceneReplay, ::testing::ValuesIn(sceneNames()),
+                         [](const ::testing::TestParamInfo<std::string>& param) {
+                           std::string id = param.param;
+                           for (char& c : id) {
+                             if (c == '-') c = '_';
+                           }
+                           return id;
+                         });
+
+// One unit in the last place of granule `body`'s velocity y, in the GPU's own buffer.
+void nudgeVelocity(World& world, std::uint32_t body) {
+  testing::gpu().makeCurrent();
+  const std::size_t offset = 16 * std::size_t(body) + 4;
+  std::uint32_t bits = 0;
+  world.impl().buffers[detail::kBodyVelocity].download(offset, sizeof bits, &bits);
+  bits += 1u;
+  world.impl().buffers[detail::kBodyVelocity].upload(offset, sizeof bits, &bits);
+}
+
+TEST(PerturbedReplay, IsCaughtAtTheFrameAndNamesTheGranule) {
+  constexpr std::uint32_t kGranule = 21;
+  constexpr std::uint64_t kFrame = 10;
+  const std::filesystem::path file = tempFile("perturbed");
+  std::unique_ptr<scenes::Scene> scene = goldenScene("box-drop");
+  record(*scene, file, 12, 1);
+  Recording recording = readRecording(file);
+  std::filesystem::remove(file);
+  const ReplayHook nudge = [&](World& world, std::uint64_t frame) {
+    if (frame == kFrame) nudgeVelocity(world, kGranule);
+  };
+  // With the frame's own snapshot: the granule, the field and both values one bit apart.
+  ReplayResult replay = replayRecording(testing::gpu(), recording, nudge);
+  EXPECT_FALSE(replay.identical);
+  EXPECT_EQ(replay.firstDifferentFrame, kFrame) << replay.difference;
+  EXPECT_NE(replay.difference.find("state hash"), std::string::npos) << replay.difference;
+  EXPECT_NE(replay.difference.find("body 21 velocity.y"), std::string::npos) << replay.difference;
+
+  // With the end's snapshot only (as with --snapshot-every 60): the frame from the hash, the values
+  // from the next snapshot, if the difference lasts until then.
+  recording.snapshots.erase(recording.snapshots.begin() + 1, recording.snapshots.end() - 1);
+  ASSERT_EQ(recording.snapshots.back().frame, 12u);
+  replay = replayRecording(testing::gpu(), recording, nudge);
+  EXPECT_FALSE(replay.identical);
+  EXPECT_EQ(replay.firstDifferentFrame, kFrame) << replay.difference;
+  EXPECT_NE(replay.difference.find("next snapshot (frame 12)"), std::string::npos)
+      << replay.difference;
+}
+
+// A recording with these settings and no frames.
+std::filesystem::path recordingWith(const std::string& name,
+                                    const std::vector<std::pair<std::string, std::string>>& s) {
+  const std::filesystem::path file = tempFile(name);
+  RecordingWriter writer(file, s);
+  writer.finish(0.0);
+  return file;
+}
+
+std::string replayError(const std::filesystem::path& file) {
+  try {
+    (void)replayRecording(testing::gpu(), readRecording(file));
+  } catch (const RecordingError& error) {
+    return error.what();
+  }
+  return {};
+}
+
+TEST(BadRecording, OfASceneThisBuildDoesNotHaveIsNamed) {
+  const auto file = recordingWith("gone", {{"scene", "sand-castle"}});
+  const std::string message = replayError(file);
+  EXPECT_NE(message.find("sandphys_replay_gone.sprec"), std::string::npos) << message;
+  EXPECT_NE(message.find("scene 'sand-castle', which this build does not have"), std::string::npos)
+      << message;
+}
+
+TEST(BadRecording, WithSettingsThisBuildRefusesIsNamed) {
+  // A parameter out of today's range, one the scene no longer has, and a combination that the
+  // scene's settings refuse (more granules than a World holds).
+  const auto outOfRange =
+      recordingWith("range", {{"scene", "box-drop"}, {"param:diameter", "-0.02"}});
+  std::string message = replayError(outOfRange);
+  EXPECT_NE(message.find("refuses its setting param:diameter = -0.02"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("sandphys_replay_range.sprec"), std::string::npos) << message;
+
+  const auto unknown = recordingWith("unknown", {{"scene", "box-drop"}, {"param:colour", "red"}});
+  message = replayError(unknown);
+  EXPECT_NE(message.find("refuses its setting param:colour = red"), std::string::npos) << message;
+
+  const auto tooMany =
+      recordingWith("too-many", {{"scene", "box-drop"}, {"param:block", "1000,1000,1000"}});
+  message = replayError(tooMany);
+  EXPECT_NE(message.find("refuses"), std::string::npos) << message;
+  EXPECT_NE(message.find("sandphys_replay_too-many.sprec"), std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace sandphys::samples

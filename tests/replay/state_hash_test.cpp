@@ -1,0 +1,76 @@
+// The state hash of a recording: the GPU reduction equals its CPU twin (sandphys::stateHash) on the
+// bits of World::readSnapshot, in every body slot, and one flipped bit of one body changes it.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstring>
+
+#include "core/world_impl.h"
+#include "support/test_world.h"
+
+namespace sandphys {
+namespace {
+
+// Flips the lowest bit of body `body`'s velocity component `axis` in the GPU's own buffer: a
+// change of one unit in the last place that no public call could make without rounding.
+void flipVelocityBit(World& world, std::uint32_t body, int axis) {
+  testing::gpu().makeCurrent();
+  const std::size_t offset = 16 * std::size_t(body) + 4 * std::size_t(axis);
+  std::uint32_t bits = 0;
+  world.impl().buffers[detail::kBodyVelocity].download(offset, sizeof bits, &bits);
+  bits ^= 1u;
+  world.impl().buffers[detail::kBodyVelocity].upload(offset, sizeof bits, &bits);
+}
+
+void addPile(World& world, std::uint32_t countX, std::uint32_t countY, std::uint32_t countZ) {
+  world.addCollider(Plane{});
+  world.addGranules(GranuleBlock{.center = {0, 0.25f, 0},
+                                 .countX = countX,
+                                 .countY = countY,
+                                 .countZ = countZ,
+                                 .velocity = {0.1f, -1.0f, 0.0f},
+                                 .seed = 5});
+}
+
+TEST(StateHash, TheGpuHashIsItsCpuTwinAndFollowsOneBitOfOneBody) {
+  testing::TestWorld w;
+  addPile(*w, 4, 3, 4);
+  w->substep(200);
+  const WorldSnapshot before = w->readSnapshot();
+  ASSERT_EQ(before.bodies.size(), 48u);
+  const std::uint64_t hash = w->readStateHash();
+  EXPECT_EQ(hash, stateHash(before));
+  EXPECT_EQ(w->readStateHash(), hash) << "reading the hash changed the state";
+
+  flipVelocityBit(*w, 17, 1);
+  const WorldSnapshot after = w->readSnapshot();
+  const std::uint64_t changed = w->readStateHash();
+  EXPECT_NE(changed, hash);
+  EXPECT_EQ(changed, stateHash(after));
+  const std::optional<StateDifference> difference = firstDifference(before, after);
+  ASSERT_TRUE(difference);
+  EXPECT_EQ(difference->body, 17u);
+  EXPECT_EQ(difference->field, "velocity.y");
+  EXPECT_EQ(std::bit_cast<std::uint32_t>(float(difference->recorded)) ^
+                std::bit_cast<std::uint32_t>(float(difference->replayed)),
+            1u);
+
+  // Moving on changes it again, and the twin still agrees.
+  w->substep(10);
+  EXPECT_NE(w->readStateHash(), changed);
+  EXPECT_EQ(w->readStateHash(), stateHash(w->readSnapshot()));
+}
+
+TEST(StateHash, CoversBodiesBeyondOneStrideOfTheReduction) {
+  // 32 workgroups of 256 threads cover 8192 slots a pass; 9000 granules need a second.
+  testing::TestWorld w(testing::smallSettings(9000));
+  addPile(*w, 30, 10, 30);
+  const std::uint64_t hash = w->readStateHash();
+  EXPECT_EQ(hash, stateHash(w->readSnapshot()));
+  flipVelocityBit(*w, 8999, 2);
+  EXPECT_NE(w->readStateHash(), hash);
+  EXPECT_EQ(w->readStateHash(), stateHash(w->readSnapshot()));
+}
+
+}  // namespace
+}  // namespace sandphys

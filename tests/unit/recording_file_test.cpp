@@ -1,0 +1,232 @@
+// The recording file (docs/recording.md) without a GPU: what is written is read back bit for bit,
+// and every kind of bad file gets an error that names the file and the problem.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+
+#include <sandphys/sandphys.h>
+
+namespace sandphys {
+namespace {
+
+std::filesystem::path tempFile(const std::string& name) {
+  return std::filesystem::temp_directory_path() /
+         (std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+          name);
+}
+
+WorldSnapshot snapshotOf(std::uint64_t frame, std::uint32_t bodies) {
+  WorldSnapshot s;
+  s.frame = frame;
+  s.steps = 100 * frame;
+  s.simulatedTime = 1e-3 * double(frame);
+  for (std::uint32_t i = 0; i < bodies; ++i) {
+    StoredBody b;
+    const float f = float(i) + 0.25f * float(frame);
+    b.position = {f, -f, 0.5f * f};
+    b.orientation = {0.0f, 0.6f, 0.0f, 0.8f};
+    b.velocity = {std::numeric_limits<float>::denorm_min(), -0.0f, 3.0f};
+    b.angularVelocity = {1e-30f, 2.0f, -7.5f};
+    b.alive = i % 3 != 0;
+    s.bodies.push_back(b);
+  }
+  return s;
+}
+
+RecordedFrame frameOf(std::uint64_t index) {
+  RecordedFrame f;
+  f.frameDt = 1.0f / 60.0f;
+  f.steps = 100 * index;
+  f.simulatedTime = 1e-3 * double(index);
+  f.stateHash = 0x0123456789abcdefull ^ index;
+  if (index % 2 == 0) {
+    f.inputs.push_back({7, BodyDesc{.position = {1, 2, 3},
+                                    .orientation = {0.5f, 0.5f, 0.5f, 0.5f},
+                                    .velocity = {-1, 0, 1},
+                                    .angularVelocity = {0, 9, 0},
+                                    .motion = Motion::Kinematic}});
+  }
+  f.events = {std::uint8_t(index), 0, 255};
+  return f;
+}
+
+// Writes 12 frames, a snapshot every 5 and one at the start; returns the file.
+std::filesystem::path writeSample(const std::string& name, bool finish = true) {
+  const std::filesystem::path file = tempFile(name);
+  RecordingWriter writer(file, {{"scene", "box-drop"}, {"param:seed", "7"}, {"empty", ""}});
+  writer.addSnapshot(snapshotOf(0, 5));
+  for (std::uint64_t i = 1; i <= 12; ++i) {
+    writer.addFrame(frameOf(i));
+    if (i % 5 == 0) writer.addSnapshot(snapshotOf(i, 5));
+  }
+  if (finish) writer.finish(2.5);
+  return file;
+}
+
+std::vector<char> bytesOf(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void writeBytes(const std::filesystem::path& file, const std::vector<char>& bytes) {
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+// The message of the RecordingError that reading `file` throws (empty when none is thrown).
+std::string readError(const std::filesystem::path& file) {
+  try {
+    (void)readRecording(file);
+  } catch (const RecordingError& error) {
+    return error.what();
+  }
+  return {};
+}
+
+bool sameBits(float a, float b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+TEST(RecordingFile, ReadsBackWhatWasWrittenBitForBit) {
+  const std::filesystem::path file = writeSample("sample.sprec");
+  const Recording r = readRecording(file);
+  ASSERT_EQ(r.settings.size(), 3u);
+  EXPECT_EQ(*r.setting("scene"), "box-drop");
+  EXPECT_EQ(*r.setting("param:seed"), "7");
+  EXPECT_EQ(*r.setting("empty"), "");
+  EXPECT_EQ(r.setting("missing"), nullptr);
+  EXPECT_EQ(r.wallSeconds, 2.5);
+  EXPECT_EQ(r.bytes, std::filesystem::file_size(file));
+  ASSERT_EQ(r.frames.size(), 12u);
+  for (std::uint64_t i = 1; i <= 12; ++i) {
+    const RecordedFrame expected = frameOf(i);
+    const RecordedFrame& got = r.frames[i - 1];
+    EXPECT_TRUE(sameBits(got.frameDt, expected.frameDt));
+    EXPECT_EQ(got.steps, expected.steps);
+    EXPECT_EQ(got.simulatedTime, expected.simulatedTime);
+    EXPECT_EQ(got.stateHash, expected.stateHash);
+    EXPECT_EQ(got.events, expected.events);
+    ASSERT_EQ(got.inputs.size(), expected.inputs.size());
+    for (std::size_t k = 0; k < got.inputs.size(); ++k) {
+      EXPECT_EQ(got.inputs[k].body, 7u);
+      EXPECT_EQ(got.inputs[k].state.motion, Motion::Kinematic);
+      EXPECT_TRUE(sameBits(got.inputs[k].state.orientation.z, 0.5f));
+      EXPECT_TRUE(sameBits(got.inputs[k].state.angularVelocity.y, 9.0f));
+    }
+  }
+  ASSERT_EQ(r.snapshots.size(), 3u);
+  for (const WorldSnapshot& s : r.snapshots) {
+    const WorldSnapshot expected = snapshotOf(s.frame, 5);
+    EXPECT_EQ(s.steps, expected.steps);
+    EXPECT_EQ(s.simulatedTime, expected.simulatedTime);
+    EXPECT_FALSE(firstDifference(expected, s)) << firstDifference(expected, s)->describe();
+    EXPECT_EQ(stateHash(expected), stateHash(s));
+  }
+  EXPECT_EQ(r.snapshots[1].frame, 5u);
+}
+
+TEST(RecordingFile, ANegativeZeroOrOneBitIsADifferenceNamedWithBothValues) {
+  const WorldSnapshot a = snapshotOf(3, 4);
+  WorldSnapshot b = a;
+  EXPECT_FALSE(firstDifference(a, b));
+  EXPECT_EQ(stateHash(a), stateHash(b));
+  b.bodies[2].velocity[1] = 0.0f;  // was -0.0f: equal as numbers, not as bits
+  const auto d = firstDifference(a, b);
+  ASSERT_TRUE(d);
+  EXPECT_EQ(d->body, 2u);
+  EXPECT_EQ(d->field, "velocity.y");
+  EXPECT_NE(stateHash(a), stateHash(b));
+  EXPECT_NE(d->describe().find("0x80000000"), std::string::npos) << d->describe();
+  EXPECT_NE(d->describe().find("0x00000000"), std::string::npos) << d->describe();
+
+  b = a;
+  b.bodies[3].alive = !b.bodies[3].alive;
+  ASSERT_TRUE(firstDifference(a, b));
+  EXPECT_EQ(firstDifference(a, b)->field, "alive");
+  EXPECT_NE(stateHash(a), stateHash(b));
+
+  b = a;
+  b.bodies.pop_back();
+  ASSERT_TRUE(firstDifference(a, b));
+  EXPECT_EQ(firstDifference(a, b)->field, "body count");
+}
+
+TEST(RecordingFile, AMissingFileIsNamed) {
+  const std::string message = readError(tempFile("does-not-exist.sprec"));
+  EXPECT_NE(message.find("cannot open recording"), std::string::npos) << message;
+  EXPECT_NE(message.find("does-not-exist.sprec"), std::string::npos) << message;
+}
+
+TEST(RecordingFile, AnotherKindOfFileIsNotARecording) {
+  const std::filesystem::path file = tempFile("notes.txt");
+  writeBytes(file, {'h', 'e', 'l', 'l', 'o'});
+  const std::string message = readError(file);
+  EXPECT_NE(message.find("is not a sandphys recording"), std::string::npos) << message;
+  EXPECT_NE(message.find("notes.txt"), std::string::npos) << message;
+}
+
+TEST(RecordingFile, AnotherFormatVersionIsRefusedWithBothVersions) {
+  const std::filesystem::path file = writeSample("v2.sprec");
+  std::vector<char> bytes = bytesOf(file);
+  const std::uint32_t version = kRecordingVersion + 1;
+  std::memcpy(bytes.data() + 12, &version, sizeof version);
+  writeBytes(file, bytes);
+  const std::string message = readError(file);
+  EXPECT_NE(message.find("format version " + std::to_string(version)), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("reads version " + std::to_string(kRecordingVersion)), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("v2.sprec"), std::string::npos) << message;
+}
+
+TEST(RecordingFile, AnInterruptedRecordingIsTruncatedWhereverItStops) {
+  // Never finished: no end record.
+  {
+    const std::filesystem::path file = writeSample("unfinished.sprec", false);
+    const std::string message = readError(file);
+    EXPECT_NE(message.find("is truncated"), std::string::npos) << message;
+    EXPECT_NE(message.find("12 frames"), std::string::npos) << message;
+    EXPECT_NE(message.find("unfinished.sprec"), std::string::npos) << message;
+  }
+  // Cut at every length from the end of the header to one byte short of the whole.
+  const std::filesystem::path whole = writeSample("whole.sprec");
+  const std::vector<char> bytes = bytesOf(whole);
+  const std::filesystem::path cut = tempFile("cut.sprec");
+  for (std::size_t length = 16; length < bytes.size(); length += 7) {
+    writeBytes(cut, std::vector<char>(bytes.begin(), bytes.begin() + std::ptrdiff_t(length)));
+    const std::string message = readError(cut);
+    EXPECT_NE(message.find("is truncated"), std::string::npos) << length << ": " << message;
+  }
+}
+
+TEST(RecordingFile, AChangedByteIsReportedAsDamagedByTheChecksum) {
+  const std::filesystem::path file = writeSample("damaged.sprec");
+  const std::vector<char> original = bytesOf(file);
+  // A byte in the settings, in a frame's hash, inside a compressed snapshot, in the end counts.
+  for (std::size_t at :
+       {std::size_t(30), original.size() / 3, original.size() / 2, original.size() - 30}) {
+    std::vector<char> bytes = original;
+    bytes[at] = char(bytes[at] ^ 0x10);
+    writeBytes(file, bytes);
+    const std::string message = readError(file);
+    EXPECT_NE(message.find("is damaged: its checksum"), std::string::npos) << at << ": " << message;
+    EXPECT_NE(message.find("damaged.sprec"), std::string::npos) << message;
+  }
+}
+
+TEST(RecordingFile, AnUnwritableFileIsNamed) {
+  try {
+    RecordingWriter writer(std::filesystem::path("/nonexistent-folder/run.sprec"), {});
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("/nonexistent-folder/run.sprec"), std::string::npos)
+        << error.what();
+  }
+}
+
+}  // namespace
+}  // namespace sandphys
