@@ -35,53 +35,61 @@ std::vector<T> download(const gl::Buffer& buffer, std::uint32_t count) {
   return out;
 }
 
+// Every body slot in use, as the GPU stores it.
+struct StoredBodies {
+  std::vector<GpuVec4> position, orientation, velocity, spin;
+  std::vector<GpuUVec4> info;
+};
+
+StoredBodies downloadBodies(const World::Impl& w, const char* call) {
+  w.gpu->makeCurrent();
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  StoredBodies b{download<GpuVec4>(w.buffers[kBodyPosition], w.bodyCount),
+                 download<GpuVec4>(w.buffers[kBodyOrientation], w.bodyCount),
+                 download<GpuVec4>(w.buffers[kBodyVelocity], w.bodyCount),
+                 download<GpuVec4>(w.buffers[kBodyAngularVelocity], w.bodyCount),
+                 download<GpuUVec4>(w.buffers[kBodyInfo], w.bodyCount)};
+  gl::check(call);
+  return b;
+}
+
 }  // namespace
 
 std::vector<BodyState> World::readBodies() const {
   const Impl& w = *m_impl;
-  w.gpu->makeCurrent();
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  auto position = download<GpuVec4>(w.buffers[kBodyPosition], w.bodyCount);
-  auto orientation = download<GpuVec4>(w.buffers[kBodyOrientation], w.bodyCount);
-  auto velocity = download<GpuVec4>(w.buffers[kBodyVelocity], w.bodyCount);
-  auto spin = download<GpuVec4>(w.buffers[kBodyAngularVelocity], w.bodyCount);
-  auto info = download<GpuUVec4>(w.buffers[kBodyInfo], w.bodyCount);
-  gl::check("World::readBodies");
+  const StoredBodies stored = downloadBodies(w, "World::readBodies");
   std::vector<BodyState> out(w.bodyCount);
   for (std::uint32_t i = 0; i < w.bodyCount; ++i) {
     BodyState& s = out[i];
     s.index = i;
-    s.position = xyz(position[i]);
-    s.orientation = multiplyConjugate(fromGpu(orientation[i]), w.principalRotations[i]);
-    s.velocity = xyz(velocity[i]);
-    s.angularVelocity = xyz(spin[i]);
-    s.alive = (info[i].z & kBodyAlive) != 0;
-    s.granule = (info[i].z & kBodyGranule) != 0;
+    s.position = xyz(stored.position[i]);
+    s.orientation = multiplyConjugate(fromGpu(stored.orientation[i]), w.principalRotations[i]);
+    s.velocity = xyz(stored.velocity[i]);
+    s.angularVelocity = xyz(stored.spin[i]);
+    s.alive = (stored.info[i].z & kBodyAlive) != 0;
+    s.granule = (stored.info[i].z & kBodyGranule) != 0;
   }
   return out;
 }
 
 WorldSnapshot World::readSnapshot() const {
   const Impl& w = *m_impl;
-  w.gpu->makeCurrent();
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  auto position = download<GpuVec4>(w.buffers[kBodyPosition], w.bodyCount);
-  auto orientation = download<GpuVec4>(w.buffers[kBodyOrientation], w.bodyCount);
-  auto velocity = download<GpuVec4>(w.buffers[kBodyVelocity], w.bodyCount);
-  auto spin = download<GpuVec4>(w.buffers[kBodyAngularVelocity], w.bodyCount);
-  auto info = download<GpuUVec4>(w.buffers[kBodyInfo], w.bodyCount);
-  gl::check("World::readSnapshot");
+  const StoredBodies stored = downloadBodies(w, "World::readSnapshot");
   WorldSnapshot snapshot;
   snapshot.steps = w.steps;
   snapshot.simulatedTime = w.simTime;
   snapshot.bodies.resize(w.bodyCount);
   for (std::uint32_t i = 0; i < w.bodyCount; ++i) {
+    const GpuVec4& p = stored.position[i];
+    const GpuVec4& q = stored.orientation[i];
+    const GpuVec4& v = stored.velocity[i];
+    const GpuVec4& omega = stored.spin[i];
     StoredBody& b = snapshot.bodies[i];
-    b.position = {position[i].x, position[i].y, position[i].z};
-    b.orientation = {orientation[i].x, orientation[i].y, orientation[i].z, orientation[i].w};
-    b.velocity = {velocity[i].x, velocity[i].y, velocity[i].z};
-    b.angularVelocity = {spin[i].x, spin[i].y, spin[i].z};
-    b.alive = (info[i].z & kBodyAlive) != 0;
+    b.position = {p.x, p.y, p.z};
+    b.orientation = {q.x, q.y, q.z, q.w};
+    b.velocity = {v.x, v.y, v.z};
+    b.angularVelocity = {omega.x, omega.y, omega.z};
+    b.alive = (stored.info[i].z & kBodyAlive) != 0;
   }
   return snapshot;
 }
