@@ -20,7 +20,8 @@ inline constexpr double kGoldenFrameDt = 1.0 / 60.0;
 
 /// The scene `name` at the size of the golden runs and the scene tests: blocks, batches, berms and
 /// beds of 4 × 2 × 4 granules, 32 granules where a scene counts them, 2 layers; its geometry and
-/// everything else as registered. Throws std::invalid_argument for an unknown name.
+/// everything else as registered, but for the cylinder pile's drop height (3 d) and radius (12 d),
+/// so that its batch lands within the run. Throws std::invalid_argument for an unknown name.
 std::unique_ptr<scenes::Scene> goldenScene(std::string_view name);
 
 /// The headline metrics of a run and the tolerance each must keep against its golden, as the

@@ -19,11 +19,6 @@ int main(int argc, char** argv) {
     if (!options.replayPath.empty()) return runReplay(options.replayPath, options.quiet);
     if (!options.goldenDir.empty()) return writeGoldens(options.goldenDir, options.quiet);
 #ifdef SANDPHYS_HAS_VIEWER
-    if (!options.headless && !options.recordPath.empty()) {
-      std::cerr << "sandphys-samples: --record records headless runs in this version; add "
-                   "--headless\n";
-      return kExitUsage;
-    }
     if (!options.headless) return runViewer(options);
 #else
     if (!options.headless) {

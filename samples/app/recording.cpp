@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <system_error>
 
 #include "app/cli.h"
 #include "scenes/registry.h"
@@ -16,11 +17,95 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr const char* kParameterPrefix = "param:";
+constexpr const char* kToolsKey = "tools";
+constexpr const char* kSandTools = "sand-tools";
+constexpr std::size_t kToolEventBytes = 1 + 6 * sizeof(float);
 
 std::string exactText(double value) {
   char text[64];
   const auto result = std::to_chars(text, text + sizeof text, value);
   return std::string(text, result.ptr);
+}
+
+// The World's settings as recorded, "world:NAME"; a replay builds its World from them, so that a
+// recording keeps the settings it ran with (the viewer's edits, capacities) whatever the scene's
+// defaults have become since.
+constexpr const char* kWorldPrefix = "world:";
+
+struct FloatField {
+  const char* name;
+  float& (*of)(WorldSettings&);
+};
+constexpr FloatField kFloatFields[] = {
+    {"particle_diameter", [](WorldSettings& s) -> float& { return s.particleDiameter; }},
+    {"gravity_x", [](WorldSettings& s) -> float& { return s.gravity.x; }},
+    {"gravity_y", [](WorldSettings& s) -> float& { return s.gravity.y; }},
+    {"gravity_z", [](WorldSettings& s) -> float& { return s.gravity.z; }},
+    {"density", [](WorldSettings& s) -> float& { return s.material.density; }},
+    {"youngs_modulus", [](WorldSettings& s) -> float& { return s.material.youngsModulus; }},
+    {"poisson_ratio", [](WorldSettings& s) -> float& { return s.material.poissonRatio; }},
+    {"restitution", [](WorldSettings& s) -> float& { return s.material.restitution; }},
+    {"friction", [](WorldSettings& s) -> float& { return s.material.friction; }},
+    {"tangential_damping", [](WorldSettings& s) -> float& { return s.material.tangentialDamping; }},
+    {"time_step", [](WorldSettings& s) -> float& { return s.timeStep; }},
+    {"steps_per_contact", [](WorldSettings& s) -> float& { return s.stepsPerContact; }},
+    {"max_speed", [](WorldSettings& s) -> float& { return s.maxSpeed; }},
+};
+
+struct CountField {
+  const char* name;
+  std::uint32_t& (*of)(WorldSettings&);
+};
+constexpr CountField kCountFields[] = {
+    {"max_substeps_per_frame",
+     [](WorldSettings& s) -> std::uint32_t& { return s.maxSubstepsPerFrame; }},
+    {"max_bodies", [](WorldSettings& s) -> std::uint32_t& { return s.maxBodies; }},
+    {"max_particles", [](WorldSettings& s) -> std::uint32_t& { return s.maxParticles; }},
+    {"max_colliders", [](WorldSettings& s) -> std::uint32_t& { return s.maxColliders; }},
+};
+
+void appendWorldSettings(WorldSettings settings,
+                         std::vector<std::pair<std::string, std::string>>& out) {
+  for (const FloatField& field : kFloatFields) {
+    out.emplace_back(std::string(kWorldPrefix) + field.name, exactText(field.of(settings)));
+  }
+  for (const CountField& field : kCountFields) {
+    out.emplace_back(std::string(kWorldPrefix) + field.name, std::to_string(field.of(settings)));
+  }
+  out.emplace_back(std::string(kWorldPrefix) + "stats_each_frame",
+                   settings.statsEachFrame ? "1" : "0");
+}
+
+// `settings` with every "world:" value of `recording` in place. Throws RecordingError naming the
+// key for one this build does not know or cannot read.
+WorldSettings recordedWorldSettings(const Recording& recording, WorldSettings settings) {
+  const std::size_t prefix = std::strlen(kWorldPrefix);
+  for (const auto& [key, text] : recording.settings) {
+    if (key.compare(0, prefix, kWorldPrefix) != 0) continue;
+    const std::string name = key.substr(prefix);
+    auto refuse = [&] {
+      return RecordingError("recording '" + recording.file.string() +
+                            "': this build refuses its setting " + key + " = " + text);
+    };
+    auto parse = [&](auto& value) {
+      const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
+      if (result.ec != std::errc() || result.ptr != text.data() + text.size()) throw refuse();
+    };
+    bool known = false;
+    for (const FloatField& field : kFloatFields) {
+      if (name == field.name) parse(field.of(settings)), known = true;
+    }
+    for (const CountField& field : kCountFields) {
+      if (name == field.name) parse(field.of(settings)), known = true;
+    }
+    if (name == "stats_each_frame") {
+      if (text != "0" && text != "1") throw refuse();
+      settings.statsEachFrame = text == "1";
+      known = true;
+    }
+    if (!known) throw refuse();
+  }
+  return settings;
 }
 
 bool sameBits(float a, float b) {
@@ -97,7 +182,8 @@ const WorldSnapshot* snapshotFrom(const Recording& recording, std::uint64_t fram
 }  // namespace
 
 SceneRecorder::SceneRecorder(const std::filesystem::path& file, scenes::Scene& scene,
-                             double frameDt, std::uint64_t snapshotEvery, const std::string& device)
+                             const WorldSettings& world, double frameDt,
+                             std::uint64_t snapshotEvery, const std::string& device, bool sandTools)
     : m_writer(file,
                [&] {
                  std::vector<std::pair<std::string, std::string>> settings{
@@ -109,6 +195,8 @@ SceneRecorder::SceneRecorder(const std::filesystem::path& file, scenes::Scene& s
                    settings.emplace_back(kParameterPrefix + parameter.name,
                                          scenes::formatSceneParameter(parameter));
                  }
+                 appendWorldSettings(world, settings);
+                 if (sandTools) settings.emplace_back(kToolsKey, kSandTools);
                  return settings;
                }()),
       m_snapshotEvery(std::max<std::uint64_t>(snapshotEvery, 1)) {}
@@ -119,7 +207,7 @@ void SceneRecorder::begin(World& world) {
 }
 
 void SceneRecorder::recordFrame(World& world, const scenes::Scene& scene, float frameDt,
-                                std::uint64_t frame) {
+                                std::uint64_t frame, const std::vector<std::uint8_t>& events) {
   const Clock::time_point start = Clock::now();
   RecordedFrame record;
   record.frameDt = frameDt;
@@ -127,6 +215,7 @@ void SceneRecorder::recordFrame(World& world, const scenes::Scene& scene, float 
   record.simulatedTime = world.simulatedTime();
   record.stateHash = world.readStateHash();
   record.inputs = scene.externalInputs();
+  record.events = events;
   m_writer.addFrame(record);
   m_frames = frame;
   if (frame % m_snapshotEvery == 0) {
@@ -147,6 +236,34 @@ std::uint64_t SceneRecorder::finish(World& world) {
     m_writer.addSnapshot(snapshot);
   }
   return m_writer.finish(wallSeconds);
+}
+
+std::vector<std::uint8_t> toolEvents(bool pour, bool push, const scenes::Ray& cursor) {
+  if (!pour && !push) return {};
+  std::vector<std::uint8_t> events(kToolEventBytes);
+  events[0] = std::uint8_t((pour ? 1u : 0u) | (push ? 2u : 0u));
+  const float values[6] = {cursor.origin.x(),    cursor.origin.y(),    cursor.origin.z(),
+                           cursor.direction.x(), cursor.direction.y(), cursor.direction.z()};
+  std::memcpy(events.data() + 1, values, sizeof values);
+  return events;
+}
+
+ToolInput readToolEvents(const Recording& recording, std::uint64_t frame) {
+  const std::vector<std::uint8_t>& events = recording.frames.at(frame - 1).events;
+  ToolInput input;
+  if (events.empty()) return input;
+  if (events.size() != kToolEventBytes || events[0] == 0 || events[0] > 3) {
+    throw RecordingError("recording '" + recording.file.string() + "': frame " +
+                         std::to_string(frame) + " has " + std::to_string(events.size()) +
+                         " bytes of events that are not the sand tools' input");
+  }
+  input.pour = (events[0] & 1u) != 0;
+  input.push = (events[0] & 2u) != 0;
+  float values[6];
+  std::memcpy(values, events.data() + 1, sizeof values);
+  input.cursor.origin = {values[0], values[1], values[2]};
+  input.cursor.direction = {values[3], values[4], values[5]};
+  return input;
 }
 
 std::unique_ptr<scenes::Scene> sceneFromRecording(const Recording& recording) {
@@ -184,15 +301,40 @@ ReplayResult replayRecording(const GpuContext& gpu, const Recording& recording,
   // The World checks its settings against this build's limits (and the GPU's).
   std::optional<World> made;
   try {
-    made.emplace(gpu, scene->settings());
+    made.emplace(gpu, recordedWorldSettings(recording, scene->settings()));
     scene->build(*made);
   } catch (const GpuError&) {
     throw;
+  } catch (const RecordingError&) {
+    throw;
   } catch (const Error& error) {
     throw RecordingError("recording '" + recording.file.string() +
-                         "': this build refuses its scene's settings: " + error.what());
+                         "': this build refuses the World it records: " + error.what());
   }
   World& world = *made;
+  std::optional<scenes::SandTools> tools;
+  if (const std::string* used = recording.setting(kToolsKey)) {
+    if (*used != kSandTools) {
+      throw RecordingError("recording '" + recording.file.string() +
+                           "': this build refuses its setting tools = " + *used);
+    }
+    tools.emplace();
+    tools->attach(world, *scene);
+  }
+  // One frame as the recorded run stepped it: the tools' input first, then the scene.
+  auto stepFrame = [&](std::uint64_t frame) {
+    const RecordedFrame& recorded = recording.frames[frame - 1];
+    if (tools) {
+      const ToolInput input = readToolEvents(recording, frame);
+      tools->update(world, input.pour, input.push, input.cursor, recorded.frameDt);
+    } else if (!recorded.events.empty()) {
+      throw RecordingError("recording '" + recording.file.string() + "': frame " +
+                           std::to_string(frame) + " has events but the run had no tools");
+    }
+    const StepReport report = scene->step(world, recorded.frameDt);
+    if (tools) tools->countEmitted(report.granulesEmitted);
+    scene->update(world, report, world.simulatedTime());
+  };
 
   auto differ = [&](std::uint64_t frame, std::string what) {
     result.identical = false;
@@ -220,8 +362,7 @@ ReplayResult replayRecording(const GpuContext& gpu, const Recording& recording,
   for (std::uint64_t i = 0; i < recording.frames.size(); ++i) {
     const RecordedFrame& recorded = recording.frames[i];
     const std::uint64_t frame = i + 1;
-    const StepReport report = scene->step(world, recorded.frameDt);
-    scene->update(world, report, world.simulatedTime());
+    stepFrame(frame);
     if (afterFrame) afterFrame(world, frame);
     result.frames = frame;
     const std::string at = "frame " + std::to_string(frame) + ": ";
@@ -253,10 +394,7 @@ ReplayResult replayRecording(const GpuContext& gpu, const Recording& recording,
       }
       // The values of this frame were not kept: run on to the next snapshot and compare there.
       if (const WorldSnapshot* next = snapshotFrom(recording, frame)) {
-        for (std::uint64_t j = frame; j < next->frame; ++j) {
-          const StepReport r = scene->step(world, recording.frames[j].frameDt);
-          scene->update(world, r, world.simulatedTime());
-        }
+        for (std::uint64_t j = frame + 1; j <= next->frame; ++j) stepFrame(j);
         what += "; at the next snapshot (frame " + std::to_string(next->frame) + ") ";
         const std::optional<std::string> d = compareSnapshot(*next);
         what += d ? *d

@@ -11,6 +11,7 @@
 
 #include <sandphys/sandphys.h>
 
+#include "scenes/sand_tools.h"
 #include "scenes/scene.h"
 
 namespace sandphys::samples {
@@ -24,15 +25,22 @@ inline constexpr std::uint64_t kDefaultSnapshotEvery = 60;
 /// full snapshot after build, every `snapshotEvery` frames and at the end.
 class SceneRecorder {
  public:
-  /// Creates `file` and writes the settings of `scene` (as its parameters are now). Throws
-  /// sandphys::Error naming the file when it cannot be written.
-  SceneRecorder(const std::filesystem::path& file, scenes::Scene& scene, double frameDt,
-                std::uint64_t snapshotEvery, const std::string& device);
+  /// Creates `file` and writes the settings: `scene`'s name and parameters (as they are now),
+  /// `world`, the settings of the World it runs in (which a replay builds its World from),
+  /// `frameDt`, `snapshotEvery` and `device` (GpuContext::description). Throws sandphys::Error
+  /// naming the file when it cannot be written.
+  /// `sandTools`: the run has the viewer's sand tools attached (scenes::SandTools), whose input
+  /// each frame's events hold (toolEvents) and a replay applies.
+  SceneRecorder(const std::filesystem::path& file, scenes::Scene& scene, const WorldSettings& world,
+                double frameDt, std::uint64_t snapshotEvery, const std::string& device,
+                bool sandTools = false);
 
   /// After Scene::build: the snapshot of frame 0.
   void begin(World& world);
-  /// After frame `frame` (1 = the first) was stepped with `frameDt` and the scene updated.
-  void recordFrame(World& world, const scenes::Scene& scene, float frameDt, std::uint64_t frame);
+  /// After frame `frame` (1 = the first) was stepped with `frameDt` and the scene updated;
+  /// `events` are the frame's tool input (toolEvents), empty without tools.
+  void recordFrame(World& world, const scenes::Scene& scene, float frameDt, std::uint64_t frame,
+                   const std::vector<std::uint8_t>& events = {});
   /// The last snapshot (unless the last frame had one) and the end record with the wall time of
   /// the frames since begin() (the recorder's own time left out); returns the file's size, bytes.
   std::uint64_t finish(World& world);
@@ -50,8 +58,24 @@ class SceneRecorder {
   double m_ownSeconds = 0.0;
 };
 
+/// The sand tools' input of one frame as a recording's events: nothing when no tool is held (the
+/// cursor does not matter then); else a byte of flags (1 pour, 2 push) and the cursor ray, origin
+/// and direction, 6 floats.
+std::vector<std::uint8_t> toolEvents(bool pour, bool push, const scenes::Ray& cursor);
+
+/// What toolEvents wrote.
+struct ToolInput {
+  bool pour = false;
+  bool push = false;
+  scenes::Ray cursor;
+};
+/// Reads toolEvents' bytes of frame `frame` of `recording`. Throws RecordingError naming the file
+/// and the frame when they are not.
+ToolInput readToolEvents(const Recording& recording, std::uint64_t frame);
+
 /// Makes the scene a recording was made of, with its parameters. Throws RecordingError naming the
-/// file when the scene no longer exists or the current build refuses a setting.
+/// file when the scene no longer exists or the current build refuses a setting. (The World's
+/// settings are the recording's "world:" values, which replayRecording applies.)
 std::unique_ptr<scenes::Scene> sceneFromRecording(const Recording& recording);
 
 /// What a replay found.

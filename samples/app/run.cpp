@@ -176,7 +176,8 @@ int runHeadless(RunOptions& options) {
   }
   std::unique_ptr<SceneRecorder> recorder;
   if (!options.recordPath.empty()) {
-    recorder = std::make_unique<SceneRecorder>(options.recordPath, *options.scene, options.frameDt,
+    recorder = std::make_unique<SceneRecorder>(options.recordPath, *options.scene,
+                                               options.scene->settings(), options.frameDt,
                                                options.snapshotEvery, gpu.description());
   }
   RunHooks hooks;

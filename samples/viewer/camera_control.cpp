@@ -25,13 +25,6 @@ Basis basisOf(const render::Camera& camera) {
 
 }  // namespace
 
-std::optional<Eigen::Vector3f> hitHorizontalPlane(const Ray& ray, float y) {
-  if (std::abs(ray.direction.y()) < 1e-6f) return std::nullopt;
-  const float t = (y - ray.origin.y()) / ray.direction.y();
-  if (!(t > 0.0f) || !std::isfinite(t)) return std::nullopt;
-  return Eigen::Vector3f(ray.origin + t * ray.direction);
-}
-
 namespace camera_control {
 
 void orbit(render::Camera& camera, float dx, float dy) {

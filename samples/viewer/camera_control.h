@@ -4,18 +4,12 @@
 #include <optional>
 
 #include "render/camera.h"
+#include "scenes/sand_tools.h"
 
 namespace sandphys::viewer {
 
-/// A half-line in world space, m.
-struct Ray {
-  Eigen::Vector3f origin = Eigen::Vector3f::Zero();
-  Eigen::Vector3f direction = -Eigen::Vector3f::UnitZ();  ///< unit
-};
-
-/// Where `ray` meets the horizontal plane at height `y` (m), or nothing when it points away from
-/// it or runs parallel to it.
-std::optional<Eigen::Vector3f> hitHorizontalPlane(const Ray& ray, float y);
+using scenes::hitHorizontalPlane;
+using scenes::Ray;
 
 /// How the mouse moves the renderer's orbit camera. Drags are in window pixels (the unit of GLFW
 /// cursor positions), not framebuffer pixels, so that high-DPI screens feel the same.

@@ -262,6 +262,10 @@ void Panel::drawStats(const Session& session, const FrameStats& stats,
   ImGui::Text("dropped %.3f s%s", stats.droppedSeconds,
               stats.report.emitterBlocked ? "  emitter blocked (capacity)" : "");
   ImGui::Text("poured %u of %u", session.tools().poured(), SandTools::kPourGranules);
+  if (session.recording()) {
+    ImGui::Text("recording: %llu frames (ends at a restart)",
+                static_cast<unsigned long long>(session.recordedFrames()));
+  }
   ImGui::Text("step %.2f ms  render %.2f ms  frame %.2f ms", stats.stepMilliseconds,
               stats.render.totalMs, stats.frameMilliseconds);
   if (stats.kernels.empty()) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace sandphys::viewer {
@@ -54,7 +55,36 @@ Session::Session(const GpuContext& gpu, std::unique_ptr<scenes::Scene> scene, do
   restart();
 }
 
+Session::~Session() {
+  try {
+    finishRecording();
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "sandphys-samples: %s\n", error.what());
+  }
+}
+
+void Session::startRecording(const std::filesystem::path& file, std::uint64_t snapshotEvery) {
+  finishRecording();
+  m_recorder = std::make_unique<samples::SceneRecorder>(file, *m_scene, m_world->settings(),
+                                                        m_applied.frameDt, snapshotEvery,
+                                                        m_gpu.description(), true);
+  m_recorder->begin(*m_world);
+  m_recordPath = file;
+  m_recordedFrames = 0;
+}
+
+void Session::finishRecording() {
+  if (!m_recorder) return;
+  std::unique_ptr<samples::SceneRecorder> recorder = std::move(m_recorder);
+  const std::uint64_t bytes = recorder->finish(*m_world);
+  std::fprintf(stderr, "sandphys-samples: recorded %llu frames to %s (%llu bytes)\n",
+               static_cast<unsigned long long>(m_recordedFrames), m_recordPath.string().c_str(),
+               static_cast<unsigned long long>(bytes));
+}
+
 void Session::restart() {
+  // A recording covers one run from its start: a restart ends it.
+  finishRecording();
   // The old World goes first: two full-size worlds need not fit in memory at once.
   m_world.reset();
   m_lastError.clear();
@@ -101,6 +131,10 @@ void Session::stepFrame(bool pour, bool push, const Ray& cursorRay, FrameStats& 
   m_tools.countEmitted(stats.report.granulesEmitted);
   m_scene->update(*m_world, stats.report, m_world->simulatedTime());
   stats.stepMilliseconds = millisecondsSince(start);
+  if (m_recorder) {
+    m_recorder->recordFrame(*m_world, *m_scene, frameDt, ++m_recordedFrames,
+                            samples::toolEvents(pour, push, cursorRay));
+  }
   stats.stepped = true;
   stats.timeScale = stats.report.simulatedTime / m_applied.frameDt;
   m_pacer.recordStep(stats.stepMilliseconds, stats.report.substeps);

@@ -1,17 +1,23 @@
 #pragma once
 
+#include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <string>
 
 #include <sandphys/sandphys.h>
 
+#include "app/recording.h"
 #include "scenes/registry.h"
+#include "scenes/sand_tools.h"
 #include "scenes/scene.h"
 #include "viewer/frame_pacer.h"
 #include "viewer/frame_stats.h"
-#include "viewer/sand_tools.h"
 
 namespace sandphys::viewer {
+
+using scenes::Ray;
+using scenes::SandTools;
 
 /// Material and time-step values the panel edits. They apply at the next restart, because they
 /// set the World's contact law and time step, which are fixed at creation.
@@ -39,6 +45,20 @@ class Session {
   /// stepped as `pacer` decides.
   Session(const GpuContext& gpu, std::unique_ptr<scenes::Scene> scene, double frameDt,
           FramePacer pacer = {});
+  /// Finishes a recording that is still running.
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  /// Records the run (--record) from its start, which must be now: right after construction or
+  /// a restart, before any frame. Every frame's duration (the pacer's, in slow motion) and the
+  /// sand tools' input go into `file` (docs/recording.md), which a headless --replay checks. The
+  /// recording ends at the next restart or scene switch, or with the session. Throws
+  /// sandphys::Error naming the file when it cannot be written.
+  void startRecording(const std::filesystem::path& file, std::uint64_t snapshotEvery);
+  /// Whether a recording is running, and its frames so far.
+  bool recording() const { return m_recorder != nullptr; }
+  std::uint64_t recordedFrames() const { return m_recordedFrames; }
 
   /// Rebuilds the scene on a fresh World with the controls applied. When the controls make an
   /// invalid World, the error is kept for the panel (lastError) and the scene's own settings are
@@ -80,6 +100,11 @@ class Session {
   SimulationControls m_applied;
   std::string m_lastError;
   double m_droppedSeconds = 0.0;
+  std::unique_ptr<samples::SceneRecorder> m_recorder;
+  std::filesystem::path m_recordPath;
+  std::uint64_t m_recordedFrames = 0;
+
+  void finishRecording();
 };
 
 }  // namespace sandphys::viewer

@@ -1,5 +1,6 @@
 // The viewer's frame loop: input, simulation, drawing, panel, screenshots. The pieces live in
-// their own files (window, input, camera control, sand tools, session, panel, gui, screenshot).
+// their own files (window, input, camera control, session, panel, gui, screenshot; the sand tools
+// in scenes/sand_tools.h, where a headless replay can use them too).
 #include "viewer/viewer.h"
 
 #include <GL/glew.h>
@@ -124,6 +125,9 @@ class ViewerLoop {
                   FramePacer(options.frameBudgetMs, options.quality)) {
     m_view.gpu = m_gpu.description();
     if (!m_options.quiet) std::cerr << "sandphys-samples: viewer on " << m_view.gpu << '\n';
+    if (!m_options.recordPath.empty()) {
+      m_session.startRecording(m_options.recordPath, m_options.snapshotEvery);
+    }
     m_camera = framingCamera(m_session, m_window.framebufferSize());
     m_window.setTitle(windowTitle(m_session));
     if (!m_script.empty()) {

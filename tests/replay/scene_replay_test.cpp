@@ -28,7 +28,7 @@ std::filesystem::path tempFile(const std::string& name) {
 RunSummary record(scenes::Scene& scene, const std::filesystem::path& file, std::uint64_t frames,
                   std::uint64_t snapshotEvery) {
   const GpuContext& gpu = testing::gpu();
-  SceneRecorder recorder(file, scene, kFrameDt, snapshotEvery, gpu.description());
+  SceneRecorder recorder(file, scene, scene.settings(), kFrameDt, snapshotEvery, gpu.description());
   ProgressLine quiet(false);
   RunHooks hooks;
   hooks.afterBuild = [&](World& world, std::uint64_t) { recorder.begin(world); };
@@ -177,6 +177,23 @@ TEST(BadRecording, WithSettingsThisBuildRefusesIsNamed) {
   message = replayError(tooMany);
   EXPECT_NE(message.find("refuses"), std::string::npos) << message;
   EXPECT_NE(message.find("sandphys_replay_too-many.sprec"), std::string::npos) << message;
+
+  // World settings: one this build does not know, one it cannot read, one beyond its limits.
+  const auto world =
+      recordingWith("world", {{"scene", "box-drop"}, {"world:sand_colour", "yellow"}});
+  message = replayError(world);
+  EXPECT_NE(message.find("refuses its setting world:sand_colour = yellow"), std::string::npos)
+      << message;
+  const auto unreadable =
+      recordingWith("unreadable", {{"scene", "box-drop"}, {"world:max_bodies", "many"}});
+  message = replayError(unreadable);
+  EXPECT_NE(message.find("refuses its setting world:max_bodies = many"), std::string::npos)
+      << message;
+  const auto beyond =
+      recordingWith("beyond", {{"scene", "box-drop"}, {"world:max_particles", "4000000000"}});
+  message = replayError(beyond);
+  EXPECT_NE(message.find("refuses the World it records"), std::string::npos) << message;
+  EXPECT_NE(message.find("maxParticles = 4000000000"), std::string::npos) << message;
 }
 
 }  // namespace

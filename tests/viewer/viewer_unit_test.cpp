@@ -9,14 +9,16 @@
 #include <vector>
 
 #include "app/cli.h"
+#include "scenes/sand_tools.h"
 #include "viewer/camera_control.h"
 #include "viewer/frame_pacer.h"
 #include "viewer/frame_stats.h"
 #include "viewer/input.h"
-#include "viewer/sand_tools.h"
 
 namespace sandphys::viewer {
 namespace {
+
+using scenes::SandTools;
 
 TEST(KeyScript, AcceptsPressesAndHolds) {
   EXPECT_TRUE(KeyScript::parse("").empty());

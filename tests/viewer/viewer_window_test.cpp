@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include <sandphys/sandphys.h>
+
 #include "runner/process.h"
 #include "scenes/registry.h"
 
@@ -153,6 +155,34 @@ TEST(ViewerTools, PourPushAndQuitWithEscape) {
     expectPicture(dir / "sequence" / image, 320, 240);
   }
   EXPECT_FALSE(fs::exists(dir / "sequence" / "frame_000016.png"));
+}
+
+// A run in the window, recorded with the sand tools in use and the frame pacer choosing each
+// frame's duration, replays bit for bit headless from its file (docs/recording.md).
+TEST(ViewerRecording, ReplaysHeadlessBitForBit) {
+  ASSERT_NE(std::getenv("DISPLAY"), nullptr) << "run through xvfb-run (CTest does)";
+  const fs::path dir = freshDirectory("recording");
+  const fs::path file = dir / "window.sprec";
+  const testing::ProcessResult run =
+      runViewer(dir, "P@1-6,B@3-8,ESC@10",
+                std::string("--scene box-drop --param block=3,2,3 --frames 1000 ") + kShortFrames +
+                    " " + kWindow + " --snapshot-every 4 --record " + quoted(file.string()));
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const Recording recording = readRecording(file);
+  const std::string frames = std::to_string(recording.frames.size());
+  ASSERT_GE(recording.frames.size(), 9u);
+  EXPECT_NE(run.output.find("recorded " + frames + " frames to"), std::string::npos) << run.output;
+  EXPECT_EQ(*recording.setting("tools"), "sand-tools");
+  // The tools were held: their input is in the frames, and they poured.
+  EXPECT_FALSE(recording.frames[3].events.empty());
+  EXPECT_TRUE(recording.frames.back().events.empty());
+  EXPECT_GT(recording.snapshots.back().bodies.size(), recording.snapshots.front().bodies.size());
+
+  const testing::ProcessResult replay =
+      testing::runCommand(quoted(SANDPHYS_SAMPLES_EXE) + " --replay " + quoted(file.string()));
+  EXPECT_EQ(replay.exitCode, 0) << replay.output;
+  EXPECT_NE(replay.output.find(frames + " frames bit-identical"), std::string::npos)
+      << replay.output;
 }
 
 // A rectangle of pixels, [x0, x1) × [y0, y1), rows from the top of the image.

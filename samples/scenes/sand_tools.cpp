@@ -1,4 +1,4 @@
-#include "viewer/sand_tools.h"
+#include "scenes/sand_tools.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,12 +6,9 @@
 
 #include "scenes/eigen_conversions.h"
 
-namespace sandphys::viewer {
+namespace sandphys::scenes {
 
 namespace {
-
-using scenes::toEigen;
-using scenes::toVec3;
 
 constexpr float kPourHalfExtent = 4.0f;  // d: a 9 d square, a handful of granules per layer
 constexpr float kPourHeight = 40.0f;     // d above the floor plane
@@ -44,6 +41,13 @@ std::uint32_t ballParticleCount() {
 }
 
 }  // namespace
+
+std::optional<Eigen::Vector3f> hitHorizontalPlane(const Ray& ray, float y) {
+  if (std::abs(ray.direction.y()) < 1e-6f) return std::nullopt;
+  const float t = (y - ray.origin.y()) / ray.direction.y();
+  if (!(t > 0.0f) || !std::isfinite(t)) return std::nullopt;
+  return Eigen::Vector3f(ray.origin + t * ray.direction);
+}
 
 WorldSettings SandTools::withToolCapacity(WorldSettings settings) {
   const std::uint32_t particles =
@@ -163,4 +167,4 @@ void SandTools::updatePush(World& world, bool push, float frameDt) {
   m_spherePosition += velocity * frameDt;
 }
 
-}  // namespace sandphys::viewer
+}  // namespace sandphys::scenes

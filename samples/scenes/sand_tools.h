@@ -4,13 +4,24 @@
 #include <optional>
 
 #include <sandphys/sandphys.h>
+#include <Eigen/Core>
 
 #include "scenes/scene.h"
-#include "viewer/camera_control.h"
 
-namespace sandphys::viewer {
+namespace sandphys::scenes {
 
-/// The viewer's hands in the sand: pours granules from an Emitter above the point under the
+/// A half-line in world space, m.
+struct Ray {
+  Eigen::Vector3f origin = Eigen::Vector3f::Zero();
+  Eigen::Vector3f direction = -Eigen::Vector3f::UnitZ();  ///< unit
+};
+
+/// Where `ray` meets the horizontal plane at height `y` (m), or nothing when it points away from
+/// it or runs parallel to it.
+std::optional<Eigen::Vector3f> hitHorizontalPlane(const Ray& ray, float y);
+
+/// The viewer's hands in the sand (here, beside the scenes, so that a headless replay can apply a
+/// recording's tool events): pours granules from an Emitter above the point under the
 /// cursor, and pushes sand with a kinematic sphere of particles that follows the cursor along the
 /// floor. Both work on the horizontal plane at the bottom of the scene's bounds.
 class SandTools {
@@ -58,4 +69,4 @@ class SandTools {
   bool m_pushing = false;
 };
 
-}  // namespace sandphys::viewer
+}  // namespace sandphys::scenes
