@@ -6,6 +6,7 @@
 #include "app/cli.h"
 #include "app/golden.h"
 #include "app/recording.h"
+#include "app/replay.h"
 #include "app/run.h"
 #ifdef SANDPHYS_HAS_VIEWER
 #include "viewer/viewer.h"

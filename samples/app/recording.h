@@ -3,7 +3,6 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
-#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -15,6 +14,13 @@
 #include "scenes/scene.h"
 
 namespace sandphys::samples {
+
+/// Keys of a recording's settings (docs/recording.md): scene parameters are "param:NAME", World
+/// settings "world:NAME", and "tools" names the viewer's tools when they were attached.
+inline constexpr const char* kParameterPrefix = "param:";
+inline constexpr const char* kWorldPrefix = "world:";
+inline constexpr const char* kToolsKey = "tools";
+inline constexpr const char* kSandTools = "sand-tools";
 
 /// Frames between two full snapshots of a recording by default (one a second at 60 frames per
 /// second); a replay that finds a difference names the body and field at the next snapshot.
@@ -73,34 +79,9 @@ struct ToolInput {
 /// and the frame when they are not.
 ToolInput readToolEvents(const Recording& recording, std::uint64_t frame);
 
-/// Makes the scene a recording was made of, with its parameters. Throws RecordingError naming the
-/// file when the scene no longer exists or the current build refuses a setting. (The World's
-/// settings are the recording's "world:" values, which replayRecording applies.)
-std::unique_ptr<scenes::Scene> sceneFromRecording(const Recording& recording);
-
-/// What a replay found.
-struct ReplayResult {
-  std::uint64_t frames = 0;  ///< frames replayed (all of the recording's when identical)
-  bool identical = true;
-  /// First frame that differs (1 = the first frame; 0 = the state right after build).
-  std::uint64_t firstDifferentFrame = 0;
-  /// What differs, in words: the quantity, the body or input, the field and both values.
-  std::string difference;
-  double wallSeconds = 0.0;  ///< wall time of the replayed frames, hash and checks included, s
-};
-
-/// Called by replayRecording after each frame's step and update, before the frame is checked
-/// (tests perturb the state here).
-using ReplayHook = std::function<void(World& world, std::uint64_t frame)>;
-
-/// Re-simulates `recording` headless on `gpu` and checks every frame: step count and simulated
-/// time, external inputs, state hash, and every snapshot in full. Stops at the first difference
-/// and names it; with a hash difference the body and field come from the snapshot of that frame or
-/// the next one. Throws RecordingError (see sceneFromRecording).
-ReplayResult replayRecording(const GpuContext& gpu, const Recording& recording,
-                             const ReplayHook& afterFrame = {});
-
-/// --replay FILE: reads, replays and reports; returns the exit code (kExitOk when identical).
-int runReplay(const std::filesystem::path& file, bool quiet);
+/// `settings` with every "world:" value of `recording` in place: a replay's World is the one the
+/// recorded run had (the viewer's edits, capacities), whatever the scene's defaults have become
+/// since. Throws RecordingError naming the key for one this build does not know or cannot read.
+WorldSettings worldSettingsFrom(const Recording& recording, WorldSettings settings);
 
 }  // namespace sandphys::samples

@@ -10,6 +10,7 @@
 
 #include "app/golden.h"
 #include "app/recording.h"
+#include "app/replay.h"
 #include "app/run.h"
 #include "core/world_impl.h"
 #include "scenes/registry.h"
