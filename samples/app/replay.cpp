@@ -2,7 +2,6 @@
 // every frame checked against what was recorded.
 #include "app/replay.h"
 
-#include <bit>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -15,57 +14,6 @@ namespace sandphys::samples {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-bool sameBits(float a, float b) {
-  return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b);
-}
-
-std::string floatText(float value) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.9g (0x%08x)", double(value),
-                unsigned(std::bit_cast<std::uint32_t>(value)));
-  return text;
-}
-
-// The first field in which two pushed body states differ, as "position.x: recorded ..., replayed
-// ...", or empty when they agree bit for bit.
-std::string inputDifference(const RecordedInput& recorded, const RecordedInput& replayed) {
-  if (recorded.body != replayed.body) {
-    return "body: recorded " + std::to_string(recorded.body) + ", replayed " +
-           std::to_string(replayed.body);
-  }
-  const BodyDesc& a = recorded.state;
-  const BodyDesc& b = replayed.state;
-  const struct {
-    const char* name;
-    float recorded, replayed;
-  } fields[] = {
-      {"position.x", a.position.x, b.position.x},
-      {"position.y", a.position.y, b.position.y},
-      {"position.z", a.position.z, b.position.z},
-      {"orientation.w", a.orientation.w, b.orientation.w},
-      {"orientation.x", a.orientation.x, b.orientation.x},
-      {"orientation.y", a.orientation.y, b.orientation.y},
-      {"orientation.z", a.orientation.z, b.orientation.z},
-      {"velocity.x", a.velocity.x, b.velocity.x},
-      {"velocity.y", a.velocity.y, b.velocity.y},
-      {"velocity.z", a.velocity.z, b.velocity.z},
-      {"angularVelocity.x", a.angularVelocity.x, b.angularVelocity.x},
-      {"angularVelocity.y", a.angularVelocity.y, b.angularVelocity.y},
-      {"angularVelocity.z", a.angularVelocity.z, b.angularVelocity.z},
-  };
-  for (const auto& field : fields) {
-    if (!sameBits(field.recorded, field.replayed)) {
-      return std::string(field.name) + ": recorded " + floatText(field.recorded) + ", replayed " +
-             floatText(field.replayed);
-    }
-  }
-  if (a.motion != b.motion) {
-    return "motion: recorded " + std::to_string(unsigned(a.motion)) + ", replayed " +
-           std::to_string(unsigned(b.motion));
-  }
-  return {};
-}
 
 std::string hashText(std::uint64_t hash) {
   char text[32];
@@ -200,10 +148,8 @@ ReplayResult replayRecording(const GpuContext& gpu, const Recording& recording,
                                std::to_string(inputs.size()));
     }
     for (std::size_t k = 0; k < inputs.size(); ++k) {
-      const std::string d = inputDifference(recorded.inputs[k], inputs[k]);
-      if (!d.empty()) {
-        return differ(frame, at + "external input " + std::to_string(k) + " (pushed to body " +
-                                 std::to_string(recorded.inputs[k].body) + ") " + d);
+      if (const auto d = firstDifference(recorded.inputs[k], inputs[k])) {
+        return differ(frame, at + "external input " + std::to_string(k) + ", " + d->describe());
       }
     }
     const std::uint64_t hash = world.readStateHash();

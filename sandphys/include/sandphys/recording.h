@@ -38,7 +38,7 @@ std::uint64_t stateHash(const WorldSnapshot& snapshot);
 
 /// Where two states first differ: the lowest body slot, then the first field in the order of
 /// StoredBody ("position.x" ... "angularVelocity.z", "alive"); field "body count" when the
-/// number of slots differs (body is then the smaller count).
+/// number of slots differs (body is then the smaller count). Also for inputs (below).
 struct StateDifference {
   std::uint32_t body = 0;
   std::string field;
@@ -57,6 +57,12 @@ struct RecordedInput {
   std::uint32_t body = 0;  ///< body slot (BodyId::index)
   BodyDesc state;
 };
+
+/// Where two inputs first differ, bit for bit: field "body" (the slots differ), a float field of
+/// BodyDesc ("position.x" ... "angularVelocity.z", orientation w first) or "motion"; `body` is the
+/// recorded input's slot.
+std::optional<StateDifference> firstDifference(const RecordedInput& recorded,
+                                               const RecordedInput& replayed);
 
 /// One frame of a recording: what went in and a hash of what came out.
 struct RecordedFrame {

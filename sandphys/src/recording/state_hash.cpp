@@ -34,23 +34,47 @@ Lanes absorb(Lanes h, float value) {
   return absorb(h, std::bit_cast<std::uint32_t>(value));
 }
 
-template <std::size_t N>
-void appendFields(std::vector<std::pair<std::string, float>>& out, const char* name,
-                  const std::array<float, N>& values) {
-  static constexpr const char* kAxes[] = {"x", "y", "z", "w"};
-  for (std::size_t i = 0; i < N; ++i)
-    out.emplace_back(std::string(name) + "." + kAxes[i], values[i]);
-}
+// The float fields of a stored body and of a pushed body state, in the order they are compared
+// and named; names are built only for a difference.
+struct StoredField {
+  const char* name;
+  float (*of)(const StoredBody&);
+};
+constexpr StoredField kStoredFields[] = {
+    {"position.x", [](const StoredBody& b) { return b.position[0]; }},
+    {"position.y", [](const StoredBody& b) { return b.position[1]; }},
+    {"position.z", [](const StoredBody& b) { return b.position[2]; }},
+    {"orientation.x", [](const StoredBody& b) { return b.orientation[0]; }},
+    {"orientation.y", [](const StoredBody& b) { return b.orientation[1]; }},
+    {"orientation.z", [](const StoredBody& b) { return b.orientation[2]; }},
+    {"orientation.w", [](const StoredBody& b) { return b.orientation[3]; }},
+    {"velocity.x", [](const StoredBody& b) { return b.velocity[0]; }},
+    {"velocity.y", [](const StoredBody& b) { return b.velocity[1]; }},
+    {"velocity.z", [](const StoredBody& b) { return b.velocity[2]; }},
+    {"angularVelocity.x", [](const StoredBody& b) { return b.angularVelocity[0]; }},
+    {"angularVelocity.y", [](const StoredBody& b) { return b.angularVelocity[1]; }},
+    {"angularVelocity.z", [](const StoredBody& b) { return b.angularVelocity[2]; }},
+};
 
-std::vector<std::pair<std::string, float>> fieldsOf(const StoredBody& body) {
-  std::vector<std::pair<std::string, float>> fields;
-  fields.reserve(13);
-  appendFields(fields, "position", body.position);
-  appendFields(fields, "orientation", body.orientation);
-  appendFields(fields, "velocity", body.velocity);
-  appendFields(fields, "angularVelocity", body.angularVelocity);
-  return fields;
-}
+struct DescField {
+  const char* name;
+  float (*of)(const BodyDesc&);
+};
+constexpr DescField kDescFields[] = {
+    {"position.x", [](const BodyDesc& d) { return d.position.x; }},
+    {"position.y", [](const BodyDesc& d) { return d.position.y; }},
+    {"position.z", [](const BodyDesc& d) { return d.position.z; }},
+    {"orientation.w", [](const BodyDesc& d) { return d.orientation.w; }},
+    {"orientation.x", [](const BodyDesc& d) { return d.orientation.x; }},
+    {"orientation.y", [](const BodyDesc& d) { return d.orientation.y; }},
+    {"orientation.z", [](const BodyDesc& d) { return d.orientation.z; }},
+    {"velocity.x", [](const BodyDesc& d) { return d.velocity.x; }},
+    {"velocity.y", [](const BodyDesc& d) { return d.velocity.y; }},
+    {"velocity.z", [](const BodyDesc& d) { return d.velocity.z; }},
+    {"angularVelocity.x", [](const BodyDesc& d) { return d.angularVelocity.x; }},
+    {"angularVelocity.y", [](const BodyDesc& d) { return d.angularVelocity.y; }},
+    {"angularVelocity.z", [](const BodyDesc& d) { return d.angularVelocity.z; }},
+};
 
 bool sameBits(float a, float b) {
   return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b);
@@ -85,7 +109,7 @@ std::uint64_t stateHash(const WorldSnapshot& snapshot) {
 
 std::string StateDifference::describe() const {
   std::string text = "body " + std::to_string(body) + " " + field + ": recorded ";
-  if (field == "body count" || field == "alive") {
+  if (field == "body count" || field == "alive" || field == "body" || field == "motion") {
     return text + std::to_string(static_cast<long long>(recorded)) + ", replayed " +
            std::to_string(static_cast<long long>(replayed));
   }
@@ -96,21 +120,38 @@ std::optional<StateDifference> firstDifference(const WorldSnapshot& recorded,
                                                const WorldSnapshot& replayed) {
   const std::size_t common = std::min(recorded.bodies.size(), replayed.bodies.size());
   for (std::size_t i = 0; i < common; ++i) {
-    const auto a = fieldsOf(recorded.bodies[i]);
-    const auto b = fieldsOf(replayed.bodies[i]);
-    for (std::size_t f = 0; f < a.size(); ++f) {
-      if (!sameBits(a[f].second, b[f].second)) {
-        return StateDifference{std::uint32_t(i), a[f].first, a[f].second, b[f].second};
+    const StoredBody& a = recorded.bodies[i];
+    const StoredBody& b = replayed.bodies[i];
+    for (const StoredField& field : kStoredFields) {
+      if (!sameBits(field.of(a), field.of(b))) {
+        return StateDifference{std::uint32_t(i), field.name, field.of(a), field.of(b)};
       }
     }
-    if (recorded.bodies[i].alive != replayed.bodies[i].alive) {
-      return StateDifference{std::uint32_t(i), "alive", double(recorded.bodies[i].alive),
-                             double(replayed.bodies[i].alive)};
+    if (a.alive != b.alive) {
+      return StateDifference{std::uint32_t(i), "alive", double(a.alive), double(b.alive)};
     }
   }
   if (recorded.bodies.size() != replayed.bodies.size()) {
     return StateDifference{std::uint32_t(common), "body count", double(recorded.bodies.size()),
                            double(replayed.bodies.size())};
+  }
+  return std::nullopt;
+}
+
+std::optional<StateDifference> firstDifference(const RecordedInput& recorded,
+                                               const RecordedInput& replayed) {
+  if (recorded.body != replayed.body) {
+    return StateDifference{recorded.body, "body", double(recorded.body), double(replayed.body)};
+  }
+  for (const DescField& field : kDescFields) {
+    if (!sameBits(field.of(recorded.state), field.of(replayed.state))) {
+      return StateDifference{recorded.body, field.name, field.of(recorded.state),
+                             field.of(replayed.state)};
+    }
+  }
+  if (recorded.state.motion != replayed.state.motion) {
+    return StateDifference{recorded.body, "motion", double(recorded.state.motion),
+                           double(replayed.state.motion)};
   }
   return std::nullopt;
 }
