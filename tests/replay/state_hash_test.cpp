@@ -72,5 +72,53 @@ TEST(StateHash, CoversBodiesBeyondOneStrideOfTheReduction) {
   EXPECT_EQ(w->readStateHash(), stateHash(w->readSnapshot()));
 }
 
+// A World put back to a snapshot continues exactly as it did from there: body states are all the
+// state a substep starts from (particles, grid and contacts are rebuilt from them every substep).
+TEST(Snapshot, ARestoredWorldContinuesAsItDidBitForBit) {
+  testing::TestWorld w;
+  addPile(*w, 4, 3, 4);
+  w->substep(150);
+  const WorldSnapshot then = w->readSnapshot();
+  w->substep(100);
+  const WorldSnapshot later = w->readSnapshot();
+  ASSERT_TRUE(firstDifference(then, later));
+
+  w->restoreSnapshot(then);
+  EXPECT_FALSE(firstDifference(then, w->readSnapshot()));
+  EXPECT_EQ(w->stepCount(), then.steps);
+  EXPECT_EQ(w->simulatedTime(), then.simulatedTime);
+  EXPECT_EQ(w->readStateHash(), stateHash(then));
+  w->substep(100);
+  const std::optional<StateDifference> difference = firstDifference(later, w->readSnapshot());
+  EXPECT_FALSE(difference) << difference->describe();
+}
+
+TEST(Snapshot, SlotsAddedAfterItAreHiddenAndALargerOneIsRefused) {
+  testing::TestWorld w;
+  addPile(*w, 2, 2, 2);
+  w->substep(20);
+  const WorldSnapshot eight = w->readSnapshot();
+  ASSERT_EQ(eight.bodies.size(), 8u);
+  w->addGranules(GranuleBlock{.center = {0, 0.6f, 0}, .countX = 2, .countY = 2, .countZ = 2});
+  w->substep(20);
+  w->restoreSnapshot(eight);
+  const WorldSnapshot restored = w->readSnapshot();
+  ASSERT_EQ(restored.bodies.size(), 16u);
+  for (std::size_t i = 8; i < 16; ++i) EXPECT_FALSE(restored.bodies[i].alive) << i;
+  EXPECT_EQ(w->readStats().granulesAlive, 8u);
+
+  WorldSnapshot tooMany = restored;
+  tooMany.bodies.resize(20);
+  try {
+    w->restoreSnapshot(tooMany);
+    FAIL() << "no error";
+  } catch (const InvalidArgument& error) {
+    EXPECT_NE(std::string(error.what()).find("WorldSnapshot.bodies.size() = 20"), std::string::npos)
+        << error.what();
+  }
+  EXPECT_FALSE(firstDifference(restored, w->readSnapshot()))
+      << "a refused restore changed the World";
+}
+
 }  // namespace
 }  // namespace sandphys
