@@ -1,5 +1,6 @@
 #include "app/cli.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -164,6 +165,7 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
   std::string record;
   std::optional<std::int64_t> snapshotEvery;
   std::string replay;
+  std::string play;
   std::string goldens;
 
   app.add_option("--scene", options.sceneName, "scene to run (see --list)")->capture_default_str();
@@ -235,6 +237,10 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
                  "re-simulate the recording FILE headless and check every frame; exit 1 at the "
                  "first difference, which is named (frame, body, field, both values)")
       ->type_name("FILE");
+  app.add_option("--play", play,
+                 "window: show the recording FILE on a timeline, re-simulated and checked frame by "
+                 "frame; Left and Right jump between its snapshots")
+      ->type_name("FILE");
   app.add_option("--write-goldens", goldens,
                  "run every scene for a fifth of a second at its test size and write its headline "
                  "metrics to DIR/<scene>.json: regenerates tests/golden on purpose")
@@ -282,6 +288,29 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
       options.headless = true;
       return std::nullopt;
     }
+    if (!play.empty()) {
+      // The recording gives the scene and its settings; only the window's own flags may be added.
+      if (options.headless) {
+        throw UsageError("--play " + play +
+                         ": shows the recording in the window, not with --headless (--replay FILE "
+                         "checks it headless)");
+      }
+      const std::string_view windowFlags[] = {"--play",  "--quiet",       "--frames",
+                                              "--size",  "--quality",     "--screenshot",
+                                              "--every", "--screenshots", "--panel-in-screenshots"};
+      for (const CLI::Option* option : app.get_options()) {
+        const std::string name = option->get_name();
+        if (option->count() == 0 || std::find(std::begin(windowFlags), std::end(windowFlags),
+                                              name) != std::end(windowFlags)) {
+          continue;
+        }
+        throw UsageError("--play " + play + ": " + name +
+                         " cannot be combined with it (only the window's --quiet, --frames, "
+                         "--size, --quality, --screenshot, --screenshots, --every and "
+                         "--panel-in-screenshots may be added)");
+      }
+      options.playPath = play;
+    }
     if (frames < 0) {
       throw UsageError("--frames " + std::to_string(frames) + ": must be 0 or more");
     }
@@ -315,39 +344,42 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
       value << options.frameDt;
       throw UsageError("--frame-dt " + value.str() + ": must be in (0, 1] s");
     }
-    const scenes::SceneEntry* entry = scenes::findScene(options.sceneName);
-    if (!entry) {
-      throw UsageError("--scene " + options.sceneName + ": unknown scene (see --list)");
-    }
-    options.scene = entry->create();
-    if (batches) applyParameter(*options.scene, "--batches", "batches", *batches);
-    if (!batch.empty()) {
-      applyParameter(*options.scene, "--batch", "batch",
-                     batch[0] + "," + batch[1] + "," + batch[2]);
-    }
-    if (seed) applyParameter(*options.scene, "--seed", "seed", *seed);
-    if (mesh) applyParameter(*options.scene, "--mesh", "mesh", *mesh);
-    if (scale) applyParameter(*options.scene, "--scale", "scale", *scale);
-    if (friction) applyParameter(*options.scene, "--friction", "friction", *friction);
-    if (outlet) applyParameter(*options.scene, "--outlet", "outlet", *outlet);
-    if (granules) applyParameter(*options.scene, "--granules", "granules", *granules);
-    for (const std::string& assignment : assignments) {
-      const std::size_t equals = assignment.find('=');
-      if (equals == std::string::npos || equals == 0) {
-        throw UsageError("--param " + assignment + ": expected NAME=VALUE");
+    // A recording to play brings its own scene.
+    if (options.playPath.empty()) {
+      const scenes::SceneEntry* entry = scenes::findScene(options.sceneName);
+      if (!entry) {
+        throw UsageError("--scene " + options.sceneName + ": unknown scene (see --list)");
       }
-      applyParameter(*options.scene, "--param", assignment.substr(0, equals),
-                     assignment.substr(equals + 1));
-    }
-    // Settings validate the parameters together (e.g. batches × batch against the limits).
-    try {
-      (void)options.scene->settings();
-    } catch (const MeshError& error) {
-      // Scenes load their mesh files here; name the flag that gave the file.
-      throw UsageError((mesh ? "--mesh " + *mesh : std::string("scene parameters")) + ": " +
-                       error.what());
-    } catch (const Error& error) {
-      throw UsageError(std::string("scene parameters: ") + error.what());
+      options.scene = entry->create();
+      if (batches) applyParameter(*options.scene, "--batches", "batches", *batches);
+      if (!batch.empty()) {
+        applyParameter(*options.scene, "--batch", "batch",
+                       batch[0] + "," + batch[1] + "," + batch[2]);
+      }
+      if (seed) applyParameter(*options.scene, "--seed", "seed", *seed);
+      if (mesh) applyParameter(*options.scene, "--mesh", "mesh", *mesh);
+      if (scale) applyParameter(*options.scene, "--scale", "scale", *scale);
+      if (friction) applyParameter(*options.scene, "--friction", "friction", *friction);
+      if (outlet) applyParameter(*options.scene, "--outlet", "outlet", *outlet);
+      if (granules) applyParameter(*options.scene, "--granules", "granules", *granules);
+      for (const std::string& assignment : assignments) {
+        const std::size_t equals = assignment.find('=');
+        if (equals == std::string::npos || equals == 0) {
+          throw UsageError("--param " + assignment + ": expected NAME=VALUE");
+        }
+        applyParameter(*options.scene, "--param", assignment.substr(0, equals),
+                       assignment.substr(equals + 1));
+      }
+      // Settings validate the parameters together (e.g. batches × batch against the limits).
+      try {
+        (void)options.scene->settings();
+      } catch (const MeshError& error) {
+        // Scenes load their mesh files here; name the flag that gave the file.
+        throw UsageError((mesh ? "--mesh " + *mesh : std::string("scene parameters")) + ": " +
+                         error.what());
+      } catch (const Error& error) {
+        throw UsageError(std::string("scene parameters: ") + error.what());
+      }
     }
 
     if (!metrics.empty()) {

@@ -73,6 +73,9 @@ struct RunOptions {
   /// A recording to replay headless and check frame by frame (--replay); the scene and its
   /// settings come from it, and `scene` stays empty.
   std::filesystem::path replayPath;
+  /// A recording to show in the viewer's window on a timeline (--play); the scene and its settings
+  /// come from it, and `scene` stays empty.
+  std::filesystem::path playPath;
   /// Folder to write every scene's golden metrics to (--write-goldens); empty for none.
   std::filesystem::path goldenDir;
   /// A windowed run's screenshots show the whole window, panel included, instead of the scene

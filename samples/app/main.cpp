@@ -22,6 +22,12 @@ int main(int argc, char** argv) {
 #ifdef SANDPHYS_HAS_VIEWER
     if (!options.headless) return runViewer(options);
 #else
+    if (!options.playPath.empty()) {
+      std::cerr << "sandphys-samples: --play " << options.playPath.string()
+                << ": this build has no viewer (configure with SANDPHYS_VIEWER=ON); --replay "
+                   "checks a recording headless\n";
+      return kExitUsage;
+    }
     if (!options.headless) {
       std::cerr << "sandphys-samples: no --headless given, but this build has no viewer "
                    "(configure with SANDPHYS_VIEWER=ON); running headless\n";

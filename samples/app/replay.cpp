@@ -21,13 +21,6 @@ std::string hashText(std::uint64_t hash) {
   return text;
 }
 
-const WorldSnapshot* snapshotAt(const Recording& recording, std::uint64_t frame) {
-  for (const WorldSnapshot& snapshot : recording.snapshots) {
-    if (snapshot.frame == frame) return &snapshot;
-  }
-  return nullptr;
-}
-
 const WorldSnapshot* snapshotFrom(const Recording& recording, std::uint64_t frame) {
   for (const WorldSnapshot& snapshot : recording.snapshots) {
     if (snapshot.frame >= frame) return &snapshot;
@@ -36,6 +29,13 @@ const WorldSnapshot* snapshotFrom(const Recording& recording, std::uint64_t fram
 }
 
 }  // namespace
+
+const WorldSnapshot* snapshotAt(const Recording& recording, std::uint64_t frame) {
+  for (const WorldSnapshot& snapshot : recording.snapshots) {
+    if (snapshot.frame == frame) return &snapshot;
+  }
+  return nullptr;
+}
 
 std::unique_ptr<scenes::Scene> sceneFromRecording(const Recording& recording) {
   const std::string name = "recording '" + recording.file.string() + "'";
@@ -65,15 +65,12 @@ std::unique_ptr<scenes::Scene> sceneFromRecording(const Recording& recording) {
   return scene;
 }
 
-ReplayResult replayRecording(const GpuContext& gpu, const Recording& recording,
-                             const ReplayHook& afterFrame) {
-  std::unique_ptr<scenes::Scene> scene = sceneFromRecording(recording);
-  ReplayResult result;
+ReplayRun::ReplayRun(const GpuContext& gpu, const Recording& recording)
+    : m_recording(recording), m_scene(sceneFromRecording(recording)) {
   // The World checks its settings against this build's limits (and the GPU's).
-  std::optional<World> made;
   try {
-    made.emplace(gpu, worldSettingsFrom(recording, scene->settings()));
-    scene->build(*made);
+    m_world.emplace(gpu, worldSettingsFrom(recording, m_scene->settings()));
+    m_scene->build(*m_world);
   } catch (const GpuError&) {
     throw;
   } catch (const RecordingError&) {
@@ -82,99 +79,119 @@ ReplayResult replayRecording(const GpuContext& gpu, const Recording& recording,
     throw RecordingError("recording '" + recording.file.string() +
                          "': this build refuses the World it records: " + error.what());
   }
-  World& world = *made;
-  std::optional<scenes::SandTools> tools;
   if (const std::string* used = recording.setting(kToolsKey)) {
     if (*used != kSandTools) {
       throw RecordingError("recording '" + recording.file.string() +
                            "': this build refuses its setting tools = " + *used);
     }
-    tools.emplace();
-    tools->attach(world, *scene);
+    m_tools.emplace();
+    m_tools->attach(*m_world, *m_scene);
   }
-  // One frame as the recorded run stepped it: the tools' input first, then the scene.
-  auto stepFrame = [&](std::uint64_t frame) {
-    const RecordedFrame& recorded = recording.frames[frame - 1];
-    if (tools) {
-      const ToolInput input = readToolEvents(recording, frame);
-      tools->update(world, input.pour, input.push, input.cursor, recorded.frameDt);
-    } else if (!recorded.events.empty()) {
-      throw RecordingError("recording '" + recording.file.string() + "': frame " +
-                           std::to_string(frame) + " has events but the run had no tools");
-    }
-    const StepReport report = scene->step(world, recorded.frameDt);
-    if (tools) tools->countEmitted(report.granulesEmitted);
-    scene->update(world, report, world.simulatedTime());
-  };
+}
 
+StepReport ReplayRun::stepFrame() {
+  const std::uint64_t frame = m_frame + 1;
+  const RecordedFrame& recorded = m_recording.frames.at(frame - 1);
+  // The tools' input first, then the scene: the order the recorded run had.
+  if (m_tools) {
+    const ToolInput input = readToolEvents(m_recording, frame);
+    m_tools->update(*m_world, input.pour, input.push, input.cursor, recorded.frameDt);
+  } else if (!recorded.events.empty()) {
+    throw RecordingError("recording '" + m_recording.file.string() + "': frame " +
+                         std::to_string(frame) + " has events but the run had no tools");
+  }
+  const StepReport report = m_scene->step(*m_world, recorded.frameDt);
+  if (m_tools) m_tools->countEmitted(report.granulesEmitted);
+  m_scene->update(*m_world, report, m_world->simulatedTime());
+  m_frame = frame;
+  return report;
+}
+
+std::optional<std::string> ReplayRun::compareWith(const WorldSnapshot& snapshot) const {
+  const WorldSnapshot replayed = m_world->readSnapshot();
+  if (const std::optional<StateDifference> d = firstDifference(snapshot, replayed)) {
+    return d->describe();
+  }
+  return std::nullopt;
+}
+
+std::optional<ReplayRun::Difference> ReplayRun::checkFrame() {
+  const WorldSnapshot* snapshot = snapshotAt(m_recording, m_frame);
+  if (m_frame == 0) {
+    if (!snapshot) return std::nullopt;
+    if (auto d = compareWith(*snapshot)) return Difference{"state after build: " + *d};
+    return std::nullopt;
+  }
+  const RecordedFrame& recorded = m_recording.frames.at(m_frame - 1);
+  const std::string at = "frame " + std::to_string(m_frame) + ": ";
+  if (m_world->stepCount() != recorded.steps ||
+      m_world->simulatedTime() != recorded.simulatedTime) {
+    return Difference{at + "substeps run in all: recorded " + std::to_string(recorded.steps) +
+                      ", replayed " + std::to_string(m_world->stepCount())};
+  }
+  const std::vector<RecordedInput> inputs = m_scene->externalInputs();
+  if (inputs.size() != recorded.inputs.size()) {
+    return Difference{at + "external inputs: recorded " + std::to_string(recorded.inputs.size()) +
+                      ", replayed " + std::to_string(inputs.size())};
+  }
+  for (std::size_t k = 0; k < inputs.size(); ++k) {
+    if (const auto d = firstDifference(recorded.inputs[k], inputs[k])) {
+      return Difference{at + "external input " + std::to_string(k) + ", " + d->describe()};
+    }
+  }
+  const std::uint64_t hash = m_world->readStateHash();
+  if (hash != recorded.stateHash) {
+    std::string what =
+        at + "state hash recorded " + hashText(recorded.stateHash) + ", replayed " + hashText(hash);
+    if (!snapshot) return Difference{what, true};
+    if (auto d = compareWith(*snapshot)) what += "; " + *d;
+    return Difference{what};
+  }
+  if (snapshot) {
+    if (auto d = compareWith(*snapshot)) return Difference{at + *d};
+  }
+  return std::nullopt;
+}
+
+std::string deviceCaveat(const GpuContext& gpu, const Recording& recording) {
+  const std::string* device = recording.setting("device");
+  if (!device || *device == gpu.description()) return {};
+  return " (recorded on " + *device + ", replayed on " + gpu.description() +
+         ": replays are bit-identical on the same device and driver only)";
+}
+
+ReplayResult replayRecording(const GpuContext& gpu, const Recording& recording,
+                             const ReplayHook& afterFrame) {
+  ReplayRun run(gpu, recording);
+  ReplayResult result;
   auto differ = [&](std::uint64_t frame, std::string what) {
     result.identical = false;
     result.firstDifferentFrame = frame;
-    result.difference = std::move(what);
-    const std::string* device = recording.setting("device");
-    if (device && *device != gpu.description()) {
-      result.difference += " (recorded on " + *device + ", replayed on " + gpu.description() +
-                           ": replays are bit-identical on the same device and driver only)";
-    }
+    result.difference = std::move(what) + deviceCaveat(gpu, recording);
     return result;
   };
-  auto compareSnapshot = [&](const WorldSnapshot& recorded) -> std::optional<std::string> {
-    const WorldSnapshot replayed = world.readSnapshot();
-    if (const std::optional<StateDifference> d = firstDifference(recorded, replayed)) {
-      return d->describe();
-    }
-    return std::nullopt;
-  };
 
-  if (const WorldSnapshot* initial = snapshotAt(recording, 0)) {
-    if (auto d = compareSnapshot(*initial)) return differ(0, "state after build: " + *d);
-  }
+  if (auto d = run.checkFrame()) return differ(0, d->what);
   const Clock::time_point start = Clock::now();
-  for (std::uint64_t i = 0; i < recording.frames.size(); ++i) {
-    const RecordedFrame& recorded = recording.frames[i];
-    const std::uint64_t frame = i + 1;
-    stepFrame(frame);
-    if (afterFrame) afterFrame(world, frame);
+  while (run.frame() < recording.frames.size()) {
+    run.stepFrame();
+    const std::uint64_t frame = run.frame();
+    if (afterFrame) afterFrame(run.world(), frame);
     result.frames = frame;
-    const std::string at = "frame " + std::to_string(frame) + ": ";
-    if (world.stepCount() != recorded.steps || world.simulatedTime() != recorded.simulatedTime) {
-      return differ(frame, at + "substeps run in all: recorded " + std::to_string(recorded.steps) +
-                               ", replayed " + std::to_string(world.stepCount()));
-    }
-    const std::vector<RecordedInput> inputs = scene->externalInputs();
-    if (inputs.size() != recorded.inputs.size()) {
-      return differ(frame, at + "external inputs: recorded " +
-                               std::to_string(recorded.inputs.size()) + ", replayed " +
-                               std::to_string(inputs.size()));
-    }
-    for (std::size_t k = 0; k < inputs.size(); ++k) {
-      if (const auto d = firstDifference(recorded.inputs[k], inputs[k])) {
-        return differ(frame, at + "external input " + std::to_string(k) + ", " + d->describe());
-      }
-    }
-    const std::uint64_t hash = world.readStateHash();
-    const WorldSnapshot* snapshot = snapshotAt(recording, frame);
-    if (hash != recorded.stateHash) {
-      std::string what = at + "state hash recorded " + hashText(recorded.stateHash) +
-                         ", replayed " + hashText(hash);
-      if (snapshot) {
-        if (auto d = compareSnapshot(*snapshot)) what += "; " + *d;
-        return differ(frame, what);
-      }
+    std::optional<ReplayRun::Difference> d = run.checkFrame();
+    if (!d) continue;
+    if (d->hashOnly) {
       // The values of this frame were not kept: run on to the next snapshot and compare there.
       if (const WorldSnapshot* next = snapshotFrom(recording, frame)) {
-        for (std::uint64_t j = frame + 1; j <= next->frame; ++j) stepFrame(j);
-        what += "; at the next snapshot (frame " + std::to_string(next->frame) + ") ";
-        const std::optional<std::string> d = compareSnapshot(*next);
-        what += d ? *d
-                  : "the states agree again (the difference died out; record with "
-                    "--snapshot-every 1 to see it)";
+        while (run.frame() < next->frame) run.stepFrame();
+        d->what += "; at the next snapshot (frame " + std::to_string(next->frame) + ") ";
+        const std::optional<std::string> there = run.compareWith(*next);
+        d->what += there ? *there
+                         : "the states agree again (the difference died out; record with "
+                           "--snapshot-every 1 to see it)";
       }
-      return differ(frame, what);
     }
-    if (snapshot) {
-      if (auto d = compareSnapshot(*snapshot)) return differ(frame, at + *d);
-    }
+    return differ(frame, d->what);
   }
   result.wallSeconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;

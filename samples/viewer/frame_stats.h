@@ -50,6 +50,12 @@ struct FrameStats {
   std::vector<KernelTime> kernels;
 };
 
+/// Fills what `stats` tells about a finished step from its `report`, its wall time
+/// `stepMilliseconds` and the World it ran in: the report, particles, granule updates per second,
+/// the largest overlap and the kernel times. Marks the frame stepped.
+void recordStep(FrameStats& stats, const World& world, const StepReport& report,
+                double stepMilliseconds);
+
 /// The live plots of the panel.
 struct StatsHistory {
   PlotHistory kineticEnergy;  ///< J

@@ -75,6 +75,12 @@ void Input::onKey(int key, int action, int mods) {
       case GLFW_KEY_ESCAPE:
         m_frame.commands.push_back(Command::Quit);
         break;
+      case GLFW_KEY_LEFT:
+        m_frame.commands.push_back(Command::PreviousSnapshot);
+        break;
+      case GLFW_KEY_RIGHT:
+        m_frame.commands.push_back(Command::NextSnapshot);
+        break;
       case GLFW_KEY_P:
         m_pourKey = true;
         break;
@@ -157,6 +163,8 @@ int keyCode(std::string_view name, std::string_view entry) {
   if (name == "SPACE") return GLFW_KEY_SPACE;
   if (name == "ESC" || name == "ESCAPE") return GLFW_KEY_ESCAPE;
   if (name == "ENTER") return GLFW_KEY_ENTER;
+  if (name == "LEFT") return GLFW_KEY_LEFT;
+  if (name == "RIGHT") return GLFW_KEY_RIGHT;
   badEntry(entry, "names an unknown key");
 }
 

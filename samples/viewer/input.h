@@ -15,6 +15,9 @@ enum class Command {
   Restart,      ///< R: rebuild the scene on a fresh World
   Screenshot,   ///< F: write the next frame to a PNG
   Quit,         ///< Esc
+  /// Left and Right arrows, --play: the recorded snapshot before or after the frame shown.
+  PreviousSnapshot,
+  NextSnapshot,
 };
 
 /// Mouse and key state gathered over one frame, consumed by the camera and the sand tools.
@@ -66,7 +69,7 @@ class Input {
 /// Key presses scripted for tests through the environment variable SANDPHYS_VIEWER_KEYS, so
 /// that a test drives the real key handler: "F@5" presses F at frame 5 and releases it at frame
 /// 6; "P@2-9" holds P from frame 2 to frame 9; entries are separated by commas. Keys are single
-/// letters or digits, SPACE, ESC, ENTER. Frames count from 0.
+/// letters or digits, SPACE, ESC, ENTER, LEFT, RIGHT. Frames count from 0.
 class KeyScript {
  public:
   /// Reads SANDPHYS_VIEWER_KEYS; empty when it is not set. Throws std::runtime_error naming the

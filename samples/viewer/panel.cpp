@@ -9,7 +9,7 @@
 #include <string>
 #include <type_traits>
 
-#include "render/render_quality.h"
+#include "viewer/panel_widgets.h"
 
 namespace sandphys::viewer {
 
@@ -54,13 +54,6 @@ bool editParameter(const scenes::SceneParameter& parameter) {
       parameter.value);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", parameter.help.c_str());
   return changed;
-}
-
-void plot(const char* label, const PlotHistory& history, const char* format) {
-  char overlay[64];
-  std::snprintf(overlay, sizeof overlay, format, static_cast<double>(history.latest()));
-  ImGui::PlotLines(label, history.data(), history.size(), 0, overlay, 0.0f,
-                   std::max(history.max() * 1.1f, 1e-12f), ImVec2(0.0f, 48.0f));
 }
 
 }  // namespace
@@ -148,29 +141,8 @@ void Panel::drawPacing(Session& session, const FrameStats& stats) {
         "its whole frame dt however long that takes");
   }
 
-  const std::optional<render::RenderQuality> fixed = pacer.fixedQuality();
-  const std::string effective(render::renderQualityName(pacer.quality()));
-  const std::string preview = fixed ? effective : "auto: " + effective;
-  if (ImGui::BeginCombo("render quality", preview.c_str())) {
-    if (ImGui::Selectable("auto", !fixed)) pacer.setFixedQuality(std::nullopt);
-    for (render::RenderQuality quality = render::kLowestQuality;;
-         quality = render::higherQuality(quality)) {
-      const std::string name(render::renderQualityName(quality));
-      if (ImGui::Selectable(name.c_str(), fixed == quality)) pacer.setFixedQuality(quality);
-      if (quality == render::kHighestQuality) break;
-    }
-    ImGui::EndCombo();
-  }
-  if (ImGui::IsItemHovered()) {
-    ImGui::SetTooltip(
-        "render scale, shadow map and AO samples; auto lowers the preset when rendering takes\n"
-        "over half the frame budget, and raises it when rendering takes well under it");
-  }
-
-  const render::RenderStats& render = stats.render;
-  ImGui::Text("render %dx%d: %.1f ms GPU", render.renderWidth, render.renderHeight, render.totalMs);
-  ImGui::Text("  shadow %.1f + scene %.1f + composite %.1f ms", render.shadowMs, render.sceneMs,
-              render.compositeMs);
+  renderQualityCombo(pacer);
+  renderTimes(stats.render);
   if (!stats.stepped) {
     ImGui::TextDisabled("paused: no substeps this frame");
   } else if (stats.slowMotion) {
@@ -280,9 +252,7 @@ void Panel::drawStats(const Session& session, const FrameStats& stats,
     ImGui::Text("%-22s %7.3f ms", "total", total);
     ImGui::TreePop();
   }
-  plot("kinetic energy", history.kineticEnergy, "%.3g J");
-  plot("contacts", history.contacts, "%.0f");
-  plot("frame", history.frameMs, "%.1f ms");
+  plots(history);
 }
 
 void Panel::drawHelp(const PanelView& view) {

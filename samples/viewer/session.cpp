@@ -127,28 +127,18 @@ void Session::stepFrame(bool pour, bool push, const Ray& cursorRay, FrameStats& 
                                          : static_cast<float>(m_applied.frameDt);
   const Clock::time_point start = Clock::now();
   m_tools.update(*m_world, pour, push, cursorRay, frameDt);
-  stats.report = m_scene->step(*m_world, frameDt);
-  m_tools.countEmitted(stats.report.granulesEmitted);
-  m_scene->update(*m_world, stats.report, m_world->simulatedTime());
-  stats.stepMilliseconds = millisecondsSince(start);
+  const StepReport report = m_scene->step(*m_world, frameDt);
+  m_tools.countEmitted(report.granulesEmitted);
+  m_scene->update(*m_world, report, m_world->simulatedTime());
+  recordStep(stats, *m_world, report, millisecondsSince(start));
   if (m_recorder) {
     m_recorder->recordFrame(*m_world, *m_scene, frameDt, ++m_recordedFrames,
                             samples::toolEvents(pour, push, cursorRay));
   }
-  stats.stepped = true;
-  stats.timeScale = stats.report.simulatedTime / m_applied.frameDt;
-  m_pacer.recordStep(stats.stepMilliseconds, stats.report.substeps);
-
-  m_droppedSeconds += stats.report.droppedTime;
+  stats.timeScale = report.simulatedTime / m_applied.frameDt;
+  m_pacer.recordStep(stats.stepMilliseconds, report.substeps);
+  m_droppedSeconds += report.droppedTime;
   stats.droppedSeconds = m_droppedSeconds;
-  stats.particles = m_world->particleCount();
-  const double granules =
-      stats.report.hasStats ? stats.report.stats.granulesAlive : m_world->granulesSpawned();
-  stats.cundall = granules * stats.report.substeps / std::max(stats.stepMilliseconds * 1e-3, 1e-9);
-  stats.maxOverlapOverD = stats.report.hasStats
-                              ? stats.report.stats.maxOverlap / m_world->settings().particleDiameter
-                              : 0.0;
-  stats.kernels = m_world->kernelTimes();
 }
 
 }  // namespace sandphys::viewer

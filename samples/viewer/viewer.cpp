@@ -19,6 +19,8 @@
 #include "viewer/gui.h"
 #include "viewer/input.h"
 #include "viewer/panel.h"
+#include "viewer/playback_panel.h"
+#include "viewer/player.h"
 #include "viewer/screenshot.h"
 #include "viewer/session.h"
 #include "viewer/window.h"
@@ -34,8 +36,8 @@ Extent windowExtent(const RunOptions& options) {
   return {options.size.width, options.size.height};
 }
 
-std::string windowTitle(const Session& session) {
-  return "sandphys - " + std::string(session.scene().name());
+std::string windowTitle(const scenes::Scene& scene) {
+  return "sandphys - " + std::string(scene.name());
 }
 
 // F writes <scene>-<frame>.png into the --screenshots folder when one was given, else into the
@@ -104,14 +106,15 @@ struct RunTotals {
   }
 };
 
-render::Camera framingCamera(Session& session, Extent framebuffer) {
+render::Camera framingCamera(const scenes::Scene& scene, Extent framebuffer) {
   const float aspect = framebuffer.height > 0 ? static_cast<float>(framebuffer.width) /
                                                     static_cast<float>(framebuffer.height)
                                               : 16.0f / 9.0f;
-  return render::Camera::framing(session.scene().bounds(), aspect);
+  return render::Camera::framing(scene.bounds(), aspect);
 }
 
-// The viewer's state between frames and the frame itself.
+// The viewer's state between frames and the frame itself: a live Session, or a Player of a
+// recording (--play).
 class ViewerLoop {
  public:
   ViewerLoop(RunOptions& options, Window& window)
@@ -120,16 +123,21 @@ class ViewerLoop {
         m_gpu(GpuContext::fromCurrentContext()),
         m_input(window.handle()),
         m_gui(window.handle()),
-        m_script(KeyScript::fromEnvironment()),
-        m_session(m_gpu, std::move(options.scene), options.frameDt,
-                  FramePacer(options.frameBudgetMs, options.quality)) {
+        m_script(KeyScript::fromEnvironment()) {
     m_view.gpu = m_gpu.description();
     if (!m_options.quiet) std::cerr << "sandphys-samples: viewer on " << m_view.gpu << '\n';
-    if (!m_options.recordPath.empty()) {
-      m_session.startRecording(m_options.recordPath, m_options.snapshotEvery);
+    const FramePacer pacer(options.frameBudgetMs, options.quality);
+    if (!m_options.playPath.empty()) {
+      m_player = std::make_unique<Player>(m_gpu, m_options.playPath, pacer);
+    } else {
+      m_session =
+          std::make_unique<Session>(m_gpu, std::move(options.scene), options.frameDt, pacer);
     }
-    m_camera = framingCamera(m_session, m_window.framebufferSize());
-    m_window.setTitle(windowTitle(m_session));
+    if (!m_options.recordPath.empty()) {
+      m_session->startRecording(m_options.recordPath, m_options.snapshotEvery);
+    }
+    m_camera = framingCamera(scene(), m_window.framebufferSize());
+    m_window.setTitle(windowTitle(scene()));
     if (!m_script.empty()) {
       // Scripted runs (tests) act on the middle of the window wherever the pointer was.
       const Extent size = m_window.windowSize();
@@ -140,6 +148,8 @@ class ViewerLoop {
 
   /// Whether a screenshot could not be written.
   bool screenshotFailed() const { return m_screenshotFailed; }
+  /// Whether a played recording's re-simulation differed from it.
+  bool playbackDiffered() const { return m_player && m_player->playback().mismatch(); }
 
   int run() {
     if (m_options.framesGiven && m_options.frames == 0) return kExitOk;
@@ -154,11 +164,12 @@ class ViewerLoop {
                                            : 0.0;
       frameStart = now;
       m_history.push(m_stats);
-      m_totals.add(m_stats, m_session.applied().frameDt);
+      m_totals.add(m_stats,
+                   m_session ? m_session->applied().frameDt : m_stats.report.simulatedTime);
       if (last) {
         if (!m_options.quiet) {
-          m_totals.print(std::cerr, m_stats, m_session.pacer().quality(),
-                         m_session.pacer().budgetMs());
+          m_totals.print(std::cerr, m_stats, pacer().quality(), pacer().budgetMs());
+          if (m_player) printPlayed();
         }
         return kExitOk;
       }
@@ -180,13 +191,17 @@ class ViewerLoop {
     for (const Command command : input.commands) {
       switch (command) {
         case Command::TogglePause:
-          m_paused = !m_paused;
+          togglePause();
           break;
         case Command::Step:
           step = true;
           break;
         case Command::Restart:
           restart();
+          break;
+        case Command::PreviousSnapshot:
+        case Command::NextSnapshot:
+          if (m_player) jumpToSnapshot(command == Command::NextSnapshot);
           break;
         case Command::Screenshot:
           screenshot = true;
@@ -202,31 +217,32 @@ class ViewerLoop {
     camera_control::zoom(m_camera, input.zoomSteps);
 
     m_stats.stepped = false;
-    if (!m_paused || step) {
+    if (m_player) {
+      m_player->frame(!m_paused && !m_scrubbing, step, m_stats);
+      reportMismatch();
+    } else if (!m_paused || step) {
       const Ray ray = camera_control::rayThrough(m_camera, input.cursorX, input.cursorY,
                                                  static_cast<float>(windowSize.width),
                                                  static_cast<float>(windowSize.height));
-      m_session.stepFrame(input.pour, input.push, ray, m_stats);
+      m_session->stepFrame(input.pour, input.push, ray, m_stats);
     }
 
     const Extent size = m_window.framebufferSize();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, size.width, size.height);
     if (size.width > 0 && size.height > 0) {
-      FramePacer& pacer = m_session.pacer();
-      render::applyRenderQuality(pacer.quality(), m_renderer.settings());
-      m_renderer.draw(m_session.world(), m_camera, m_session.scene().bounds(), size.width,
-                      size.height);
+      render::applyRenderQuality(pacer().quality(), m_renderer.settings());
+      m_renderer.draw(world(), m_camera, scene().bounds(), size.width, size.height);
       ++m_draws;
       const render::RenderStats& renderStats = m_renderer.stats();
-      pacer.recordDraw(renderStats.totalMs, renderStats.frame, m_draws);
+      pacer().recordDraw(renderStats.totalMs, renderStats.frame, m_draws);
       m_stats.render = renderStats;
     }
 
     const bool last = quit || (m_options.framesGiven && frame + 1 >= m_options.frames);
     m_screenshots.clear();
     if (screenshot) {
-      m_screenshots.push_back(keyScreenshotPath(m_options, m_session.scene().name(), frame));
+      m_screenshots.push_back(keyScreenshotPath(m_options, scene().name(), frame));
     }
     // Frames count from 1 here: image k·every shows the world after k·every frames.
     if (!m_options.screenshotDir.empty() && m_options.every > 0 &&
@@ -244,30 +260,91 @@ class ViewerLoop {
     m_view.paused = m_paused;
     m_view.vsync = m_window.vsync();
     m_view.panelInScreenshots = m_options.panelInScreenshots;
-    const PanelRequests requests = m_panel.draw(m_session, m_stats, m_history, m_view);
-    m_gui.render();
-    if (m_options.panelInScreenshots) saveScreenshots(size);
-    m_window.swapBuffers();
-    apply(requests);
+    if (m_player) {
+      const PlaybackRequests requests = drawPlaybackPanel(*m_player, m_stats, m_history, m_view);
+      m_gui.render();
+      if (m_options.panelInScreenshots) saveScreenshots(size);
+      m_window.swapBuffers();
+      apply(requests);
+    } else {
+      const PanelRequests requests = m_panel.draw(*m_session, m_stats, m_history, m_view);
+      m_gui.render();
+      if (m_options.panelInScreenshots) saveScreenshots(size);
+      m_window.swapBuffers();
+      apply(requests);
+    }
     return last;
   }
 
+  World& world() { return m_player ? m_player->world() : m_session->world(); }
+  const scenes::Scene& scene() const { return m_player ? m_player->scene() : m_session->scene(); }
+  FramePacer& pacer() { return m_player ? m_player->pacer() : m_session->pacer(); }
+
+  // Space: pause or go on; a recording played to its end starts again.
+  void togglePause() {
+    if (m_player && m_paused && m_player->atEnd()) m_player->playback().scrubTo(0);
+    m_paused = !m_paused;
+  }
+
+  // R: a live scene is built again; a recording goes back to its start.
   void restart() {
-    m_session.restart();
+    if (m_player) {
+      m_player->playback().scrubTo(0);
+    } else {
+      m_session->restart();
+    }
     m_history.clear();
     m_view.message.clear();
   }
 
+  void jumpToSnapshot(bool next) {
+    samples::Playback& playback = m_player->playback();
+    const std::optional<std::uint64_t> frame =
+        next ? playback.snapshotAfter() : playback.snapshotBefore();
+    if (frame) playback.scrubTo(*frame);
+  }
+
+  // A difference is printed once, when found; the panel keeps showing it.
+  void reportMismatch() {
+    const auto& mismatch = m_player->playback().mismatch();
+    if (!mismatch || m_mismatchReported) return;
+    m_mismatchReported = true;
+    std::cerr << "sandphys-samples: play of '" << m_player->file().string()
+              << "' differs from the recording at " << mismatch->what << '\n';
+  }
+
+  void printPlayed() const {
+    const samples::Playback& playback = m_player->playback();
+    std::cerr << "sandphys-samples: played '" << m_player->file().string() << "' ("
+              << scene().name() << "): frame " << playback.shownFrame() << " of "
+              << playback.frames() << " shown, " << playback.checkedFrames()
+              << " frames re-simulated"
+              << (playback.mismatch() ? ", not as recorded" : ", every one as recorded") << '\n';
+  }
+
+  void apply(const PlaybackRequests& requests) {
+    samples::Playback& playback = m_player->playback();
+    m_scrubbing = requests.scrubbing;
+    if (requests.scrubTo) playback.scrubTo(*requests.scrubTo);
+    if (requests.toStart) restart();
+    if (requests.previousSnapshot) jumpToSnapshot(false);
+    if (requests.nextSnapshot) jumpToSnapshot(true);
+    if (requests.togglePause) togglePause();
+    if (requests.step) m_pendingStep = true;
+    if (requests.screenshot) m_pendingScreenshot = true;
+    if (requests.toggleVsync) m_window.setVsync(!m_window.vsync());
+  }
+
   void apply(const PanelRequests& requests) {
     if (requests.switchTo) {
-      m_session.switchScene(*requests.switchTo);
-      m_camera = framingCamera(m_session, m_window.framebufferSize());
-      m_window.setTitle(windowTitle(m_session));
+      m_session->switchScene(*requests.switchTo);
+      m_camera = framingCamera(scene(), m_window.framebufferSize());
+      m_window.setTitle(windowTitle(scene()));
       m_history.clear();
       m_view.message.clear();
     }
     if (requests.restart) restart();
-    if (requests.togglePause) m_paused = !m_paused;
+    if (requests.togglePause) togglePause();
     if (requests.step) m_pendingStep = true;
     if (requests.screenshot) m_pendingScreenshot = true;
     if (requests.toggleVsync) m_window.setVsync(!m_window.vsync());
@@ -296,7 +373,8 @@ class ViewerLoop {
   Input m_input;
   Gui m_gui;
   KeyScript m_script;
-  Session m_session;
+  std::unique_ptr<Session> m_session;
+  std::unique_ptr<Player> m_player;
   render::Renderer m_renderer;
   render::Camera m_camera;
   Panel m_panel;
@@ -311,16 +389,23 @@ class ViewerLoop {
   bool m_pendingStep = false;
   bool m_pendingScreenshot = false;
   bool m_screenshotFailed = false;
+  bool m_scrubbing = false;
+  bool m_mismatchReported = false;
 };
 
 }  // namespace
 
 int runViewer(RunOptions& options) {
-  Window window(windowExtent(options), "sandphys - " + options.sceneName);
+  Window window(windowExtent(options),
+                "sandphys - " + (options.playPath.empty() ? options.sceneName
+                                                          : options.playPath.filename().string()));
   ViewerLoop loop(options, window);
   const int status = loop.run();
-  // A run asked to write a screenshot fails when it could not, as the headless runner does.
-  return status == kExitOk && loop.screenshotFailed() ? kExitFailure : status;
+  // A run asked to write a screenshot fails when it could not, as the headless runner does; a
+  // played recording that did not re-simulate as recorded fails as --replay does.
+  if (status == kExitOk && (loop.screenshotFailed() || loop.playbackDiffered()))
+    return kExitFailure;
+  return status;
 }
 
 }  // namespace sandphys::samples

@@ -13,40 +13,20 @@
 #include "app/replay.h"
 #include "app/run.h"
 #include "core/world_impl.h"
+#include "replay/recorded_scene.h"
 #include "scenes/registry.h"
 #include "support/test_world.h"
 
 namespace sandphys::samples {
 namespace {
 
-constexpr double kFrameDt = kGoldenFrameDt;
-
-std::filesystem::path tempFile(const std::string& name) {
-  return std::filesystem::temp_directory_path() / ("sandphys_replay_" + name + ".sprec");
-}
-
-// Records `frames` frames of `scene` to `file` as sandphys-samples --record does.
-RunSummary record(scenes::Scene& scene, const std::filesystem::path& file, std::uint64_t frames,
-                  std::uint64_t snapshotEvery) {
-  const GpuContext& gpu = testing::gpu();
-  SceneRecorder recorder(file, scene, scene.settings(), kFrameDt, snapshotEvery, gpu.description());
-  ProgressLine quiet(false);
-  RunHooks hooks;
-  hooks.afterBuild = [&](World& world, std::uint64_t) { recorder.begin(world); };
-  hooks.afterFrame = [&](World& world, std::uint64_t frame) {
-    recorder.recordFrame(world, scene, static_cast<float>(kFrameDt), frame);
-  };
-  hooks.atEnd = [&](World& world, std::uint64_t) { recorder.finish(world); };
-  return runScene(gpu, scene, frames, kFrameDt, false, quiet, hooks);
-}
-
 class SceneReplay : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(SceneReplay, ReplaysBitIdenticallyAndKeepsToItsGolden) {
   const std::string name = GetParam();
-  const std::filesystem::path file = tempFile(name);
+  const std::filesystem::path file = tempRecording(name);
   std::unique_ptr<scenes::Scene> scene = goldenScene(name);
-  const RunSummary run = record(*scene, file, kGoldenFrames, 5);
+  const RunSummary run = recordScene(*scene, file, kGoldenFrames, 5);
   ASSERT_EQ(run.frames, kGoldenFrames);
 
   const Recording recording = readRecording(file);
@@ -107,9 +87,9 @@ void nudgeVelocity(World& world, std::uint32_t body) {
 TEST(PerturbedReplay, IsCaughtAtTheFrameAndNamesTheGranule) {
   constexpr std::uint32_t kGranule = 21;
   constexpr std::uint64_t kFrame = 10;
-  const std::filesystem::path file = tempFile("perturbed");
+  const std::filesystem::path file = tempRecording("perturbed");
   std::unique_ptr<scenes::Scene> scene = goldenScene("box-drop");
-  record(*scene, file, 12, 1);
+  recordScene(*scene, file, 12, 1);
   Recording recording = readRecording(file);
   std::filesystem::remove(file);
   const ReplayHook nudge = [&](World& world, std::uint64_t frame) {
@@ -136,7 +116,7 @@ TEST(PerturbedReplay, IsCaughtAtTheFrameAndNamesTheGranule) {
 // A recording with these settings and no frames.
 std::filesystem::path recordingWith(const std::string& name,
                                     const std::vector<std::pair<std::string, std::string>>& s) {
-  const std::filesystem::path file = tempFile(name);
+  const std::filesystem::path file = tempRecording(name);
   RecordingWriter writer(file, s);
   writer.finish(0.0);
   return file;

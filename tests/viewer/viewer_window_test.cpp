@@ -185,6 +185,54 @@ TEST(ViewerRecording, ReplaysHeadlessBitForBit) {
       << replay.output;
 }
 
+// --play: a recording made in the window (the sand tools held) plays with its timeline driven by
+// keys: Space pauses at frame 3, Left shows the snapshot of frame 0, Right comes back to frame 3,
+// Left again, S steps on from the snapshot (re-simulating from the start), R goes back to the
+// start and Space plays to the end. Every frame re-simulated matches the recording. A copy whose
+// frame 5 hash was changed (and its checksum made anew) plays to the end and fails, naming the
+// frame.
+TEST(ViewerPlayback, PlaysScrubsAndFlagsAFrameThatDiffers) {
+  ASSERT_NE(std::getenv("DISPLAY"), nullptr) << "run through xvfb-run (CTest does)";
+  const fs::path dir = freshDirectory("playback");
+  const fs::path file = dir / "window.sprec";
+  const testing::ProcessResult run =
+      runViewer(dir, "P@1-4,B@2-5,ESC@8",
+                std::string("--scene box-drop --param block=3,2,3 --frames 1000 ") + kShortFrames +
+                    " " + kWindow + " --snapshot-every 3 --record " + quoted(file.string()));
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const Recording recording = readRecording(file);
+  const std::uint64_t frames = recording.frames.size();
+  ASSERT_GE(frames, 7u);
+  const std::string played = "frame " + std::to_string(frames) + " of " + std::to_string(frames) +
+                             " shown, " + std::to_string(frames) + " frames re-simulated";
+
+  const testing::ProcessResult play =
+      runViewer(dir, "SPACE@3,LEFT@4,RIGHT@5,LEFT@7,S@8,R@10,SPACE@11,ESC@40",
+                std::string("--play ") + quoted(file.string()) + " " + kWindow + " --screenshot " +
+                    quoted((dir / "played.png").string()));
+  ASSERT_EQ(play.exitCode, 0) << play.output;
+  EXPECT_NE(play.output.find(played + ", every one as recorded"), std::string::npos) << play.output;
+  expectPicture(dir / "played.png", 320, 240);
+
+  const fs::path changed = dir / "changed.sprec";
+  {
+    RecordingWriter writer(changed, recording.settings);
+    for (RecordedFrame frame : recording.frames) {
+      if (frame.steps == recording.frames[4].steps) frame.stateHash ^= 1u;
+      writer.addFrame(frame);
+    }
+    for (const WorldSnapshot& snapshot : recording.snapshots) writer.addSnapshot(snapshot);
+    writer.finish(recording.wallSeconds);
+  }
+  const testing::ProcessResult differs =
+      runViewer(dir, "ESC@30", std::string("--play ") + quoted(changed.string()) + " " + kWindow);
+  EXPECT_EQ(differs.exitCode, 1) << differs.output;
+  EXPECT_NE(differs.output.find("differs from the recording at frame 5: state hash"),
+            std::string::npos)
+      << differs.output;
+  EXPECT_NE(differs.output.find(played + ", not as recorded"), std::string::npos) << differs.output;
+}
+
 // A rectangle of pixels, [x0, x1) × [y0, y1), rows from the top of the image.
 struct PixelBox {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;

@@ -29,6 +29,10 @@ struct WorldSnapshot {
   std::uint64_t frame = 0;     ///< frames run when it was taken (the caller's count; 0 = built)
   std::uint64_t steps = 0;     ///< World::stepCount
   double simulatedTime = 0.0;  ///< World::simulatedTime, s
+  /// Frame time World::step had not yet run as a substep (its accumulator), s. Kept so that a
+  /// World restored to a snapshot of its own takes its next frame as it would have; recordings
+  /// do not store it (read back, it is 0).
+  double unsteppedTime = 0.0;
   std::vector<StoredBody> bodies;
 };
 

@@ -79,11 +79,12 @@ class World {
   /// Sets the pose and velocities of a body (typically a kinematic one) before the next step.
   void setBodyState(BodyId id, const BodyDesc& state);
   /// Puts every body slot the snapshot holds back to its stored state, bit for bit, with the
-  /// step count and simulated time; slots added after it (bodies an emitter or a scene added
-  /// later) are marked not alive, so they neither move nor touch anything nor show. The World's
-  /// bodies, colliders and emitters are otherwise as they are: a World that reached the snapshot's
-  /// frame the same way continues from it exactly as it did then. Throws InvalidArgument when the
-  /// snapshot holds more slots than the World has (nothing is changed then).
+  /// step count, simulated time and unstepped frame time; slots added after it (bodies an emitter
+  /// or a scene added later) are marked not alive, so they neither move nor touch anything nor
+  /// show. The World's bodies, colliders and emitters are otherwise as they are: a World that
+  /// reached the snapshot's frame the same way continues from it exactly as it did then. Throws
+  /// InvalidArgument when the snapshot holds more slots than the World has (nothing is changed
+  /// then).
   void restoreSnapshot(const WorldSnapshot& snapshot);
   /// Grows the capacities to at least these counts (copies the buffers on the GPU). The only call
   /// that reallocates; never called by step().

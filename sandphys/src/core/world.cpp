@@ -462,7 +462,7 @@ void World::restoreSnapshot(const WorldSnapshot& snapshot) {
   gl::check("World::restoreSnapshot");
   w.steps = snapshot.steps;
   w.simTime = snapshot.simulatedTime;
-  w.accumulator = 0.0;
+  w.accumulator = snapshot.unsteppedTime;
 }
 
 void World::reserve(std::uint32_t maxBodies, std::uint32_t maxParticles) {

@@ -78,6 +78,7 @@ WorldSnapshot World::readSnapshot() const {
   WorldSnapshot snapshot;
   snapshot.steps = w.steps;
   snapshot.simulatedTime = w.simTime;
+  snapshot.unsteppedTime = w.accumulator;
   snapshot.bodies.resize(w.bodyCount);
   for (std::uint32_t i = 0; i < w.bodyCount; ++i) {
     const GpuVec4& p = stored.position[i];
