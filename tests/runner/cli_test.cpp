@@ -116,10 +116,14 @@ TEST(SamplesCli, MeshOnASceneWithoutOne) {
   expectUsageError("--headless --scene box-drop --scale 2", {"--scale", "scale", "box-drop"});
 }
 
-TEST(SamplesCli, ReplayAndGoldensTakeNoRunFlags) {
+TEST(SamplesCli, ReplayPlayAndGoldensTakeNoRunFlags) {
   expectUsageError("--replay run.sprec --scene box-drop", {"--replay", "--scene"});
   expectUsageError("--replay run.sprec --frames 5", {"--replay", "--frames"});
   expectUsageError("--write-goldens /tmp --granules 5", {"--write-goldens", "--granules"});
+  // --play takes the window's own flags only, and the window.
+  expectUsageError("--play run.sprec --scene box-drop", {"--play", "--scene", "--size"});
+  expectUsageError("--play run.sprec --frame-dt 0.01", {"--play", "--frame-dt"});
+  expectUsageError("--play run.sprec --headless", {"--play", "--headless", "--replay"});
   expectUsageError("--headless --snapshot-every 0 --record r.sprec", {"--snapshot-every", "0"});
   expectUsageError("--headless --snapshot-every 5", {"--snapshot-every", "--record"});
   expectUsageError("--headless --record /nonexistent-sandphys-dir/r.sprec",
