@@ -53,16 +53,7 @@ std::unique_ptr<scenes::Scene> goldenScene(std::string_view name) {
   const scenes::SceneEntry* entry = scenes::findScene(name);
   if (!entry) throw std::invalid_argument("unknown scene '" + std::string(name) + "'");
   std::unique_ptr<scenes::Scene> scene = entry->create();
-  for (const scenes::SceneParameter& parameter : scene->parameters()) {
-    if (parameter.name == "batch" || parameter.name == "block" || parameter.name == "berm" ||
-        parameter.name == "bed") {
-      scenes::setSceneParameter(*scene, parameter.name, "4,2,4");
-    } else if (parameter.name == "granules") {
-      scenes::setSceneParameter(*scene, parameter.name, "32");
-    } else if (parameter.name == "layers") {
-      scenes::setSceneParameter(*scene, parameter.name, "2");
-    }
-  }
+  scenes::useTestSize(*scene);
   // The benchmark drops its first batch from 50 d into a cylinder 100 d wide: a fifth of a second
   // would be free fall over a floor of 7800 particles. Low and narrow, it lands within the run.
   if (name == "cylinder-pile") {

@@ -65,6 +65,19 @@ Count3 parseCount3(const SceneParameter& parameter, std::string_view text) {
 
 }  // namespace
 
+void useTestSize(Scene& scene) {
+  for (const SceneParameter& parameter : scene.parameters()) {
+    if (parameter.name == "batch" || parameter.name == "block" || parameter.name == "berm" ||
+        parameter.name == "bed") {
+      setSceneParameter(scene, parameter.name, "4,2,4");
+    } else if (parameter.name == "granules") {
+      setSceneParameter(scene, parameter.name, "32");
+    } else if (parameter.name == "layers") {
+      setSceneParameter(scene, parameter.name, "2");
+    }
+  }
+}
+
 void setSceneParameter(Scene& scene, std::string_view name, std::string_view text) {
   std::vector<SceneParameter> parameters = scene.parameters();
   for (const SceneParameter& parameter : parameters) {

@@ -195,6 +195,11 @@ float percentile(std::vector<float>& values, double fraction);
 /// unknown, the text does not parse or the value is out of range.
 void setSceneParameter(Scene& scene, std::string_view name, std::string_view text);
 
+/// Shrinks `scene` to the size the tests and the goldens run it at, seconds on llvmpipe: every
+/// block of granules ("batch", "block", "berm", "bed") 4 × 2 × 4, "granules" 32 and "layers" 2.
+/// The scene's geometry stays as it is.
+void useTestSize(Scene& scene);
+
 /// The current value of a parameter as text, in the form setSceneParameter accepts.
 std::string formatSceneParameter(const SceneParameter& parameter);
 

@@ -13,17 +13,7 @@ TEST(RegisteredScenes, BuildInsideTheirContainerAndStep) {
   for (const SceneEntry& entry : sceneRegistry()) {
     SCOPED_TRACE(std::string(entry.name));
     std::unique_ptr<Scene> scene = entry.create();
-    // Small batches keep this quick on llvmpipe; the scene's own geometry stays as it is.
-    for (const SceneParameter& parameter : scene->parameters()) {
-      if (parameter.name == "batch" || parameter.name == "block" || parameter.name == "berm" ||
-          parameter.name == "bed") {
-        setSceneParameter(*scene, parameter.name, "4,2,4");
-      } else if (parameter.name == "granules") {
-        setSceneParameter(*scene, parameter.name, "32");
-      } else if (parameter.name == "layers") {
-        setSceneParameter(*scene, parameter.name, "2");
-      }
-    }
+    useTestSize(*scene);
     World world(gpu, scene->settings());
     scene->build(world);
     std::uint32_t granules = 0;

@@ -32,22 +32,19 @@ std::string quoted(const std::string& text) {
   return "'" + text + "'";
 }
 
-// Command line parameters that keep a scene small: every block of granules at most 4 per axis.
-// Parameters of 0 (e.g. "no bed") stay 0.
+// Command line parameters that give a scene its test size (scenes::useTestSize): those it
+// changes.
 std::string smallSceneParameters(const scenes::SceneEntry& entry) {
+  std::unique_ptr<scenes::Scene> defaults = entry.create();
   std::unique_ptr<scenes::Scene> scene = entry.create();
+  scenes::useTestSize(*scene);
+  const std::vector<scenes::SceneParameter> before = defaults->parameters();
+  const std::vector<scenes::SceneParameter> after = scene->parameters();
   std::string arguments;
-  for (const scenes::SceneParameter& parameter : scene->parameters()) {
-    if (const auto* counts = std::get_if<scenes::Count3*>(&parameter.value)) {
-      std::string value;
-      for (std::uint32_t count : **counts) {
-        const auto small = static_cast<std::uint32_t>(
-            std::max<double>(parameter.min, std::min<std::uint32_t>(count, 4)));
-        if (!value.empty()) value += ',';
-        value += std::to_string(small);
-      }
-      arguments += " --param " + parameter.name + "=" + value;
-    }
+  for (std::size_t i = 0; i < after.size(); ++i) {
+    const std::string value = scenes::formatSceneParameter(after[i]);
+    if (value == scenes::formatSceneParameter(before[i])) continue;
+    arguments += " --param " + after[i].name + "=" + quoted(value);
   }
   return arguments;
 }
