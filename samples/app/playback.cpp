@@ -36,14 +36,26 @@ void Playback::scrubTo(std::uint64_t frame) {
   frame = std::min(frame, frames());
   m_rebuild = false;
   const std::uint64_t simulated = m_run->frame();
-  if (frame >= simulated) {
+  if (frame == simulated) {
     putBack();
     m_target = frame;
     return;
   }
+  // The latest snapshot at or before the frame whose bodies the World already has: bodies are
+  // added in the same order every time, so its slot i is the World's. One taken after bodies were
+  // added (a batch, an emitter's) waits until the re-simulation has added them.
+  const std::size_t slots = m_run->world().bodyCount();
   const WorldSnapshot* shown = nullptr;
   for (const WorldSnapshot& snapshot : m_recording.snapshots) {
-    if (snapshot.frame <= frame && (!shown || snapshot.frame > shown->frame)) shown = &snapshot;
+    if (snapshot.frame <= frame && snapshot.bodies.size() <= slots &&
+        (!shown || snapshot.frame > shown->frame)) {
+      shown = &snapshot;
+    }
+  }
+  if (frame > simulated && (!shown || shown->frame <= simulated)) {
+    putBack();
+    m_target = frame;
+    return;
   }
   if (!shown) {
     // Nothing recorded to show: only the re-simulation from the start gets there.
@@ -59,12 +71,14 @@ void Playback::scrubTo(std::uint64_t frame) {
 
 void Playback::playOn(std::uint64_t count) {
   const std::uint64_t target = std::min(m_shown + count, frames());
-  if (m_aside) {
+  if (m_aside && m_shown < m_run->frame()) {
     m_rebuild = true;
     m_target = target;
     return;
   }
-  scrubTo(target);
+  // From the re-simulated state, or from a snapshot ahead of it: the re-simulation goes on.
+  putBack();
+  m_target = target;
 }
 
 std::optional<std::uint64_t> Playback::snapshotBefore() const {

@@ -13,12 +13,14 @@ namespace sandphys::samples {
 
 /// A recording shown frame by frame on a timeline (the viewer's --play). The frames are
 /// re-simulated in order, as --replay does, and each is checked against the recording. The
-/// timeline moves back at once to the recorded snapshots within the frames re-simulated so far,
-/// and forward by re-simulating.
+/// timeline moves at once to a recorded snapshot whose bodies the World has (all of them, back
+/// from the furthest frame re-simulated; ahead of it, those of scenes that add no bodies on the
+/// way), and elsewhere by re-simulating.
 ///
 /// Only the re-simulated state can go on: a scene's own state (its batch counter, a Bullet world)
-/// is not in a snapshot. So going on from a snapshot re-simulates from the start up to it, and
-/// coming back to the furthest frame re-simulated puts the World's own state of that frame back.
+/// is not in a snapshot. So going on from a snapshot behind re-simulates from the start up to it,
+/// going on from one ahead re-simulates from the furthest frame, and coming back to the furthest
+/// frame re-simulated puts the World's own state of that frame back.
 class Playback {
  public:
   /// Builds the recording's scene (frame 0). Throws RecordingError naming the file when this
@@ -40,14 +42,15 @@ class Playback {
   /// Frame being re-simulated towards (advance), or the shown one when there is nothing to do.
   std::uint64_t target() const { return m_target; }
   /// Frames are left to re-simulate before the target is shown.
-  bool busy() const { return m_rebuild || m_run->frame() < m_target; }
+  bool busy() const { return m_rebuild || (!m_aside && m_run->frame() < m_target); }
 
-  /// Shows frame `frame` (clamped to the recording): one before the furthest re-simulated frame
-  /// at once, as the recorded snapshot at or before it; that frame itself at once; a later one
-  /// once advance() has re-simulated up to it.
+  /// Shows frame `frame` (clamped to the recording): the furthest re-simulated frame at once; any
+  /// other at once as the latest recorded snapshot at or before it whose bodies the World has,
+  /// unless a later frame than the furthest has none beyond it: then once advance() has
+  /// re-simulated up to it.
   void scrubTo(std::uint64_t frame);
-  /// Goes on `count` frames from the frame shown, re-simulated (advance). From a snapshot, the
-  /// scene is built again and re-simulated up to it first.
+  /// Goes on `count` frames from the frame shown, re-simulated (advance). From a snapshot behind
+  /// the furthest frame re-simulated, the scene is built again and re-simulated up to it first.
   void playOn(std::uint64_t count = 1);
   /// The recorded snapshot frames before and after the frame shown (for keys that jump), or
   /// nullopt when there is none.

@@ -28,8 +28,8 @@ void drawTimeline(const samples::Playback& playback, PlaybackRequests& requests)
   requests.scrubbing = ImGui::IsItemActive();
   if (ImGui::IsItemHovered()) {
     ImGui::SetTooltip(
-        "drag to scrub: a frame up to the furthest one re-simulated shows at once, as the\n"
-        "recorded snapshot at or before it; a later one is re-simulated first");
+        "drag to scrub: a frame shows at once as the recorded snapshot at or before it, when\n"
+        "the World has that snapshot's bodies; else it is re-simulated first");
   }
   if (playback.busy()) {
     ImGui::TextColored(kWarning, "re-simulating to frame %llu: at frame %llu",
@@ -37,7 +37,7 @@ void drawTimeline(const samples::Playback& playback, PlaybackRequests& requests)
   } else if (playback.showingSnapshot()) {
     ImGui::TextWrapped(
         "recorded snapshot of frame %llu (re-simulated up to frame %llu); playing on "
-        "re-simulates from the start",
+        "re-simulates up to it",
         count(playback.shownFrame()), count(playback.simulatedFrame()));
   } else {
     ImGui::Text("re-simulated frame %llu of %llu", count(playback.shownFrame()),

@@ -1,7 +1,7 @@
 // The viewer's --play timeline without the window: frames re-simulated in order and checked, the
-// recorded snapshots shown for frames behind, the re-simulated state put back bit for bit, and
-// going on from a snapshot re-simulating from the start, so that a scene with state of its own
-// (the avalanche's Bullet world) still matches every recorded hash.
+// recorded snapshots shown at once, the re-simulated state put back bit for bit, and going on from
+// a snapshot re-simulating, so that a scene with state of its own (the avalanche's Bullet world)
+// still matches every recorded hash.
 #include <gtest/gtest.h>
 
 #include "app/golden.h"
@@ -32,21 +32,28 @@ void expectShows(Playback& playback, std::uint64_t frame) {
       << "frame " << frame;
 }
 
-TEST(Playback, ScrubsBackToSnapshotsAndGoesOnExactlyInASceneCoupledToBullet) {
+TEST(Playback, ScrubsToSnapshotsAndGoesOnExactlyInASceneCoupledToBullet) {
   Playback playback(testing::gpu(), recorded("avalanche", 3));
   ASSERT_EQ(playback.frames(), kFrames);
   EXPECT_EQ(playback.shownFrame(), 0u);
 
-  // Forward: one frame per advance with no time budget, then on to frame 7.
-  playback.scrubTo(kFrames);
+  // Forward with no snapshot on the way: re-simulated, one frame per advance with no time budget.
+  playback.scrubTo(2);
   EXPECT_TRUE(playback.busy());
   ASSERT_TRUE(playback.advance(0.0));
   expectShows(playback, 1);
+  // Forward past a snapshot: the scene adds no bodies, so the snapshot shows at once, and going
+  // on from it re-simulates from the furthest frame (1) up to the next.
   playback.scrubTo(7);
+  EXPECT_FALSE(playback.busy());
+  EXPECT_TRUE(playback.showingSnapshot());
+  expectShows(playback, 6);
+  playback.playOn(1);
+  EXPECT_FALSE(playback.showingSnapshot());
+  EXPECT_EQ(playback.shownFrame(), 1u);
   playback.advance(kAllOfIt);
   EXPECT_FALSE(playback.busy());
   expectShows(playback, 7);
-  EXPECT_FALSE(playback.showingSnapshot());
 
   // Back: the snapshot at or before the frame, at once.
   playback.scrubTo(5);
@@ -62,7 +69,7 @@ TEST(Playback, ScrubsBackToSnapshotsAndGoesOnExactlyInASceneCoupledToBullet) {
   playback.scrubTo(7);
   EXPECT_FALSE(playback.showingSnapshot());
   expectShows(playback, 7);
-  playback.scrubTo(kFrames);
+  playback.playOn(kFrames);
   playback.advance(kAllOfIt);
   expectShows(playback, kFrames);
 
@@ -83,12 +90,31 @@ TEST(Playback, ScrubsBackToSnapshotsAndGoesOnExactlyInASceneCoupledToBullet) {
   EXPECT_EQ(playback.checkedFrames(), kFrames);
 }
 
+// A snapshot holding more bodies than the World has so far (bodies added on the way, as a batch
+// or an emitter adds them) is not shown ahead: the timeline re-simulates to it instead, and there
+// the snapshot is compared in full.
+TEST(Playback, ReSimulatesToASnapshotWhoseBodiesTheWorldHasNotYet) {
+  Recording recording = recorded("box-drop", 3);
+  ASSERT_EQ(recording.snapshots[1].frame, 3u);
+  recording.snapshots[1].bodies.push_back(recording.snapshots[1].bodies.back());
+  Playback playback(testing::gpu(), std::move(recording));
+  playback.scrubTo(5);
+  EXPECT_FALSE(playback.showingSnapshot());
+  EXPECT_TRUE(playback.busy());
+  playback.advance(kAllOfIt);
+  expectShows(playback, 5);
+  ASSERT_TRUE(playback.mismatch());
+  EXPECT_EQ(playback.mismatch()->frame, 3u);
+  EXPECT_NE(playback.mismatch()->what.find("body count"), std::string::npos)
+      << playback.mismatch()->what;
+}
+
 TEST(Playback, NamesTheFirstFrameThatDiffersFromTheRecording) {
   Recording recording = recorded("box-drop", 6);
   recording.frames[7].stateHash ^= 1u;  // frame 8
   recording.frames[9].stateHash ^= 1u;  // frame 10
   Playback playback(testing::gpu(), std::move(recording));
-  playback.scrubTo(kFrames);
+  playback.playOn(kFrames);
   playback.advance(kAllOfIt);
   ASSERT_TRUE(playback.mismatch());
   EXPECT_EQ(playback.mismatch()->frame, 8u);
