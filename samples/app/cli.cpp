@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <initializer_list>
 #include <iostream>
 #include <regex>
 #include <sstream>
@@ -135,6 +136,28 @@ void applyParameter(scenes::Scene& scene, const std::string& flag, const std::st
     scenes::setSceneParameter(scene, name, value);
   } catch (const Error& error) {
     throw UsageError(flag + " " + value + ": " + error.what());
+  }
+}
+
+// A run whose settings come from elsewhere (a recording, the goldens' fixed ones) takes only the
+// flags in `allowed` beside `flag` itself: any other flag given is a usage error naming both.
+void refuseOtherFlags(const CLI::App& app, const std::string& flag, const std::string& value,
+                      std::initializer_list<std::string_view> allowed) {
+  std::string list;
+  std::size_t index = 0;
+  for (const std::string_view name : allowed) {
+    if (index > 0) list += index + 1 == allowed.size() ? " and " : ", ";
+    list += name;
+    ++index;
+  }
+  for (const CLI::Option* option : app.get_options()) {
+    const std::string name = option->get_name();
+    if (option->count() == 0 || name == flag ||
+        std::find(allowed.begin(), allowed.end(), name) != allowed.end()) {
+      continue;
+    }
+    throw UsageError(flag + " " + value + ": " + name + " cannot be combined with it (only " +
+                     list + " may be added)");
   }
 }
 
@@ -266,24 +289,15 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
   try {
     // A replay takes everything from its recording, and the goldens have fixed settings: nothing
     // else may shape those runs.
-    const std::pair<const char*, const std::string*> wholeRuns[] = {{"--replay", &replay},
-                                                                    {"--write-goldens", &goldens}};
-    for (const auto& [flag, value] : wholeRuns) {
-      if (value->empty()) continue;
-      for (const CLI::Option* option : app.get_options()) {
-        const std::string name = option->get_name();
-        if (option->count() == 0 || name == flag || name == "--quiet") continue;
-        throw UsageError(std::string(flag) + " " + *value + ": " + name +
-                         " cannot be combined with it (only --quiet may be added)");
-      }
-    }
     if (!goldens.empty()) {
+      refuseOtherFlags(app, "--write-goldens", goldens, {"--quiet"});
       options.goldenDir = goldens;
       checkWritableDirectory("--write-goldens", options.goldenDir);
       options.headless = true;
       return std::nullopt;
     }
     if (!replay.empty()) {
+      refuseOtherFlags(app, "--replay", replay, {"--quiet"});
       options.replayPath = replay;
       options.headless = true;
       return std::nullopt;
@@ -295,20 +309,9 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
                          ": shows the recording in the window, not with --headless (--replay FILE "
                          "checks it headless)");
       }
-      const std::string_view windowFlags[] = {"--play",  "--quiet",       "--frames",
-                                              "--size",  "--quality",     "--screenshot",
-                                              "--every", "--screenshots", "--panel-in-screenshots"};
-      for (const CLI::Option* option : app.get_options()) {
-        const std::string name = option->get_name();
-        if (option->count() == 0 || std::find(std::begin(windowFlags), std::end(windowFlags),
-                                              name) != std::end(windowFlags)) {
-          continue;
-        }
-        throw UsageError("--play " + play + ": " + name +
-                         " cannot be combined with it (only the window's --quiet, --frames, "
-                         "--size, --quality, --screenshot, --screenshots, --every and "
-                         "--panel-in-screenshots may be added)");
-      }
+      refuseOtherFlags(app, "--play", play,
+                       {"--quiet", "--frames", "--size", "--quality", "--screenshot",
+                        "--screenshots", "--every", "--panel-in-screenshots"});
       options.playPath = play;
     }
     if (frames < 0) {

@@ -260,20 +260,25 @@ class ViewerLoop {
     m_view.paused = m_paused;
     m_view.vsync = m_window.vsync();
     m_view.panelInScreenshots = m_options.panelInScreenshots;
+    // The panel's requests apply once the frame is shown.
     if (m_player) {
       const PlaybackRequests requests = drawPlaybackPanel(*m_player, m_stats, m_history, m_view);
-      m_gui.render();
-      if (m_options.panelInScreenshots) saveScreenshots(size);
-      m_window.swapBuffers();
+      present(size);
       apply(requests);
     } else {
       const PanelRequests requests = m_panel.draw(*m_session, m_stats, m_history, m_view);
-      m_gui.render();
-      if (m_options.panelInScreenshots) saveScreenshots(size);
-      m_window.swapBuffers();
+      present(size);
       apply(requests);
     }
     return last;
+  }
+
+  // Draws the panel's ImGui frame over the scene and swaps; screenshots that show the panel are
+  // taken in between.
+  void present(Extent size) {
+    m_gui.render();
+    if (m_options.panelInScreenshots) saveScreenshots(size);
+    m_window.swapBuffers();
   }
 
   World& world() { return m_player ? m_player->world() : m_session->world(); }

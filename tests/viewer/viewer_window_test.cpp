@@ -154,16 +154,23 @@ TEST(ViewerTools, PourPushAndQuitWithEscape) {
   EXPECT_FALSE(fs::exists(dir / "sequence" / "frame_000016.png"));
 }
 
+// Records a small box-drop run in the window to `file`, driven by `keys` (the sand tools held, Esc
+// to end it), with a snapshot every `snapshotEvery` frames.
+testing::ProcessResult recordInWindow(const fs::path& dir, const fs::path& file,
+                                      const std::string& keys, int snapshotEvery) {
+  return runViewer(dir, keys,
+                   std::string("--scene box-drop --param block=3,2,3 --frames 1000 ") +
+                       kShortFrames + " " + kWindow + " --snapshot-every " +
+                       std::to_string(snapshotEvery) + " --record " + quoted(file.string()));
+}
+
 // A run in the window, recorded with the sand tools in use and the frame pacer choosing each
 // frame's duration, replays bit for bit headless from its file (docs/recording.md).
 TEST(ViewerRecording, ReplaysHeadlessBitForBit) {
   ASSERT_NE(std::getenv("DISPLAY"), nullptr) << "run through xvfb-run (CTest does)";
   const fs::path dir = freshDirectory("recording");
   const fs::path file = dir / "window.sprec";
-  const testing::ProcessResult run =
-      runViewer(dir, "P@1-6,B@3-8,ESC@10",
-                std::string("--scene box-drop --param block=3,2,3 --frames 1000 ") + kShortFrames +
-                    " " + kWindow + " --snapshot-every 4 --record " + quoted(file.string()));
+  const testing::ProcessResult run = recordInWindow(dir, file, "P@1-6,B@3-8,ESC@10", 4);
   ASSERT_EQ(run.exitCode, 0) << run.output;
   const Recording recording = readRecording(file);
   const std::string frames = std::to_string(recording.frames.size());
@@ -192,10 +199,7 @@ TEST(ViewerPlayback, PlaysScrubsAndFlagsAFrameThatDiffers) {
   ASSERT_NE(std::getenv("DISPLAY"), nullptr) << "run through xvfb-run (CTest does)";
   const fs::path dir = freshDirectory("playback");
   const fs::path file = dir / "window.sprec";
-  const testing::ProcessResult run =
-      runViewer(dir, "P@1-4,B@2-5,ESC@8",
-                std::string("--scene box-drop --param block=3,2,3 --frames 1000 ") + kShortFrames +
-                    " " + kWindow + " --snapshot-every 3 --record " + quoted(file.string()));
+  const testing::ProcessResult run = recordInWindow(dir, file, "P@1-4,B@2-5,ESC@8", 3);
   ASSERT_EQ(run.exitCode, 0) << run.output;
   const Recording recording = readRecording(file);
   const std::uint64_t frames = recording.frames.size();
