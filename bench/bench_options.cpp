@@ -150,6 +150,11 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
                  "a benchmark can wait)")
       ->check(CLI::IsMember({"lattice", "crystal"}))
       ->capture_default_str();
+  std::string law = "hertz-mindlin";
+  app.add_option("--contact-law", law,
+                 "hertz-mindlin (the default) or paper (the law of Longmore et al. 2013)")
+      ->check(CLI::IsMember({"hertz-mindlin", "paper"}))
+      ->capture_default_str();
   app.add_option("--cylinder-radius", measure.pile.cylinderRadius,
                  "radius of the wall and the rough floor, d (the paper: 50)")
       ->capture_default_str();
@@ -189,6 +194,7 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
 
   try {
     measure.pile.packing = packing == "crystal" ? Packing::Crystal : Packing::Lattice;
+    measure.pile.contactLaw = *scenes::contactLawFromName(law);
     if (sizes.empty()) throw UsageError("--sizes: give at least one granule count");
     std::vector<std::uint32_t> granules;
     for (const std::string& size : sizes) granules.push_back(parseCount("--sizes", size, false));

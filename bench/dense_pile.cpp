@@ -236,6 +236,7 @@ DensePile::DensePile(const DensePileConfig& config) : m_config(config) {
     layout.wallRaised = true;
   }
   m_scene = scenes::CylinderPile(sceneConfig(config, layout.wallHeight));
+  m_scene.setContactLaw(config.contactLaw);
   // Also validates the counts against what a World can index.
   m_granuleMass = tetrahedronTemplate(d, settings().material.density).mass;
 }

@@ -47,6 +47,8 @@ struct DensePileConfig {
   float jitter = 0.005f;
   /// Lattice packing: seed of the jitter and orientations (same seed, same pile).
   std::uint64_t seed = 1;
+  /// The contact law the pile is simulated with.
+  ContactLaw contactLaw = ContactLaw::HertzMindlin;
 };
 
 /// Where the granules of a dense pile go; computed before any World exists.

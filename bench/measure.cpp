@@ -184,6 +184,7 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   result.loadAfter = loadAverage();
 
   result.penetrationClamps = endStats.penetrationClamps - settledStats.penetrationClamps;
+  result.contactSlotOverflows = endStats.contactSlotOverflows - settledStats.contactSlotOverflows;
   result.velocityClamps = endStats.velocityClamps - settledStats.velocityClamps;
   result.measured = readPileState(world, pile, endStats);
   for (KernelStep& kernel : kernels) {

@@ -80,11 +80,12 @@ struct SizeResult {
   double wallSeconds = 0.0;  ///< wall time of those substeps (ends with a sync)
   double cpuSeconds = 0.0;   ///< process CPU time over the same span (all threads)
   bool budgetHit = false;
-  std::uint64_t penetrationClamps = 0;  ///< during the measurement
-  std::uint64_t velocityClamps = 0;     ///< during the measurement
-  std::vector<KernelStep> kernels;      ///< empty without kernel times
-  std::vector<RenderTiming> renders;    ///< one per quality preset; empty without --render
-  double loadBefore = -1.0;             ///< 1-minute load average before the size ran (-1: unknown)
+  std::uint64_t penetrationClamps = 0;     ///< during the measurement (ContactLaw::PaperViscous)
+  std::uint64_t contactSlotOverflows = 0;  ///< during the measurement (HertzMindlin)
+  std::uint64_t velocityClamps = 0;        ///< during the measurement
+  std::vector<KernelStep> kernels;         ///< empty without kernel times
+  std::vector<RenderTiming> renders;       ///< one per quality preset; empty without --render
+  double loadBefore = -1.0;  ///< 1-minute load average before the size ran (-1: unknown)
   double loadAfter = -1.0;
 
   double cundallNumber() const;  ///< granule-steps per wall second

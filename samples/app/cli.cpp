@@ -190,6 +190,7 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
   std::string replay;
   std::string play;
   std::string goldens;
+  std::optional<std::string> contactLaw;
 
   app.add_option("--scene", options.sceneName, "scene to run (see --list)")->capture_default_str();
   app.add_flag("--list", list, "list the scenes and their parameters, then exit");
@@ -231,6 +232,12 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
                  "repose-scupper: in the reservoir)")
       ->type_name("N");
   app.add_option("--param", assignments, "set a scene parameter NAME=VALUE (see --list)");
+  app.add_option("--contact-law", contactLaw,
+                 "hertz-mindlin (default: tangential springs with history, friction at the "
+                 "contact point, damping from body masses) or paper (Longmore et al. 2013 as "
+                 "published: memoryless viscous friction at particle centres, overlap capped at "
+                 "d/10)")
+      ->type_name("LAW");
   app.add_option("--screenshot", screenshot,
                  "write a PNG of the last frame to this file (headless: rendered offscreen)");
   app.add_option("--size", size,
@@ -365,6 +372,14 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
       if (friction) applyParameter(*options.scene, "--friction", "friction", *friction);
       if (outlet) applyParameter(*options.scene, "--outlet", "outlet", *outlet);
       if (granules) applyParameter(*options.scene, "--granules", "granules", *granules);
+      if (contactLaw) {
+        const std::optional<ContactLaw> law = scenes::contactLawFromName(*contactLaw);
+        if (!law) {
+          throw UsageError("--contact-law " + *contactLaw +
+                           ": unknown contact law (hertz-mindlin or paper)");
+        }
+        options.scene->setContactLaw(*law);
+      }
       for (const std::string& assignment : assignments) {
         const std::size_t equals = assignment.find('=');
         if (equals == std::string::npos || equals == 0) {

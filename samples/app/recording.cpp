@@ -65,6 +65,8 @@ void appendWorldSettingsImpl(WorldSettings settings,
   }
   out.emplace_back(std::string(kWorldPrefix) + "stats_each_frame",
                    settings.statsEachFrame ? "1" : "0");
+  out.emplace_back(std::string(kWorldPrefix) + "contact_law",
+                   std::string(scenes::contactLawName(settings.contactLaw)));
 }
 
 }  // namespace
@@ -92,6 +94,12 @@ WorldSettings worldSettingsFrom(const Recording& recording, WorldSettings settin
     if (name == "stats_each_frame") {
       if (text != "0" && text != "1") throw refuse();
       settings.statsEachFrame = text == "1";
+      known = true;
+    }
+    if (name == "contact_law") {
+      const std::optional<ContactLaw> law = scenes::contactLawFromName(text);
+      if (!law) throw refuse();
+      settings.contactLaw = *law;
       known = true;
     }
     if (!known) throw refuse();

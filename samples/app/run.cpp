@@ -111,6 +111,9 @@ RunSummary runScene(const GpuContext& gpu, scenes::Scene& scene, std::uint64_t f
   summary.setupSeconds = secondsSince(setupStart);
   summary.timeStep = world.timeStep();
   summary.particleDiameter = world.settings().particleDiameter;
+  summary.contactLaw = world.settings().contactLaw;
+  summary.youngsModulus = world.settings().material.youngsModulus;
+  summary.maxSpeed = world.settings().maxSpeed;
   if (hooks.afterBuild) {
     const Clock::time_point hookStart = Clock::now();
     hooks.afterBuild(world, 0);

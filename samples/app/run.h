@@ -15,20 +15,23 @@ namespace sandphys::samples {
 
 /// Everything a headless run measured; the metrics JSON is written from it.
 struct RunSummary {
-  std::string scene;                 ///< registry name
-  std::uint64_t frames = 0;          ///< frames run
-  double frameDt = 0.0;              ///< s
-  double setupSeconds = 0.0;         ///< wall time of World creation and Scene::build, s
-  double wallSeconds = 0.0;          ///< wall time of the frame loop (steps + scene logic), s
-  double hookSeconds = 0.0;          ///< wall time in the frame hooks (screenshots), s; not in
-                                     ///< wallSeconds
-  double granuleSteps = 0.0;         ///< sum over substeps of the granules alive
-  double maxOverlap = 0.0;           ///< largest overlap seen in any frame, m
-  double droppedSeconds = 0.0;       ///< frame time dropped by the substep cap, s
-  WorldStats stats{};                ///< World::readStats at the end
-  std::uint32_t granulesLost = 0;    ///< alive granules outside the scene's container at the end
-  float timeStep = 0.0f;             ///< s
-  float particleDiameter = 0.0f;     ///< m
+  std::string scene;               ///< registry name
+  std::uint64_t frames = 0;        ///< frames run
+  double frameDt = 0.0;            ///< s
+  double setupSeconds = 0.0;       ///< wall time of World creation and Scene::build, s
+  double wallSeconds = 0.0;        ///< wall time of the frame loop (steps + scene logic), s
+  double hookSeconds = 0.0;        ///< wall time in the frame hooks (screenshots), s; not in
+                                   ///< wallSeconds
+  double granuleSteps = 0.0;       ///< sum over substeps of the granules alive
+  double maxOverlap = 0.0;         ///< largest overlap seen in any frame, m
+  double droppedSeconds = 0.0;     ///< frame time dropped by the substep cap, s
+  WorldStats stats{};              ///< World::readStats at the end
+  std::uint32_t granulesLost = 0;  ///< alive granules outside the scene's container at the end
+  float timeStep = 0.0f;           ///< s
+  float particleDiameter = 0.0f;   ///< m
+  ContactLaw contactLaw = ContactLaw::HertzMindlin;
+  float youngsModulus = 0.0f;        ///< Pa, as the World had it
+  float maxSpeed = 0.0f;             ///< the speed guard, m/s
   std::uint64_t gpuMemoryBytes = 0;  ///< the world's buffers
   std::string gpu;                   ///< GpuContext::description
   bool sceneFinished = false;        ///< Scene::finished at the end

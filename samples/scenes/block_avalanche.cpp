@@ -85,7 +85,7 @@ struct BlockAvalanche::Blocks {
 BlockAvalanche::BlockAvalanche() = default;
 BlockAvalanche::~BlockAvalanche() = default;
 
-WorldSettings BlockAvalanche::settings() const {
+WorldSettings BlockAvalanche::worldSettings() const {
   WorldSettings settings = m_slope.settings();
   const float d = this->d();
   const btBoxShape low(halfExtents(m_config.lowBlock, d));

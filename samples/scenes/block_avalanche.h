@@ -47,7 +47,7 @@ class BlockAvalanche final : public Scene {
   /// "avalanche".
   std::string_view name() const override { return "avalanche"; }
   /// The slope's settings, with room for the blocks' particles.
-  WorldSettings settings() const override;
+  WorldSettings worldSettings() const override;
   /// The slope's sand and container; a new Bullet world with its floor and the two blocks,
   /// coupled to `world`.
   void build(World& world) override;

@@ -1,12 +1,14 @@
 #include "scenes/box_drop.h"
 
+#include "scenes/pour.h"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
 
 namespace sandphys::scenes {
 
-WorldSettings BoxDrop::settings() const {
+WorldSettings BoxDrop::worldSettings() const {
   WorldSettings settings;
   settings.particleDiameter = d();
   const std::uint64_t granules =
@@ -17,6 +19,10 @@ WorldSettings BoxDrop::settings() const {
   }
   settings.maxBodies = static_cast<std::uint32_t>(granules);
   settings.maxParticles = static_cast<std::uint32_t>(4 * granules);
+  const float blockHeight = static_cast<float>(m_config.block[1]) * kDefaultGranuleSpacing;
+  settings.maxSpeed =
+      pourGuardSpeed(0.0f, (m_config.dropHeight + blockHeight) * d(), gravityMagnitude(settings));
+  settings.material.youngsModulus = sceneYoungsModulus(settings);
   return settings;
 }
 

@@ -42,7 +42,7 @@ class BoxDrop final : public Scene {
   /// "box-drop".
   std::string_view name() const override { return "box-drop"; }
   /// Capacity for exactly the block.
-  WorldSettings settings() const override;
+  WorldSettings worldSettings() const override;
   /// The box container and the block.
   void build(World& world) override;
   /// Inside the box.

@@ -87,7 +87,7 @@ SampledMesh Bulldozer::bladeShape() const {
   return sampleMesh(box, d());
 }
 
-WorldSettings Bulldozer::settings() const {
+WorldSettings Bulldozer::worldSettings() const {
   requireAtLeast("particleDiameter", m_config.particleDiameter, 1e-6f);
   requireAtLeast("bladeSpeed", m_config.bladeSpeed, 0.0f);
   if (!(m_config.bladeSpeed <= kMaxBladeSpeed)) {
@@ -122,6 +122,7 @@ WorldSettings Bulldozer::settings() const {
   settings.maxParticles = static_cast<std::uint32_t>(4 * granules + bladeParticles);
   settings.maxSpeed = std::max(kMinGuardSpeed, kGuardPerBladeSpeed * m_config.bladeSpeed);
   settings.stepsPerContact = kStepsPerContact;
+  settings.material.youngsModulus = sceneYoungsModulus(settings);
   return settings;
 }
 

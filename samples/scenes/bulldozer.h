@@ -104,7 +104,7 @@ class Bulldozer final : public Scene {
   /// Throws InvalidArgument naming the field, value and limit for a negative length, time or
   /// friction, a blade lower than 2 d, a blade speed outside [0, 5] m/s, a berm count of 0 or a
   /// berm too large for a World.
-  WorldSettings settings() const override;
+  WorldSettings worldSettings() const override;
   /// The floor, the berm and the blade (the sampling is repeated, as settings() did it).
   void build(World& world) override;
   /// Sets the blade's pose and velocity, runs the frame's substeps (split where the push starts

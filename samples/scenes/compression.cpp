@@ -80,7 +80,7 @@ float Compression::plungerRadius() const {
   return (m_config.radius - kPlungerGap) * d();
 }
 
-WorldSettings Compression::settings() const {
+WorldSettings Compression::worldSettings() const {
   const std::string scene = "compression: ";
   const std::uint32_t perLayer = granulesPerLayer();
   if (perLayer == 0) {
@@ -105,7 +105,6 @@ WorldSettings Compression::settings() const {
   }
   WorldSettings settings;
   settings.particleDiameter = d();
-  settings.material.youngsModulus = m_config.youngsModulus;
   settings.material.friction = m_config.friction;
   settings.maxBodies = static_cast<std::uint32_t>(granules + 2);  // + floor and plunger
   settings.maxParticles = static_cast<std::uint32_t>(particles);
@@ -115,6 +114,7 @@ WorldSettings Compression::settings() const {
   // The lattice's top falls onto the pile like grains from an emitter at rest.
   settings.maxSpeed = pourGuardSpeed(0.0f, blockHeight, gravityMagnitude(settings));
   settings.stepsPerContact = m_config.stepsPerContact;
+  settings.material.youngsModulus = sceneYoungsModulus(settings, m_config.youngsModulus);
   return settings;
 }
 
@@ -306,7 +306,7 @@ std::vector<SceneParameter> Compression::parameters() {
       {"preload", "stress that flattens the top first, as a fraction of max-stress",
        &m_config.preloadFraction, 0.0, 1.0},
       {"friction", "Coulomb friction coefficient of every contact", &m_config.friction, 0.0, 10.0},
-      {"youngs-modulus", "Young's modulus of the grains, Pa", &m_config.youngsModulus, 1e4, 1e12},
+      {"youngs-modulus", kYoungsModulusHelp, &m_config.youngsModulus, 0.0, 1e12},
       {"settle-speed", "the pile has settled below this rms speed, m/s", &m_config.settleSpeed, 0.0,
        10.0},
       {"max-settle-seconds", "longest wait for the pile to settle, s", &m_config.maxSettleSeconds,

@@ -52,7 +52,7 @@ class Compression final : public Scene {
     /// Coulomb friction coefficient μ of every contact (grains, floor, wall).
     float friction = 0.5f;
     /// Young's modulus of the grains, Pa.
-    float youngsModulus = 5.0e6f;
+    float youngsModulus = 0.0f;
     /// The pile has settled when its kinetic energy per granule is below ½ m v² for this v, m/s.
     float settleSpeed = 0.02f;
     /// Longest wait for the pile to settle, s.
@@ -81,7 +81,7 @@ class Compression final : public Scene {
 
   /// "compression".
   std::string_view name() const override { return "compression"; }
-  WorldSettings settings() const override;
+  WorldSettings worldSettings() const override;
   /// The floor, the cylinder, the lattice of granules and the plunger (parked above them).
   void build(World& world) override;
   /// Steers the plunger through its phases and records stress and strain.

@@ -1,5 +1,7 @@
 #include "scenes/cylinder_pile.h"
 
+#include "scenes/pour.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -61,7 +63,7 @@ float CylinderPile::batchReach() const {
   return static_cast<float>(((farthest + jitter) * m_config.spacing + kGranuleReach) * d());
 }
 
-WorldSettings CylinderPile::settings() const {
+WorldSettings CylinderPile::worldSettings() const {
   WorldSettings settings;
   settings.particleDiameter = d();
   const std::uint64_t granules = static_cast<std::uint64_t>(batchGranules()) * m_config.batches;
@@ -85,6 +87,11 @@ WorldSettings CylinderPile::settings() const {
   // Every batch is allocated up front, as in the paper: adding a batch never reallocates.
   settings.maxBodies = static_cast<std::uint32_t>(granules + 1);  // + the rough floor
   settings.maxParticles = static_cast<std::uint32_t>(particles);
+  // The top layer of a batch falls its drop height and the batch's height.
+  const float blockHeight = static_cast<float>(m_config.batch[1] - 1) * m_config.spacing;
+  const float fall = (std::max(m_config.firstDropHeight, m_config.dropGap) + blockHeight) * d();
+  settings.maxSpeed = pourGuardSpeed(0.0f, fall, gravityMagnitude(settings));
+  settings.material.youngsModulus = sceneYoungsModulus(settings);
   return settings;
 }
 

@@ -63,7 +63,7 @@ class CylinderPile final : public Scene {
   /// "cylinder-pile".
   std::string_view name() const override { return "cylinder-pile"; }
   /// Capacity for every batch plus the floor, allocated up front as in the paper.
-  WorldSettings settings() const override;
+  WorldSettings worldSettings() const override;
   /// Cylinder wall, rough floor, a safety-net plane below it and the first batch.
   void build(World& world) override;
   /// Drops the next batch once the newest has settled (one World::readBodies per batch).

@@ -22,7 +22,7 @@ float Dunes::emitterSpeed() const {
   return pourSpeed(0.5f * m_config.outlet * d(), m_config.rate, d());
 }
 
-WorldSettings Dunes::settings() const {
+WorldSettings Dunes::worldSettings() const {
   const std::string scene = "dunes: ";
   // A RoughFloor rectangle has a particle every d from -half to +half along each side; at most
   // this many (World::addRoughFloor rounds each half down to whole spacings).
@@ -53,7 +53,6 @@ WorldSettings Dunes::settings() const {
   checkPourSpeed("dunes", "the outlet", 0.5f * m_config.outlet * d(), m_config.rate, d());
   WorldSettings settings;
   settings.particleDiameter = d();
-  settings.material.youngsModulus = m_config.youngsModulus;
   settings.material.friction = m_config.friction;
   settings.maxBodies = static_cast<std::uint32_t>(granules + 1);  // + the floor
   settings.maxParticles = static_cast<std::uint32_t>(4 * granules + floorParticles);
@@ -61,6 +60,7 @@ WorldSettings Dunes::settings() const {
   settings.maxSpeed =
       pourGuardSpeed(emitterSpeed(), m_config.pourHeight * d(), gravityMagnitude(settings));
   settings.stepsPerContact = m_config.stepsPerContact;
+  settings.material.youngsModulus = sceneYoungsModulus(settings, m_config.youngsModulus);
   return settings;
 }
 
@@ -188,7 +188,7 @@ std::vector<SceneParameter> Dunes::parameters() {
        2.0, 1e4},
       {"floor-half-width", "half width of the rough floor along z, d", &m_config.floorHalfWidth,
        2.0, 1e4},
-      {"youngs-modulus", "Young's modulus of the grains, Pa", &m_config.youngsModulus, 1e4, 1e12},
+      {"youngs-modulus", kYoungsModulusHelp, &m_config.youngsModulus, 0.0, 1e12},
       {"settle-speed", "the sand has settled below this rms speed, m/s", &m_config.settleSpeed, 0.0,
        10.0},
       {"max-settle-seconds", "longest wait for the sand to settle after the pour, s",

@@ -42,7 +42,7 @@ class Dunes final : public Scene {
     /// Coulomb friction coefficient μ of every contact.
     float friction = 0.5f;
     /// Young's modulus of the grains, Pa (the soft material of the hourglass: a pour takes s).
-    float youngsModulus = 2.0e6f;
+    float youngsModulus = 0.0f;
     /// The sand has settled when its kinetic energy per granule is below ½ m v² for this v, m/s.
     float settleSpeed = 0.02f;
     /// Longest wait for the sand to settle after the pour, s.
@@ -75,7 +75,7 @@ class Dunes final : public Scene {
   std::string_view name() const override { return "dunes"; }
   /// Capacity for both pours and the floor; stats each frame (the settle test reads them). Throws
   /// InvalidArgument naming the field when the parameters contradict each other.
-  WorldSettings settings() const override;
+  WorldSettings worldSettings() const override;
   /// The floor, the sink under it and the two emitters.
   void build(World& world) override;
   /// Waits for the pours to end and the sand to settle, then reads the bodies once for the

@@ -120,7 +120,7 @@ Box Hourglass::gate(bool open) const {
              .material = {.friction = m_config.friction, .restitution = m_config.restitution}};
 }
 
-WorldSettings Hourglass::settings() const {
+WorldSettings Hourglass::worldSettings() const {
   const std::uint64_t granules = m_packing.empty() ? m_config.granules : keptPacking().size();
   if (granules == 0 || 4 * granules > std::numeric_limits<std::uint32_t>::max()) {
     throw InvalidArgument("hourglass: granules = " + std::to_string(granules) +
@@ -139,7 +139,6 @@ WorldSettings Hourglass::settings() const {
   }
   WorldSettings settings;
   settings.particleDiameter = d();
-  settings.material.youngsModulus = m_config.youngsModulus;
   settings.material.friction = m_config.friction;
   settings.material.restitution = m_config.restitution;
   settings.maxBodies = static_cast<std::uint32_t>(granules);
@@ -150,6 +149,7 @@ WorldSettings Hourglass::settings() const {
   settings.maxSpeed =
       std::max(kMinGuardSpeed, kGuardMargin * std::sqrt(2.0f * gravityMagnitude(settings) * fall));
   settings.stepsPerContact = m_config.stepsPerContact;
+  settings.material.youngsModulus = sceneYoungsModulus(settings, m_config.youngsModulus);
   return settings;
 }
 
@@ -356,7 +356,7 @@ std::vector<SceneParameter> Hourglass::parameters() {
        1.0, 80.0},
       {"friction", "friction coefficient of grains and of the funnel wall", &m_config.friction, 0.0,
        10.0},
-      {"youngs-modulus", "Young's modulus of the grains, Pa", &m_config.youngsModulus, 1e3, 1e12},
+      {"youngs-modulus", kYoungsModulusHelp, &m_config.youngsModulus, 0.0, 1e12},
       {"restitution", "coefficient of restitution of impacts", &m_config.restitution, 0.01, 1.0},
       {"release-time", "earliest time the outlet opens, s", &m_config.releaseTime, 0.0, 1e9},
       {"settle-speed", "the fill has settled below this rms speed, m/s", &m_config.settleSpeed, 0.0,

@@ -76,7 +76,7 @@ class Hourglass final : public Scene {
     /// Coulomb friction coefficient μ of grain-grain contacts and of the funnel wall.
     float friction = 0.5f;
     /// Young's modulus of the grains, Pa (see the class comment).
-    float youngsModulus = 2.0e6f;
+    float youngsModulus = 0.0f;
     /// Coefficient of restitution of grain-grain and grain-wall impacts; in (0, 1].
     float restitution = 0.5f;
     /// Earliest simulated time at which the gate opens, s; it opens at the first frame after it
@@ -130,7 +130,7 @@ class Hourglass final : public Scene {
   /// Capacity for exactly the fill; the soft material, stats each frame (the count of granules
   /// remaining is read from them) and a speed guard for the fall through the outlet. Throws
   /// InvalidArgument naming the field when the parameters contradict each other.
-  WorldSettings settings() const override;
+  WorldSettings worldSettings() const override;
   /// The funnel, the closed gate, the sink and the fill.
   void build(World& world) override;
   /// Opens the gate once the release time has come and the fill has settled; after that records

@@ -22,7 +22,7 @@ float ReposeHeap::emitterSpeed() const {
   return pourSpeed(0.5f * m_config.outlet * d(), m_config.rate, d());
 }
 
-WorldSettings ReposeHeap::settings() const {
+WorldSettings ReposeHeap::worldSettings() const {
   const std::string scene = "repose-heap: ";
   const std::uint64_t floorParticles =
       roughFloorParticles(RoughFloor{.radius = m_config.floorRadius * d()}, d());
@@ -45,7 +45,6 @@ WorldSettings ReposeHeap::settings() const {
   checkPourSpeed("repose-heap", "the outlet", 0.5f * m_config.outlet * d(), m_config.rate, d());
   WorldSettings settings;
   settings.particleDiameter = d();
-  settings.material.youngsModulus = m_config.youngsModulus;
   settings.material.friction = m_config.friction;
   settings.material.restitution = m_config.restitution;
   settings.maxBodies = m_config.granules + 1;  // + the floor
@@ -55,6 +54,7 @@ WorldSettings ReposeHeap::settings() const {
   settings.maxSpeed =
       pourGuardSpeed(emitterSpeed(), m_config.pourHeight * d(), gravityMagnitude(settings));
   settings.stepsPerContact = m_config.stepsPerContact;
+  settings.material.youngsModulus = sceneYoungsModulus(settings, m_config.youngsModulus);
   return settings;
 }
 
@@ -134,7 +134,7 @@ std::vector<SceneParameter> ReposeHeap::parameters() {
       {"rate", "pour rate, granules/s", &m_config.rate, 1.0, 1e5},
       {"pour-height", "height of the emitter above the floor, d", &m_config.pourHeight, 1.0, 1e4},
       {"floor-radius", "radius of the rough floor, d", &m_config.floorRadius, 2.0, 1e4},
-      {"youngs-modulus", "Young's modulus of the grains, Pa", &m_config.youngsModulus, 1e4, 1e12},
+      {"youngs-modulus", kYoungsModulusHelp, &m_config.youngsModulus, 0.0, 1e12},
       {"restitution", "coefficient of restitution", &m_config.restitution, 0.01, 1.0},
       {"settle-speed", "the heap has settled below this rms speed, m/s", &m_config.settleSpeed, 0.0,
        10.0},

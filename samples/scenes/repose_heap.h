@@ -48,7 +48,7 @@ class ReposeHeap final : public Scene {
     /// Radius of the rough floor, d.
     float floorRadius = 40.0f;
     /// Young's modulus of the grains, Pa (see the class comment).
-    float youngsModulus = 2.0e6f;
+    float youngsModulus = 0.0f;
     /// Coefficient of restitution of every impact; in (0, 1].
     float restitution = 0.5f;
     /// The heap has settled when the kinetic energy per granule is below ½ m v² for this v, m/s.
@@ -73,7 +73,7 @@ class ReposeHeap final : public Scene {
   std::string_view name() const override { return "repose-heap"; }
   /// Capacity for the pour and the floor; stats each frame (the settle test reads them). Throws
   /// InvalidArgument naming the field when the parameters contradict each other.
-  WorldSettings settings() const override;
+  WorldSettings worldSettings() const override;
   /// The floor, the sink under it and the emitter.
   void build(World& world) override;
   /// Waits for the pour to end and the heap to settle.

@@ -85,7 +85,7 @@ Box ReposeScupper::gate(bool open) const {
              .material = wallMaterial()};
 }
 
-WorldSettings ReposeScupper::settings() const {
+WorldSettings ReposeScupper::worldSettings() const {
   const std::string scene = "repose-scupper: ";
   if (rowLength() == 0 || rowsPerLayer() == 0) {
     throw InvalidArgument(
@@ -120,7 +120,6 @@ WorldSettings ReposeScupper::settings() const {
   }
   WorldSettings settings;
   settings.particleDiameter = d();
-  settings.material.youngsModulus = m_config.youngsModulus;
   settings.material.friction = m_config.friction;
   settings.material.restitution = m_config.restitution;
   settings.maxBodies = m_config.granules + 1;  // + the sump's floor
@@ -131,6 +130,7 @@ WorldSettings ReposeScupper::settings() const {
   const float fall = std::max(m_config.ledge + m_config.outlet, kCollapse * fillHeight) * d();
   settings.maxSpeed = pourGuardSpeed(0.0f, fall, gravityMagnitude(settings));
   settings.stepsPerContact = m_config.stepsPerContact;
+  settings.material.youngsModulus = sceneYoungsModulus(settings, m_config.youngsModulus);
   return settings;
 }
 
@@ -317,7 +317,7 @@ std::vector<SceneParameter> ReposeScupper::parameters() {
       {"sump-length", "length of the sump's floor, d", &m_config.sumpLength, 1.0, 1e4},
       {"wall-margin", "the flank is read this far from the side walls, d", &m_config.wallMargin,
        0.0, 1e4},
-      {"youngs-modulus", "Young's modulus of the grains, Pa", &m_config.youngsModulus, 1e4, 1e12},
+      {"youngs-modulus", kYoungsModulusHelp, &m_config.youngsModulus, 0.0, 1e12},
       {"restitution", "coefficient of restitution", &m_config.restitution, 0.01, 1.0},
       {"release-time", "earliest time the scupper opens, s", &m_config.releaseTime, 0.0, 1e9},
       {"settle-speed", "the sand has settled below this rms speed, m/s", &m_config.settleSpeed, 0.0,

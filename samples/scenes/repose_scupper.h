@@ -68,7 +68,7 @@ class ReposeScupper final : public Scene {
     /// The flank is read from surface cells at least this far from the side walls, d.
     float wallMargin = 3.0f;
     /// Young's modulus of the grains, Pa (see the class comment).
-    float youngsModulus = 2.0e6f;
+    float youngsModulus = 0.0f;
     /// Coefficient of restitution of every impact; in (0, 1].
     float restitution = 0.5f;
     /// Earliest simulated time at which the gate opens, s; it opens at the first frame after it
@@ -101,7 +101,7 @@ class ReposeScupper final : public Scene {
   std::string_view name() const override { return "repose-scupper"; }
   /// Capacity for the fill and the sump's floor; stats each frame (the settle test reads them).
   /// Throws InvalidArgument naming the field when the parameters contradict each other.
-  WorldSettings settings() const override;
+  WorldSettings worldSettings() const override;
   /// The ledge, the walls, the closed gate, the sump's floor, the sink and the fill.
   void build(World& world) override;
   /// Opens the gate once the release time has come and the fill has settled; then waits for the

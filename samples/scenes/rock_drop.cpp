@@ -179,7 +179,7 @@ float RockDrop::boxHeight() const {
          kHeadroom * d();
 }
 
-WorldSettings RockDrop::settings() const {
+WorldSettings RockDrop::worldSettings() const {
   WorldSettings settings;
   settings.particleDiameter = d();
   const LoadedRock& rock = loadedRock();
@@ -216,6 +216,7 @@ WorldSettings RockDrop::settings() const {
   settings.maxSpeed = std::max(
       kMinGuardSpeed, kGuardMargin * std::sqrt(2.0f * gravityMagnitude(settings) * lowestAtDrop));
   settings.stepsPerContact = kStepsPerContact;
+  settings.material.youngsModulus = sceneYoungsModulus(settings);
   return settings;
 }
 

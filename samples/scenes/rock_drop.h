@@ -80,7 +80,7 @@ class RockDrop final : public Scene {
   /// until Config::mesh, scale, density or the diameter change); a speed guard and time step
   /// sized for a fall from the top of the box. Throws MeshError naming the file for a mesh that
   /// cannot make a body, InvalidArgument when the rock does not fit in the box.
-  WorldSettings settings() const override;
+  WorldSettings worldSettings() const override;
   /// The box and the bed; the rock comes later, in update().
   void build(World& world) override;
   /// Adds the rock once the bed has settled (one particle read-back then, for the bed's top);

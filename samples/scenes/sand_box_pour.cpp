@@ -52,10 +52,9 @@ float SandBoxPour::emitterSpeed() const {
   return pourSpeed(emitterHalfExtent(), m_config.rate, d());
 }
 
-WorldSettings SandBoxPour::settings() const {
+WorldSettings SandBoxPour::worldSettings() const {
   WorldSettings settings;
   settings.particleDiameter = d();
-  settings.material.youngsModulus = m_config.youngsModulus;
   const std::string scene = "sand-box-pour: ";
 
   const std::uint64_t granules = static_cast<std::uint64_t>(m_config.granules) + bedGranules();
@@ -102,6 +101,7 @@ WorldSettings SandBoxPour::settings() const {
   settings.maxSpeed =
       pourGuardSpeed(emitterSpeed(), m_config.emitterHeight * d(), gravityMagnitude(settings));
   settings.stepsPerContact = kStepsPerContact;
+  settings.material.youngsModulus = sceneYoungsModulus(settings, m_config.youngsModulus);
   return settings;
 }
 
@@ -247,7 +247,7 @@ std::vector<SceneParameter> SandBoxPour::parameters() {
        10.0},
       {"max-settle-seconds", "longest wait for the bed or the pile to settle, s",
        &m_config.maxSettleSeconds, 0.0, 1e6},
-      {"youngs-modulus", "Young's modulus of the grains, Pa", &m_config.youngsModulus, 1e4, 1e12},
+      {"youngs-modulus", kYoungsModulusHelp, &m_config.youngsModulus, 0.0, 1e12},
       {"seed", "random seed of the emitter and the bed", &m_config.seed, 0, 1.8446744073709552e19},
       {"diameter", "particle diameter d, m", &m_config.particleDiameter, 1e-4, 1.0},
   };

@@ -42,11 +42,8 @@ class SandBoxPour final : public Scene {
     float settleSpeed = 0.05f;
     /// Longest wait for the pile (or the bed) to settle, s; the scene finishes anyway after it.
     float maxSettleSeconds = 3.0f;
-    /// Young's modulus of the grains, Pa. Stiffer than the library's default (5e6 Pa): the
-    /// grains land at about 2.5 m/s, and the Hertz overlap of such an impact,
-    /// ((15/16) m* v² / (E* √R*))^(2/5), is 0.2 d at 5e6 Pa but under the d/10 of the penetration
-    /// guard at 3e7 Pa. It costs time steps: t_n ∝ E^(-2/5), about twice as many.
-    float youngsModulus = 3.0e7f;
+    /// Young's modulus of the grains, Pa; 0: auto (sceneYoungsModulus).
+    float youngsModulus = 0.0f;
     /// Seed of the emitter and the bed: same seed, same pile.
     std::uint64_t seed = 1;
   };
@@ -67,7 +64,7 @@ class SandBoxPour final : public Scene {
   /// Capacity for the bed and the emitter's whole budget; a speed guard and time step sized for
   /// the fall from the emitter. Throws InvalidArgument when the emitter or the bed does not fit
   /// in the box or the rate needs too fast an emitter.
-  WorldSettings settings() const override;
+  WorldSettings worldSettings() const override;
   /// The box, the bed and (without a bed) the emitter.
   void build(World& world) override;
   /// Starts the pour once the bed has settled; counts poured granules; detects the settled pile.

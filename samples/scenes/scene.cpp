@@ -130,6 +130,29 @@ std::string formatSceneParameter(const SceneParameter& parameter) {
       parameter.value);
 }
 
+float sceneYoungsModulus(const WorldSettings& settings, float youngsModulus) {
+  if (youngsModulus > 0.0f) return youngsModulus;
+  return static_cast<float>(
+      youngsModulusForPeakOverlap(settings, kScenePeakOverlap * settings.particleDiameter));
+}
+
+std::string_view contactLawName(ContactLaw law) {
+  return law == ContactLaw::PaperViscous ? "paper" : "hertz-mindlin";
+}
+
+std::optional<ContactLaw> contactLawFromName(std::string_view name) {
+  for (ContactLaw law : {ContactLaw::HertzMindlin, ContactLaw::PaperViscous}) {
+    if (name == contactLawName(law)) return law;
+  }
+  return std::nullopt;
+}
+
+WorldSettings Scene::settings() const {
+  WorldSettings settings = worldSettings();
+  settings.contactLaw = m_contactLaw;
+  return settings;
+}
+
 bool runUntilFinished(Scene& scene, World& world, float frameDt, double maxSeconds) {
   while (!scene.finished() && world.simulatedTime() < maxSeconds) {
     const StepReport report = scene.step(world, frameDt);

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -88,10 +89,19 @@ class Scene {
   /// The registry name, e.g. "cylinder-pile".
   virtual std::string_view name() const = 0;
 
-  /// Settings for the World this scene runs in, with capacities sized for everything the scene
-  /// will ever add (World::reserve is never needed). Throws InvalidArgument when the parameters
-  /// ask for more than a World can hold.
-  virtual WorldSettings settings() const = 0;
+  /// Settings for the World this scene runs in (worldSettings) under the contact law set with
+  /// setContactLaw.
+  WorldSettings settings() const;
+
+  /// The contact law the scene's World gets (the samples app's --contact-law); HertzMindlin
+  /// unless set. Takes effect at the next World built from settings().
+  void setContactLaw(ContactLaw law) { m_contactLaw = law; }
+  ContactLaw contactLaw() const { return m_contactLaw; }
+
+  /// The scene's own settings, with capacities sized for everything the scene will ever add
+  /// (World::reserve is never needed). Throws InvalidArgument when the parameters ask for more
+  /// than a World can hold.
+  virtual WorldSettings worldSettings() const = 0;
 
   /// Adds colliders, floors and the first granules to `world`, which was created from settings()
   /// and is otherwise empty; resets the scene's own state (so that the scene can be rebuilt).
@@ -142,6 +152,9 @@ class Scene {
 
   /// Where the scene's contents are, for the viewer's camera.
   virtual SceneBounds bounds() const = 0;
+
+ private:
+  ContactLaw m_contactLaw = ContactLaw::HertzMindlin;
 };
 
 /// Runs `scene` in `world` (the one its build() filled) frame by frame, Scene::step then
@@ -167,6 +180,26 @@ double fallTime(double height, double speed, double g);
 /// across the square, corners included (the same arithmetic as the emitter's, so that a width
 /// that is a whole number of spacings rounds alike).
 std::uint32_t emitterLayerGranules(float halfExtent, float particleDiameter);
+/// The Young's modulus (Pa) a scene's World gets for a configured `youngsModulus`: that value
+/// when > 0; for 0 (auto) the one at which two granules meeting head-on at twice the scene's
+/// speed guard (kContactSpeedFactor: spinning grains) overlap by kScenePeakOverlap
+/// (youngsModulusForPeakOverlap), so that no grain passes through anything and the largest
+/// overlap stays under 0.3 d. The stiffer the sand, the shorter the time step (t_n ∝ E^-2/5): a
+/// scene pays for its speed guard in substeps.
+float sceneYoungsModulus(const WorldSettings& settings, float youngsModulus = 0.0f);
+/// The closed-form peak overlap, in particle diameters, that an auto Young's modulus allows
+/// (undamped: real impacts are slower than the guard and damped).
+inline constexpr float kScenePeakOverlap = 0.3f;
+/// Help of the scenes' "youngs-modulus" parameter (sceneYoungsModulus).
+inline constexpr const char* kYoungsModulusHelp =
+    "Young's modulus of the grains, Pa (0: auto, stiff enough that two grains meeting at twice "
+    "the scene's speed guard overlap by 0.3 d)";
+
+/// The name of a contact law on the command line and in recordings: "hertz-mindlin" or "paper".
+std::string_view contactLawName(ContactLaw law);
+/// The law named `name` (contactLawName), or nothing.
+std::optional<ContactLaw> contactLawFromName(std::string_view name);
+
 /// Short text of a number for messages ("2.5", "0.1", "1e+06").
 std::string numberText(double value);
 /// Length of the world's gravity vector, m/s².

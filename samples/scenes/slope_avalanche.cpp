@@ -75,7 +75,7 @@ SlopeAvalanche::Channel SlopeAvalanche::channel() const {
   return c;
 }
 
-WorldSettings SlopeAvalanche::settings() const {
+WorldSettings SlopeAvalanche::worldSettings() const {
   WorldSettings settings;
   settings.particleDiameter = d();
   const std::uint64_t granules = blockGranules();
@@ -90,6 +90,7 @@ WorldSettings SlopeAvalanche::settings() const {
   settings.maxSpeed =
       std::max(kMinGuardSpeed, kGuardMargin * std::sqrt(2.0f * gravityMagnitude(settings) * drop));
   settings.stepsPerContact = kStepsPerContact;
+  settings.material.youngsModulus = sceneYoungsModulus(settings);
   return settings;
 }
 

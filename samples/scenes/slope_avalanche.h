@@ -68,7 +68,7 @@ class SlopeAvalanche final : public Scene {
   std::string_view name() const override { return "slope-avalanche"; }
   /// Capacity for exactly the block; a speed guard and time step sized for the drop from the top
   /// of the block to the run-out floor.
-  WorldSettings settings() const override;
+  WorldSettings worldSettings() const override;
   /// The container, the slope, the retaining wall and the block.
   void build(World& world) override;
   /// Removes the wall once the release time has come and the block has settled (one

@@ -13,15 +13,17 @@
 
 namespace sandphys::validation {
 
-/// What every experiment needs: the GPU, a progress line, and the frame length of its runs.
+/// What every experiment needs: the GPU, a progress line, the contact law and the frame length
+/// of its runs.
 struct ExperimentContext {
   const GpuContext& gpu;
   samples::ProgressLine& progress;
+  ContactLaw contactLaw = ContactLaw::HertzMindlin;
   double frameDt = 1.0 / 120.0;
 };
 
-/// Runs `scene` headless in a new World until it finishes or `maxSeconds` have been simulated,
-/// with frames of context.frameDt.
+/// Runs `scene` headless in a new World under context.contactLaw until it finishes or
+/// `maxSeconds` have been simulated, with frames of context.frameDt.
 samples::RunSummary runToEnd(const ExperimentContext& context, scenes::Scene& scene,
                              double maxSeconds);
 

@@ -46,6 +46,7 @@ namespace sandphys::validation {
 samples::RunSummary runToEnd(const ExperimentContext& context, scenes::Scene& scene,
                              double maxSeconds) {
   const auto frames = static_cast<std::uint64_t>(maxSeconds / context.frameDt);
+  scene.setContactLaw(context.contactLaw);
   samples::RunSummary run =
       samples::runScene(context.gpu, scene, frames, context.frameDt, true, context.progress);
   context.progress.finish();
@@ -131,6 +132,11 @@ int main(int argc, char** argv) {
                  "compression: axial stress at which the plunger turns back, Pa")
       ->check(CLI::Range(1.0, 1e9))
       ->capture_default_str();
+  std::string law = "hertz-mindlin";
+  app.add_option("--contact-law", law,
+                 "hertz-mindlin (the default) or paper (Longmore et al. 2013 as published)")
+      ->check(CLI::IsMember({"hertz-mindlin", "paper"}))
+      ->capture_default_str();
   app.add_flag("--quiet", quiet, "no progress lines");
   CLI11_PARSE(app, argc, argv);
   flowOutlet.granules = flowFriction.granules;
@@ -139,11 +145,13 @@ int main(int argc, char** argv) {
     const std::set<std::string> chosen(only.begin(), only.end());
     const GpuContext gpu = GpuContext::headless();
     samples::ProgressLine progress(!quiet);
-    const ExperimentContext context{gpu, progress};
+    const ExperimentContext context{gpu, progress, *scenes::contactLawFromName(law)};
     std::string command;
     for (int i = 0; i < argc; ++i) command += (i ? " " : "") + std::string(argv[i]);
-    nlohmann::json results = {
-        {"gpu", gpu.description()}, {"started", utcNow()}, {"command", command}};
+    nlohmann::json results = {{"gpu", gpu.description()},
+                              {"started", utcNow()},
+                              {"command", command},
+                              {"contact_law", law}};
     const auto start = std::chrono::steady_clock::now();
     auto run = [&](const std::string& name, auto experiment) {
       if (!chosen.count(name)) return;

@@ -227,10 +227,17 @@ void Panel::drawStats(const Session& session, const FrameStats& stats,
   ImGui::Text("Cundall %.3g granule steps/s", stats.cundall);
   // %.3g: in slow motion on a CPU the ratio is a few 1e-4, which %.3f would show as 0.
   ImGui::Text("simulated / wall %.3g", stats.simPerWall);
-  ImGui::Text("max overlap %.4f d  (guard at 0.1 d)", stats.maxOverlapOverD);
-  ImGui::Text("guards: penetration %llu  velocity %llu",
-              static_cast<unsigned long long>(s.penetrationClamps),
-              static_cast<unsigned long long>(s.velocityClamps));
+  if (model.law == ContactLaw::PaperViscous) {
+    ImGui::Text("paper's law: max overlap %.4f d  (capped at 0.1 d)", stats.maxOverlapOverD);
+    ImGui::Text("guards: penetration %llu  velocity %llu",
+                static_cast<unsigned long long>(s.penetrationClamps),
+                static_cast<unsigned long long>(s.velocityClamps));
+  } else {
+    ImGui::Text("Hertz-Mindlin: max overlap %.4f d  (no cap)", stats.maxOverlapOverD);
+    ImGui::Text("contacts without a slot %llu  velocity guard %llu",
+                static_cast<unsigned long long>(s.contactSlotOverflows),
+                static_cast<unsigned long long>(s.velocityClamps));
+  }
   ImGui::Text("dropped %.3f s%s", stats.droppedSeconds,
               stats.report.emitterBlocked ? "  emitter blocked (capacity)" : "");
   ImGui::Text("poured %u of %u", session.tools().poured(), SandTools::kPourGranules);

@@ -1,9 +1,13 @@
 #version 450
-// Pass 6. Granules: one thread per body sums its particles' forces and torques r x F (paper eq.
-// 2, 3) in particle order (fixed, so deterministic), then integrates (common/rigid_motion.glsl).
-// Bodies flagged BODY_LARGE (every body that is not a granule) are left to pass 6b.
+// Pass 6. Granules: one thread per body sums its particles' forces and torques (paper eq. 2, 3):
+// r x F about the centre for each particle's force, plus, under ContactLaw::HertzMindlin, the
+// torque of friction at the contact points; in particle order (fixed, so deterministic). Then it
+// integrates (common/rigid_motion.glsl) and, under HertzMindlin, counts the contacts its
+// particles' slots hold per partner (common/contact_pairs.glsl). Bodies flagged BODY_LARGE (every
+// body that is not a granule) are left to pass 6b.
 #include "common/layout.glsl"
 #include "common/quaternion.glsl"
+#include "common/contact_slots.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 
@@ -17,8 +21,48 @@ PARTICLE_POSITION_TEXTURE
 PARTICLE_FORCE_TEXTURE
 SINKS(readonly)
 COUNTERS(coherent)
+#ifndef PAPER_LAW
+PARTICLE_TORQUE_TEXTURE
+PARTICLE_BODY_TEXTURE
+CONTACT_SLOTS_0_TEXTURE
+CONTACT_SLOTS_1_TEXTURE
+CONTACT_SLOTS_2_TEXTURE
+CONTACT_PAIRS(writeonly)
+#include "common/contact_pairs.glsl"
+#endif
 
 #include "common/rigid_motion.glsl"
+
+// The particles of a granule (tetrahedronTemplate).
+#define GRANULE_PARTICLES 4u
+
+#ifndef PAPER_LAW
+// Every slot of the granule against every other, four at a time (all indices constant once
+// unrolled).
+void countPairs(uint first) {
+  uvec4 partners[GRANULE_PARTICLES * CONTACT_SLOT_GROUPS];
+  for (uint g = 0u; g < GRANULE_PARTICLES * CONTACT_SLOT_GROUPS; ++g) {
+    partners[g] = slotPartners(first + g / CONTACT_SLOT_GROUPS, g % CONTACT_SLOT_GROUPS);
+  }
+  for (uint p = 0u; p < GRANULE_PARTICLES; ++p) {
+    uvec4 slotCounts = uvec4(0u);
+    for (uint group = 0u; group < CONTACT_SLOT_GROUPS; ++group) {
+      uvec4 mine = partners[p * CONTACT_SLOT_GROUPS + group];
+      slotCounts.w += slotsInUse(mine);
+      uvec4 counts = uvec4(0u);
+      for (uint c = 0u; c < 4u; ++c) {
+        uvec4 same = uvec4(0u);
+        for (uint g = 0u; g < GRANULE_PARTICLES * CONTACT_SLOT_GROUPS; ++g) {
+          same += uvec4(equal(partners[g], uvec4(mine[c])));
+        }
+        counts[c] = same.x + same.y + same.z + same.w;
+      }
+      slotCounts[group] = packPairs(mine, counts);
+    }
+    contactPairs[first + p] = slotCounts;
+  }
+}
+#endif
 
 void main() {
   uint b = threadIndex();
@@ -37,7 +81,13 @@ void main() {
       vec3 f = texelFetch(particleForceTexture, int(k)).xyz;
       force += f;
       torque += cross(texelFetch(particlePositionTexture, int(k)).xyz - centre, f);
+#ifndef PAPER_LAW
+      torque += texelFetch(particleTorqueTexture, int(k)).xyz;
+#endif
     }
   }
   integrateBody(b, info, force, torque);
+#ifndef PAPER_LAW
+  countPairs(info.x);
+#endif
 }

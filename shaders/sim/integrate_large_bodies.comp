@@ -5,9 +5,13 @@
 // shared memory adds the shares in a fixed order, so the sum is the same on every run. Thread 0
 // adds the result to the body's read-back sums (World::takeBodyForces) and integrates the body
 // (common/rigid_motion.glsl). Kinematic bodies are summed too: their sand force is what a bridge
-// hands back to the engine that moves them.
+// hands back to the engine that moves them. Under ContactLaw::HertzMindlin the torques include
+// friction at the contact points, and the group counts its slots per partner in a table in
+// shared memory (common/contact_pairs.glsl): integer atomics, so the counts are exact and the
+// same on every run, whatever order the threads insert in.
 #include "common/layout.glsl"
 #include "common/quaternion.glsl"
+#include "common/contact_slots.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 
@@ -23,11 +27,93 @@ SINKS(readonly)
 COUNTERS(coherent)
 LARGE_BODIES(readonly)
 LARGE_BODY_FORCES(coherent)
+#ifndef PAPER_LAW
+PARTICLE_TORQUE(readonly)
+PARTICLE_BODY_TEXTURE
+CONTACT_SLOTS_0_TEXTURE
+CONTACT_SLOTS_1_TEXTURE
+CONTACT_SLOTS_2_TEXTURE
+CONTACT_PAIRS(writeonly)
+#include "common/contact_pairs.glsl"
+#endif
 
 #include "common/rigid_motion.glsl"
 
 shared vec3 shareForce[WORKGROUP_SIZE];
 shared vec3 shareTorque[WORKGROUP_SIZE];
+
+#ifndef PAPER_LAW
+// Open addressing, partner -> number of the body's slots naming it. A body with more distinct
+// partners than entries leaves the rest at n = 1 (the bodies' masses unshared).
+#define PAIR_TABLE 1024u
+shared uint pairPartner[PAIR_TABLE];
+shared uint pairCount[PAIR_TABLE];
+
+uint pairHash(uint partner) {
+  return (partner * 0x9e3779b1u) >> 22u;  // the top 10 bits: PAIR_TABLE entries
+}
+
+void insertPartner(uint partner) {
+  uint h = pairHash(partner);
+  for (uint probe = 0u; probe < PAIR_TABLE; ++probe) {
+    uint found = atomicCompSwap(pairPartner[h], PARTNER_NONE, partner);
+    if (found == PARTNER_NONE || found == partner) {
+      atomicAdd(pairCount[h], 1u);
+      return;
+    }
+    h = (h + 1u) % PAIR_TABLE;
+  }
+}
+
+uint countOf(uint partner) {
+  uint h = pairHash(partner);
+  for (uint probe = 0u; probe < PAIR_TABLE; ++probe) {
+    uint found = pairPartner[h];
+    if (found == partner) return pairCount[h];
+    if (found == PARTNER_NONE) break;
+    h = (h + 1u) % PAIR_TABLE;
+  }
+  return 1u;
+}
+
+// A particle's slots are filled from the first on, so a free first slot means no contacts: most
+// particles of a large body touch nothing and cost one fetch.
+bool hasContacts(uint particle) {
+  return slotPartner(particle, 0u) != PARTNER_NONE;
+}
+
+void countPairs(uint first, uint count, uint t) {
+  for (uint e = t; e < PAIR_TABLE; e += WORKGROUP_SIZE) {
+    pairPartner[e] = PARTNER_NONE;
+    pairCount[e] = 0u;
+  }
+  memoryBarrierShared();
+  barrier();
+  for (uint k = first + t; k < first + count; k += WORKGROUP_SIZE) {
+    if (!hasContacts(k)) continue;
+    for (uint slot = 0u; slot < uint(CONTACT_SLOTS); ++slot) {
+      uint partner = slotPartner(k, slot);
+      if (partner == PARTNER_NONE) break;
+      insertPartner(partner);
+    }
+  }
+  memoryBarrierShared();
+  barrier();
+  // Particles without contacts keep stale counts: only a slot that matches a contact is read.
+  for (uint k = first + t; k < first + count; k += WORKGROUP_SIZE) {
+    if (!hasContacts(k)) continue;
+    uvec4 slotCounts = uvec4(0u);
+    for (uint group = 0u; group < CONTACT_SLOT_GROUPS; ++group) {
+      uvec4 partners = slotPartners(k, group);
+      uvec4 counts = uvec4(countOf(partners.x), countOf(partners.y), countOf(partners.z),
+                           countOf(partners.w));
+      slotCounts[group] = packPairs(partners, counts);
+      slotCounts.w += slotsInUse(partners);
+    }
+    contactPairs[k] = slotCounts;
+  }
+}
+#endif
 
 void main() {
   uint entry = gl_WorkGroupID.x;
@@ -45,6 +131,9 @@ void main() {
     vec3 f = particleForce[k].xyz;
     force += f;
     torque += cross(particlePosition[k].xyz - centre, f);
+#ifndef PAPER_LAW
+    torque += particleTorque[k].xyz;
+#endif
   }
   shareForce[t] = force;
   shareTorque[t] = torque;
@@ -58,6 +147,9 @@ void main() {
     memoryBarrierShared();
     barrier();
   }
+#ifndef PAPER_LAW
+  countPairs(info.x, info.y, t);
+#endif
   if (t != 0u) return;
   force = shareForce[0];
   torque = shareTorque[0];

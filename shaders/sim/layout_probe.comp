@@ -11,10 +11,18 @@ COLLIDERS(readonly)
 SINKS(readonly)
 STATS_PARTIALS(readonly)
 CONTACT_LIST_BUFFER(readonly)
+// Blocks whose sizes carry the slot counts, for the test to compare with kContactSlots and
+// kContactSlotsPerGroup.
+layout(std430, binding = 40) readonly buffer SlotsProbe { vec4 slotsProbe[CONTACT_SLOTS]; };
+layout(std430, binding = 41) readonly buffer SlotGroupProbe { vec4 slotGroupProbe[CONTACT_SLOTS_PER_GROUP]; };
+layout(std430, binding = 42) readonly buffer SlotGroupsProbe { vec4 slotGroupsProbe[CONTACT_SLOT_GROUPS]; };
 
 void main() {
-  vec4 sum = gravityDt + particleGeom + grainContact + wallContact + vec4(counts + counts2 + colliderEnds);
+  vec4 sum = gravityDt + particleGeom + grainContact + wallContact + shearContact +
+             vec4(counts + counts2 + colliderEnds);
   sum += colliders[0].a + colliders[0].b + colliders[0].c + colliders[0].material;
+  sum += colliders[0].velocity + colliders[0].spin;
+  sum += slotsProbe[0] + slotGroupProbe[0] + slotGroupsProbe[0];
   sum += sinks[0].lo + sinks[0].hi;
   sum += vec4(statsPartials[0].counts) + statsPartials[0].sums;
   sum += contactList[0] + vec4(float(contactListCount + contactListCapacity + pad0 + pad1));

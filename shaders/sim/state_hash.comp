@@ -2,7 +2,9 @@
 // The state hash of a recording (docs/recording.md), once per recorded frame: each body slot's
 // stored bits are absorbed into two 32-bit lanes seeded with its index, and the lanes are summed
 // over the slots. Integer sums do not depend on the order the threads ran in, so the hash is the
-// same on every run; src/recording/state_hash.cpp computes the same function on the CPU.
+// same on every run; src/recording/state_hash.cpp computes the same function on the CPU. Under
+// ContactLaw::HertzMindlin every particle's contact slots and pair counts (the history a
+// contact carries across substeps) are absorbed the same way, seeded with the particle's index.
 #include "common/layout.glsl"
 
 #define HASH_THREADS 256
@@ -14,6 +16,12 @@ BODY_VELOCITY(readonly)
 BODY_ANGULAR_VELOCITY(readonly)
 BODY_INFO(readonly)
 STATE_HASH_PARTIALS(writeonly)
+#ifndef PAPER_LAW
+CONTACT_SLOTS_0(readonly)
+CONTACT_SLOTS_1(readonly)
+CONTACT_SLOTS_2(readonly)
+CONTACT_PAIRS(readonly)
+#endif
 
 shared uvec2 sharedSums[HASH_THREADS];
 
@@ -39,6 +47,10 @@ uvec2 absorb3(uvec2 h, vec4 v) {
   return absorb(h, floatBitsToUint(v.z));
 }
 
+uvec2 absorb4(uvec2 h, vec4 v) {
+  return absorb(absorb3(h, v), floatBitsToUint(v.w));
+}
+
 void main() {
   uint local = gl_LocalInvocationID.x;
   uint stride = gl_NumWorkGroups.x * HASH_THREADS;
@@ -54,6 +66,20 @@ void main() {
     h = absorb(h, (bodyInfo[b].z & BODY_ALIVE) != 0u ? 1u : 0u);
     sum += h;
   }
+#ifndef PAPER_LAW
+  for (uint i = gl_GlobalInvocationID.x; i < counts.x; i += stride) {
+    uvec2 h = uvec2(fmix(i ^ 0x13198a2eu), fmix(i ^ 0x03707344u));
+    for (uint g = 0u; g < uint(CONTACT_SLOTS_PER_GROUP); ++g) {
+      uint entry = i * uint(CONTACT_SLOTS_PER_GROUP) + g;
+      h = absorb4(h, contactSlots0[entry]);
+      h = absorb4(h, contactSlots1[entry]);
+      h = absorb4(h, contactSlots2[entry]);
+    }
+    uvec4 pairs = contactPairs[i];
+    h = absorb(absorb(absorb(absorb(h, pairs.x), pairs.y), pairs.z), pairs.w);
+    sum += h;
+  }
+#endif
   sharedSums[local] = sum;
   barrier();
   for (uint width = HASH_THREADS / 2u; width > 0u; width >>= 1u) {

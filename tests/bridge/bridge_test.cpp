@@ -219,9 +219,9 @@ TEST(Bridge, BoxRestsOnASandBedCarriedByTheSandForce) {
   }
   const double meanForce = forceSum / forceFrames;
   const float sink = bedTop + 1.0f * d - heights.back();
-  // The bed itself creeps under the load (granular compaction; a box simulated by sandphys alone
-  // on the same bed sinks at the same, slowing rate), so "stays there" is: the sinking slows,
-  // and in the last second the box moves less than a twentieth of a grain.
+  // Static friction (ContactLaw::HertzMindlin) holds the bed under the load: in the last second
+  // the box sinks less than a hundredth of a grain (under the paper's memoryless friction the
+  // bed crept and the box never stopped).
   const float secondTwo = heights[59] - heights[119];
   const float lastSecond = heights[frames - 61] - heights.back();
   std::printf("largest vertical speed of the box in the last second %.2e m/s\n", fastest);
@@ -232,8 +232,7 @@ TEST(Bridge, BoxRestsOnASandBedCarriedByTheSandForce) {
       meanForce / weight,
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   EXPECT_NEAR(meanForce, weight, 0.05 * weight);
-  EXPECT_LT(std::abs(lastSecond), 0.05f * d);
-  EXPECT_LT(lastSecond, 0.5f * secondTwo) << "the sinking does not slow down";
+  EXPECT_LT(std::abs(lastSecond), 0.01f * d) << "the box does not come to rest";
   EXPECT_GT(sink, -0.5f * d) << "the box floats above the bed";
   EXPECT_LT(sink, 3.0f * d) << "the box sank through the bed";
   const btVector3 up = box->getCenterOfMassTransform().getBasis().getColumn(1);

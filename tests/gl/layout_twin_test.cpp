@@ -35,6 +35,15 @@ GLint stride(GLuint program, const char* name) {
   return std::max(values[0], values[1]);
 }
 
+GLint blockSize(GLuint program, GLenum interface, const char* name) {
+  GLuint block = glGetProgramResourceIndex(program, interface, name);
+  EXPECT_NE(block, GL_INVALID_INDEX) << name;
+  GLenum property = GL_BUFFER_DATA_SIZE;
+  GLint size = 0;
+  glGetProgramResourceiv(program, interface, block, 1, &property, 1, nullptr, &size);
+  return size;
+}
+
 TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
   testing::gpu().makeCurrent();
   gl::ShaderLibrary library;
@@ -52,15 +61,17 @@ TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
   EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "counts2"), GLint(offsetof(SimParams, counts2)));
   EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "colliderEnds"),
             GLint(offsetof(SimParams, colliderEnds)));
-  GLuint block = glGetProgramResourceIndex(program, GL_UNIFORM_BLOCK, "SimParams");
-  GLenum property = GL_BUFFER_DATA_SIZE;
-  GLint size = 0;
-  glGetProgramResourceiv(program, GL_UNIFORM_BLOCK, block, 1, &property, 1, nullptr, &size);
-  EXPECT_EQ(size, GLint(sizeof(SimParams)));
+  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "shearContact"),
+            GLint(offsetof(SimParams, shearContact)));
+  EXPECT_EQ(blockSize(program, GL_UNIFORM_BLOCK, "SimParams"), GLint(sizeof(SimParams)));
 
   EXPECT_EQ(stride(program, "colliders[0].a"), GLint(sizeof(GpuCollider)));
   EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, "colliders[0].material"),
             GLint(offsetof(GpuCollider, material)));
+  EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, "colliders[0].velocity"),
+            GLint(offsetof(GpuCollider, velocity)));
+  EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, "colliders[0].spin"),
+            GLint(offsetof(GpuCollider, spin)));
   EXPECT_EQ(stride(program, "sinks[0].lo"), GLint(sizeof(GpuSink)));
   EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, "sinks[0].hi"),
             GLint(offsetof(GpuSink, hi)));
@@ -71,6 +82,12 @@ TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
   EXPECT_EQ(stride(program, "contactList[0]"), 16);
   EXPECT_EQ(stride(program, "bodyPosition[0]"), 16);
   EXPECT_EQ(stride(program, "particleBody[0]"), 4);
+  // The slot counts of layout.glsl.
+  EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "SlotsProbe"), GLint(16 * kContactSlots));
+  EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "SlotGroupProbe"),
+            GLint(16 * kContactSlotsPerGroup));
+  EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "SlotGroupsProbe"),
+            GLint(16 * kContactSlotGroups));
   glDeleteProgram(program);
 }
 

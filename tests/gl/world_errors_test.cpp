@@ -45,7 +45,7 @@ TEST(WorldErrors, TooManyParticlesNamesTheLimit) {
   s.maxParticles = 1u << 30;
   std::string message = messageOf([&] { World w(testing::gpu(), s); });
   EXPECT_NE(message.find("WorldSettings.maxParticles = 1073741824"), std::string::npos) << message;
-  EXPECT_NE(message.find("<= 8388608"), std::string::npos) << message;
+  EXPECT_NE(message.find("<= 2097152"), std::string::npos) << message;
 }
 
 TEST(WorldErrors, BadDescriptorsNameTheirField) {
@@ -86,7 +86,27 @@ TEST(WorldErrors, BadDescriptorsNameTheirField) {
               w->addSink(Sink{.min = {1, 1, 1}, .max = {0, 0, 0}});
             }).find("Sink.max"),
             std::string::npos);
+  EXPECT_NE(messageOf([&] {
+              w->addCollider(Plane{.motion = {.velocity = {0, std::nanf(""), 0}}});
+            }).find("Plane.motion.velocity.y = nan"),
+            std::string::npos);
+  // A floor so sparse that a granule landing at maxSpeed would slip between its particles.
+  EXPECT_NE(messageOf([&] {
+              w->addRoughFloor(RoughFloor{.radius = 0.1f, .spacing = 0.03f});
+            }).find("RoughFloor of spacing 1.5 d"),
+            std::string::npos);
   EXPECT_EQ(w->bodyCount(), 0u);
+}
+
+TEST(WorldErrors, ASnapshotWithoutItsContactHistoryIsRefused) {
+  testing::TestWorld w;
+  w.addGranule({0, 1, 0});
+  WorldSnapshot snapshot = w->readSnapshot();
+  ASSERT_EQ(snapshot.contacts.size(), 4u);
+  snapshot.contacts.pop_back();
+  const std::string message = messageOf([&] { w->restoreSnapshot(snapshot); });
+  EXPECT_NE(message.find("WorldSnapshot.contacts.size() = 3"), std::string::npos) << message;
+  EXPECT_NE(message.find("must be 4"), std::string::npos) << message;
 }
 
 TEST(WorldErrors, StaleAndDefaultIdsAreRefused) {

@@ -1,7 +1,9 @@
 #include "oracle/cpu_oracle.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <utility>
 
 namespace sandphys::oracle {
 
@@ -35,14 +37,17 @@ OracleModel OracleModel::fromWorld(const World& world) {
   const ContactModel& c = world.contactModel();
   const WorldSettings& s = world.settings();
   OracleModel m;
+  m.law = c.law;
   m.radius = c.radius;
   m.diameter = s.particleDiameter;
-  m.maxOverlap = c.maxOverlap;
+  m.maxOverlap = c.maxOverlap;  // +infinity under HertzMindlin
   m.stiffnessGrain = c.stiffnessGrain;
+  m.stiffnessWall = c.stiffnessWall;
+  m.shearStiffnessGrain = c.shearStiffnessGrain;
+  m.shearStiffnessWall = c.shearStiffnessWall;
   m.dampingFactorGrain = c.dampingFactorGrain;
   m.friction = s.material.friction;
   m.tangentialDamping = c.tangentialDamping;
-  m.stiffnessWall = c.stiffnessWall;
   m.timeStep = c.timeStep;
   m.maxSpeed = s.maxSpeed;
   m.gravity = toDouble(s.gravity);
@@ -56,6 +61,13 @@ double surfaceDamping(const SurfaceMaterial& m) {
   return float(hertzDampingFactor(m.restitution));
 }
 
+// The surface motion as World uploads it (setMotion): v0 = v - ω × reference, so that the
+// surface velocity at x is v0 + ω × x.
+void setMotion(OracleCollider& c, const ColliderMotion& motion, const Vec3d& reference) {
+  c.spin = toDouble(motion.angularVelocity);
+  c.velocityAtOrigin = toDouble(motion.velocity) - c.spin.cross(reference);
+}
+
 }  // namespace
 
 OracleCollider OracleCollider::from(const Plane& p) {
@@ -67,6 +79,7 @@ OracleCollider OracleCollider::from(const Plane& p) {
   c.offset = p.offset / n.norm();
   c.friction = p.material.friction;
   c.dampingFactor = surfaceDamping(p.material);
+  setMotion(c, p.motion, c.offset * c.normal);  // the plane's point nearest the origin
   return c;
 }
 
@@ -80,6 +93,7 @@ OracleCollider OracleCollider::from(const Box& b) {
   c.orientation = {q.w / n, q.x / n, q.y / n, q.z / n};
   c.friction = b.material.friction;
   c.dampingFactor = surfaceDamping(b.material);
+  setMotion(c, b.motion, c.center);
   return c;
 }
 
@@ -93,6 +107,7 @@ OracleCollider OracleCollider::from(const Cylinder& cyl) {
   c.y1 = cyl.height;
   c.friction = cyl.material.friction;
   c.dampingFactor = surfaceDamping(cyl.material);
+  setMotion(c, cyl.motion, c.center);
   return c;
 }
 
@@ -106,6 +121,7 @@ OracleCollider OracleCollider::from(const Funnel& f) {
   c.y1 = f.height;
   c.friction = f.material.friction;
   c.dampingFactor = surfaceDamping(f.material);
+  setMotion(c, f.motion, c.center);
   return c;
 }
 
@@ -129,8 +145,10 @@ QuatD OracleBody::templateOrientation() const {
   return multiply(orientation, {p.w, -p.x, -p.y, -p.z});
 }
 
-double OracleBody::particleInverseMass() const {
-  return motion == Motion::Dynamic ? double(offsets.size()) / mass : 0.0;
+double OracleBody::particleInverseMass(ContactLaw law) const {
+  if (motion == Motion::Static) return -1.0;
+  if (motion == Motion::Kinematic) return 0.0;
+  return law == ContactLaw::HertzMindlin ? 1.0 / mass : double(offsets.size()) / mass;
 }
 
 // --- Colliders (colliders.glsl) -------------------------------------------------------------
@@ -140,7 +158,7 @@ std::vector<ColliderHit> colliderHits(const OracleCollider& c, const Vec3d& p, d
   switch (c.kind) {
     case OracleCollider::Kind::Plane: {
       const double xi = r - (c.normal.dot(p) - c.offset);
-      if (xi > 0.0) hits.push_back({c.normal, xi});
+      if (xi > 0.0) hits.push_back({c.normal, xi, 0u});
       break;
     }
     case OracleCollider::Kind::BoxInside: {
@@ -152,10 +170,13 @@ std::vector<ColliderHit> colliderHits(const OracleCollider& c, const Vec3d& p, d
         const double toMin = c.halfExtents[axis] + local[axis];
         Vec3d axisDir = Vec3d::Zero();
         axisDir[axis] = 1.0;
+        // Face: the wall's axis and side (boxFace).
+        const auto face = std::uint32_t(axis) * 2u;
         if (toMax < toMin) {
-          if (r - toMax > 0.0) hits.push_back({rotate(c.orientation, -axisDir), r - toMax});
+          if (r - toMax > 0.0)
+            hits.push_back({rotate(c.orientation, -axisDir), r - toMax, face + 1u});
         } else {
-          if (r - toMin > 0.0) hits.push_back({rotate(c.orientation, axisDir), r - toMin});
+          if (r - toMin > 0.0) hits.push_back({rotate(c.orientation, axisDir), r - toMin, face});
         }
       }
       break;
@@ -167,7 +188,7 @@ std::vector<ColliderHit> colliderHits(const OracleCollider& c, const Vec3d& p, d
       const Vec3d delta = local - nearest;
       const double dist = delta.norm();
       if (dist > 0.0) {
-        if (r - dist > 0.0) hits.push_back({rotate(c.orientation, delta / dist), r - dist});
+        if (r - dist > 0.0) hits.push_back({rotate(c.orientation, delta / dist), r - dist, 0u});
         break;
       }
       const Vec3d depth = c.halfExtents - local.cwiseAbs();
@@ -175,7 +196,7 @@ std::vector<ColliderHit> colliderHits(const OracleCollider& c, const Vec3d& p, d
           depth.x() < depth.y() ? (depth.x() < depth.z() ? 0 : 2) : (depth.y() < depth.z() ? 1 : 2);
       Vec3d normal = Vec3d::Zero();
       normal[axis] = local[axis] >= 0.0 ? 1.0 : -1.0;
-      hits.push_back({rotate(c.orientation, normal), r + depth[axis]});
+      hits.push_back({rotate(c.orientation, normal), r + depth[axis], 0u});
       break;
     }
     case OracleCollider::Kind::Revolution: {
@@ -198,11 +219,38 @@ std::vector<ColliderHit> colliderHits(const OracleCollider& c, const Vec3d& p, d
       }
       const double dirX = radial > 0.0 ? rel.x() / radial : 1.0;
       const double dirZ = radial > 0.0 ? rel.z() / radial : 0.0;
-      hits.push_back({Vec3d(n2.x() * dirX, n2.y(), n2.x() * dirZ), r - dist});
+      hits.push_back({Vec3d(n2.x() * dirX, n2.y(), n2.x() * dirZ), r - dist, 0u});
       break;
     }
   }
   return hits;
+}
+
+// --- Contact history (contact_slots.glsl) --------------------------------------------------
+
+std::uint32_t particleSlotKey(std::size_t particle) {
+  return std::uint32_t(particle) + 1u;
+}
+
+std::uint32_t colliderSlotKey(std::size_t collider, std::uint32_t face) {
+  return kSlotCollider | (std::uint32_t(collider) * kSlotColliderFaces + face);
+}
+
+ContactHistoryMap historyFromSnapshot(const std::vector<StoredContacts>& contacts) {
+  ContactHistoryMap history;
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const StoredContacts& stored = contacts[i];
+    for (std::size_t k = 0; k < stored.slots.size(); ++k) {
+      const std::array<std::uint32_t, 4>& slot = stored.slots[k];
+      if (slot[3] == kSlotEmpty) continue;
+      ContactHistory h;
+      h.spring = Vec3d(std::bit_cast<float>(slot[0]), std::bit_cast<float>(slot[1]),
+                       std::bit_cast<float>(slot[2]));
+      h.pairs = (stored.pairs[k / 4] >> (8u * (k % 4))) & 0xffu;
+      history[{std::uint32_t(i), slot[3]}] = h;
+    }
+  }
+  return history;
 }
 
 // --- Contact law (contact_law.glsl) ---------------------------------------------------------
@@ -224,16 +272,67 @@ Vec3d contactForce(double xi, const Vec3d& n, const Vec3d& vRel, double stiffnes
   return fn * n + fs;
 }
 
-Vec3d OracleContact::force() const {
-  return contactForce(overlap, normal, relativeVelocity, stiffness, dampingFactor, invMassSum,
-                      friction, tangentialDamping);
+MindlinResult hertzMindlin(double xi, const Vec3d& n, const Vec3d& vRel, double stiffness,
+                           double shearStiffness, double dampingFactor, double invMassSum,
+                           double friction, double timeStep, const Vec3d& spring) {
+  // Not the paper's (docs/architecture.md, "contacts"): LAMMPS pair granular with hertz/material,
+  // damping tsuji and tangential mindlin, in hertzMindlin's order of operations.
+  // Normal: F_n = k_n ξ^{3/2} + η ξ', η = c(e) sqrt(m* k_n) ξ^{1/4} (Tsuji), never pulling.
+  const double eta = dampingFactor * std::sqrt(stiffness / invMassSum) * std::pow(xi, 0.25);
+  const double xiDot = -vRel.dot(n);  // approach speed
+  MindlinResult r;
+  r.normalForce = std::max(stiffness * std::pow(xi, 1.5) + eta * xiDot, 0.0);
+  const Vec3d vt = vRel + xiDot * n;  // tangential part of vRel
+
+  // The spring turns with the contact: its normal part dropped, its length kept; then it
+  // stretches by the tangential motion of this substep.
+  const Vec3d planar = spring - spring.dot(n) * n;
+  Vec3d delta =
+      planar.norm() > 0.0 ? Vec3d(planar * (spring.norm() / planar.norm())) : Vec3d(Vec3d::Zero());
+  delta += vt * timeStep;
+
+  // Mindlin: F_t = -k_t δ - η v_t, k_t = k_t0 √ξ; Coulomb caps |F_t| at μ F_n, and a slipping
+  // contact's spring is reset to the one that gives the capped force.
+  const double kt = shearStiffness * std::sqrt(xi);
+  Vec3d ft = -kt * delta - eta * vt;
+  const double cap = friction * r.normalForce;
+  if (ft.norm() > cap) {
+    ft *= cap / ft.norm();
+    delta = -(ft + eta * vt) / kt;
+    r.slipping = true;
+  }
+  r.tangentialForce = ft;
+  r.spring = delta;
+  r.force = r.normalForce * n + ft;
+  return r;
+}
+
+MindlinResult OracleContact::evaluate() const {
+  if (law == ContactLaw::HertzMindlin) {
+    return hertzMindlin(overlap, normal, relativeVelocity, stiffness, shearStiffness, dampingFactor,
+                        invMassSum, friction, timeStep, spring);
+  }
+  MindlinResult r;
+  r.force = contactForce(overlap, normal, relativeVelocity, stiffness, dampingFactor, invMassSum,
+                         friction, tangentialDamping);
+  r.normalForce = r.force.dot(normal);
+  r.tangentialForce = r.force - r.normalForce * normal;
+  return r;
 }
 
 // --- The step -------------------------------------------------------------------------------
 
 CpuOracle::CpuOracle(const OracleModel& model, std::vector<OracleBody> bodies,
-                     std::vector<OracleCollider> colliders)
-    : m_model(model), m_bodies(std::move(bodies)), m_colliders(std::move(colliders)) {}
+                     std::vector<OracleCollider> colliders, ContactHistoryMap history)
+    : m_model(model),
+      m_bodies(std::move(bodies)),
+      m_colliders(std::move(colliders)),
+      m_history(std::move(history)) {
+  for (std::uint32_t b = 0; b < m_bodies.size(); ++b) {
+    m_particleBody.insert(m_particleBody.end(), m_bodies[b].offsets.size(), b);
+  }
+  m_tally.resize(m_bodies.size());
+}
 
 std::vector<OracleParticle> CpuOracle::particlesFromBodies() const {
   std::vector<OracleParticle> particles;
@@ -243,7 +342,7 @@ std::vector<OracleParticle> CpuOracle::particlesFromBodies() const {
       // Eq. 7: x_i = x_body + R r_i; eq. 8: v_i = v_body + ω × (R r_i).
       const Vec3d r = rotate(body.orientation, offset);
       particles.push_back({b, body.position + r, body.velocity + body.angularVelocity.cross(r),
-                           body.particleInverseMass()});
+                           body.angularVelocity, body.particleInverseMass(m_model.law)});
     }
   }
   return particles;
@@ -252,9 +351,25 @@ std::vector<OracleParticle> CpuOracle::particlesFromBodies() const {
 std::vector<OracleContact> CpuOracle::findContacts(
     const std::vector<OracleParticle>& particles) const {
   const OracleModel& m = m_model;
+  const bool mindlin = m.law == ContactLaw::HertzMindlin;
+  // HertzMindlin: the contact's history from the previous substep. A contact found there has
+  // its spring and pair count n (a count of 0 counts as 1); a new one starts from a zero spring
+  // with n = 1 and no damping for this substep (contacts.comp, mindlinContact).
+  auto withHistory = [&](OracleContact c) {
+    if (!mindlin) return c;
+    const auto it = m_history.find({std::uint32_t(c.particle), c.key});
+    c.fresh = it == m_history.end();
+    c.pairs = c.fresh ? 1u : std::max(it->second.pairs, 1u);
+    c.spring = c.fresh ? Vec3d(Vec3d::Zero()) : it->second.spring;
+    if (c.fresh) c.dampingFactor = 0.0;
+    c.invMassSum *= double(c.pairs);
+    return c;
+  };
   std::vector<OracleContact> contacts;
   for (std::size_t i = 0; i < particles.size(); ++i) {
     const OracleParticle& self = particles[i];
+    // Static particles (rough floors) never move: the GPU skips them and writes no force.
+    if (self.inverseMass < 0.0) continue;
     // Every particle of every other body closer than one diameter.
     for (std::size_t j = 0; j < particles.size(); ++j) {
       const OracleParticle& other = particles[j];
@@ -262,47 +377,121 @@ std::vector<OracleContact> CpuOracle::findContacts(
       const Vec3d d = self.position - other.position;
       const double dist = d.norm();
       if (dist >= m.diameter || dist == 0.0) continue;
-      const double invMassSum = self.inverseMass + other.inverseMass;
+      const double invMassSum = std::max(self.inverseMass, 0.0) + std::max(other.inverseMass, 0.0);
       if (invMassSum == 0.0) continue;  // two immovable bodies
-      contacts.push_back({.particle = i,
-                          .other = j,
-                          .normal = d / dist,
-                          .overlap = std::min(m.diameter - dist, m.maxOverlap),  // guard: d/10
-                          .relativeVelocity = self.velocity - other.velocity,
-                          .stiffness = m.stiffnessGrain,
-                          .dampingFactor = m.dampingFactorGrain,
-                          .invMassSum = invMassSum,
-                          .friction = m.friction,
-                          .tangentialDamping = m.tangentialDamping});
-    }
-    // Colliders are rigid and immovable: m* is the particle's own mass, k_n the wall stiffness,
-    // and only particles of dynamic bodies feel them.
-    if (self.inverseMass == 0.0) continue;
-    for (const OracleCollider& c : m_colliders) {
-      for (const ColliderHit& hit : colliderHits(c, self.position, m.radius)) {
-        contacts.push_back({.particle = i,
-                            .normal = hit.normal,
-                            .overlap = std::min(hit.overlap, m.maxOverlap),
-                            .relativeVelocity = self.velocity,
-                            .stiffness = m.stiffnessWall,
-                            .dampingFactor = c.dampingFactor,
-                            .invMassSum = self.inverseMass,
-                            .friction = c.friction,
+      const Vec3d n = d / dist;
+      if (!mindlin) {
+        contacts.push_back({.law = m.law,
+                            .particle = i,
+                            .other = j,
+                            .normal = n,
+                            .overlap = std::min(m.diameter - dist, m.maxOverlap),  // guard: d/10
+                            .relativeVelocity = self.velocity - other.velocity,
+                            .velocityTerms = self.velocity.norm() + other.velocity.norm(),
+                            .stiffness = m.stiffnessGrain,
+                            .dampingFactor = m.dampingFactorGrain,
+                            .invMassSum = invMassSum,
+                            .friction = m.friction,
                             .tangentialDamping = m.tangentialDamping});
+        continue;
+      }
+      // The contact point is the midpoint of the two centres; the relative velocity there
+      // includes both bodies' spins.
+      const Vec3d point = 0.5 * (self.position + other.position);
+      const Vec3d selfSpinTerm = self.spin.cross(point - self.position);
+      const Vec3d otherSpinTerm = other.spin.cross(point - other.position);
+      contacts.push_back(withHistory(
+          {.law = m.law,
+           .particle = i,
+           .other = j,
+           .key = particleSlotKey(j),
+           .normal = n,
+           .overlap = m.diameter - dist,
+           .lever = point - self.position,
+           .relativeVelocity = (self.velocity + selfSpinTerm) - (other.velocity + otherSpinTerm),
+           .velocityTerms = self.velocity.norm() + selfSpinTerm.norm() + other.velocity.norm() +
+                            otherSpinTerm.norm(),
+           .spinTerms = self.spin.norm() + other.spin.norm(),
+           .stiffness = m.stiffnessGrain,
+           .shearStiffness = m.shearStiffnessGrain,
+           .dampingFactor = m.dampingFactorGrain,
+           .invMassSum = invMassSum,
+           .friction = m.friction,
+           .timeStep = m.timeStep}));
+    }
+    // Colliders are rigid and immovable: m* is the particle's own mass (PaperViscous) or its
+    // body's (HertzMindlin), k_n the wall stiffness, and only particles of dynamic bodies feel
+    // them.
+    if (self.inverseMass <= 0.0) continue;
+    for (std::size_t k = 0; k < m_colliders.size(); ++k) {
+      const OracleCollider& c = m_colliders[k];
+      for (const ColliderHit& hit : colliderHits(c, self.position, m.radius)) {
+        if (!mindlin) {
+          // The paper's law acts at the particle's centre: the surface's velocity there.
+          const Vec3d surface = c.surfaceVelocity(self.position);
+          contacts.push_back({.law = m.law,
+                              .particle = i,
+                              .collider = k,
+                              .normal = hit.normal,
+                              .overlap = std::min(hit.overlap, m.maxOverlap),
+                              .relativeVelocity = self.velocity - surface,
+                              .velocityTerms = self.velocity.norm() + c.velocityAtOrigin.norm() +
+                                               c.spin.cross(self.position).norm(),
+                              .stiffness = m.stiffnessWall,
+                              .dampingFactor = c.dampingFactor,
+                              .invMassSum = self.inverseMass,
+                              .friction = c.friction,
+                              .tangentialDamping = m.tangentialDamping});
+          continue;
+        }
+        // The contact point is the middle of the overlap; the surface moves there with the
+        // collider's motion.
+        const Vec3d point = self.position - hit.normal * (m.radius - 0.5 * hit.overlap);
+        const Vec3d spinTerm = self.spin.cross(point - self.position);
+        const Vec3d surface = c.surfaceVelocity(point);
+        contacts.push_back(
+            withHistory({.law = m.law,
+                         .particle = i,
+                         .collider = k,
+                         .key = colliderSlotKey(k, hit.face),
+                         .normal = hit.normal,
+                         .overlap = hit.overlap,
+                         .lever = point - self.position,
+                         .relativeVelocity = (self.velocity + spinTerm) - surface,
+                         .velocityTerms = self.velocity.norm() + spinTerm.norm() +
+                                          c.velocityAtOrigin.norm() + c.spin.cross(point).norm(),
+                         .spinTerms = self.spin.norm() + c.spin.norm(),
+                         .stiffness = m.stiffnessWall,
+                         .shearStiffness = m.shearStiffnessWall,
+                         .dampingFactor = c.dampingFactor,
+                         .invMassSum = self.inverseMass,
+                         .friction = c.friction,
+                         .timeStep = m.timeStep}));
       }
     }
   }
   return contacts;
 }
 
-std::vector<Vec3d> CpuOracle::particleForces(const std::vector<OracleParticle>& particles) const {
-  std::vector<Vec3d> forces(particles.size(), Vec3d::Zero());
-  for (const OracleContact& c : findContacts(particles)) forces[c.particle] += c.force();
-  return forces;
+ContactPass CpuOracle::contactPass(const std::vector<OracleParticle>& particles) const {
+  ContactPass pass;
+  pass.force.assign(particles.size(), Vec3d::Zero());
+  pass.torque.assign(particles.size(), Vec3d::Zero());
+  pass.tally.resize(m_bodies.size());
+  for (const OracleContact& c : findContacts(particles)) {
+    const MindlinResult r = c.evaluate();
+    pass.force[c.particle] += r.force;
+    if (c.law != ContactLaw::HertzMindlin) continue;
+    // Friction acts at the contact point: a torque about the particle's centre.
+    pass.torque[c.particle] += c.lever.cross(r.force);
+    pass.history[{std::uint32_t(c.particle), c.key}] = {r.spring, 0u};
+    ContactTally& tally = pass.tally[particles[c.particle].body];
+    ++(c.fresh ? tally.fresh : r.slipping ? tally.slipping : tally.sticking);
+  }
+  return pass;
 }
 
-void CpuOracle::integrate(const std::vector<OracleParticle>& particles,
-                          const std::vector<Vec3d>& forces) {
+void CpuOracle::integrate(const std::vector<OracleParticle>& particles, const ContactPass& pass) {
   const OracleModel& m = m_model;
   const double dt = m.timeStep;
   std::size_t first = 0;
@@ -314,12 +503,13 @@ void CpuOracle::integrate(const std::vector<OracleParticle>& particles,
     }
     if (body.motion == Motion::Dynamic) {
       // Eq. 2, 3: total force and torque about the centre of mass, with r the particle's
-      // position (from pass 1) minus the body's position before this step.
+      // position (from pass 1) minus the body's position before this step; HertzMindlin adds
+      // each particle's torque of friction at its contact points.
       Vec3d force = Vec3d::Zero();
       Vec3d torque = Vec3d::Zero();
       for (std::size_t k = first; k < first + count; ++k) {
-        force += forces[k];
-        torque += (particles[k].position - body.position).cross(forces[k]);
+        force += pass.force[k];
+        torque += (particles[k].position - body.position).cross(pass.force[k]) + pass.torque[k];
       }
       // Semi-implicit Euler: the velocity first (eq. 4) ...
       body.velocity += dt * (force / body.mass + m.gravity);
@@ -354,9 +544,35 @@ void CpuOracle::integrate(const std::vector<OracleParticle>& particles,
   }
 }
 
+void CpuOracle::countPairs(ContactHistoryMap& history) const {
+  // The partner a slot names: a collider key itself (bit 31 set, never a body index), else the
+  // owning body of the partner particle.
+  auto partner = [&](std::uint32_t key) {
+    return (key & kSlotCollider) != 0u ? key : m_particleBody[key - 1u];
+  };
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> count;  // (body, partner)
+  for (const auto& [key, h] : history)
+    ++count[{m_particleBody[key.particle], partner(key.partner)}];
+  for (auto& [key, h] : history)
+    h.pairs = count[{m_particleBody[key.particle], partner(key.partner)}];
+}
+
+void CpuOracle::step(const std::vector<OracleParticle>& particles) {
+  ContactPass pass = contactPass(particles);
+  integrate(particles, pass);
+  if (m_model.law == ContactLaw::HertzMindlin) {
+    countPairs(pass.history);
+    m_history = std::move(pass.history);
+    for (std::size_t b = 0; b < m_tally.size(); ++b) {
+      m_tally[b].fresh += pass.tally[b].fresh;
+      m_tally[b].sticking += pass.tally[b].sticking;
+      m_tally[b].slipping += pass.tally[b].slipping;
+    }
+  }
+}
+
 void CpuOracle::step() {
-  const std::vector<OracleParticle> particles = particlesFromBodies();
-  integrate(particles, particleForces(particles));
+  step(particlesFromBodies());
 }
 
 void CpuOracle::step(int count) {

@@ -59,7 +59,8 @@ bool sandColoured(Pixel p) {
 
 // A heap of 250 granules dropped as a column onto a rough floor, settled with a soft, well damped
 // material: a large time step, so settling takes seconds on llvmpipe, not minutes. The render
-// only needs a heap's shape, not a stiff sand's overlaps.
+// only needs a heap's shape, not a stiff sand's overlaps: the paper's contact law, whose overlap
+// cap takes a material this soft (ContactLaw::HertzMindlin refuses it).
 class RenderScene : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -69,6 +70,7 @@ class RenderScene : public ::testing::Test {
     s.material.restitution = 0.2f;
     s.material.friction = 0.7f;
     s.maxSpeed = 3.0f;
+    s.contactLaw = ContactLaw::PaperViscous;
     s.maxParticles = 4 * 512 + 2000;
     world = new World(gpu(), s);
     world->addRoughFloor(RoughFloor{.center = {0.0f, 0.0f, 0.0f}, .radius = kFloorRadius});

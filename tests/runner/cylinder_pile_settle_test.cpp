@@ -1,21 +1,21 @@
 // The paper's benchmark scene with one batch of 16,384 granules (32 x 16 x 32) settles in the
 // cylinder: kinetic energy falls below the scene's own settle criterion, the largest overlap of any
-// contact at any substep stays under d/10, neither guard (penetration, velocity) ever fires, and
-// every granule stays inside the cylinder.
+// contact at any substep stays within 1.5 times the closed-form peak of the fastest impact, the
+// velocity guard never fires, no contact lacks a slot, and every granule stays inside the
+// cylinder.
 //
 // To fit CI (a 2-core machine without a GPU) the batch starts just above the rough floor (its
 // lowest granule centres 2 d up, the lowest the scene accepts) instead of 50 d up. The lattice
 // still collapses: a batch spaced 2.4 d apart packs to about 1.9 d per layer, so its top layers
 // land on the ones below at up to about 2 m/s.
 //
-// The material is stiffer than the scene's default (E = 3e7 Pa instead of 5e6 Pa). The Hertz
-// overlap of an impact at speed v is ((15/16) m* v² / (E* √R*))^(2/5); for a 2 cm particle of a
-// granule (m* = half a granule) at 1.5 m/s it is 0.11 d with E = 5e6 Pa, 0.064 d with E = 2e7 Pa
-// and 0.055 d with E = 3e7 Pa. Measured (llvmpipe), where stacked impacts add up: the default
-// material peaks at 0.15 d during the collapse, E = 2e7 Pa at 0.090 d, E = 3e7 Pa at 0.072 d.
-// Everything else (geometry, granules, density, restitution, friction, contact law) is the scene's
-// default. The time step is t_n at 4 m/s over 8, the fewest substeps per contact the World accepts:
-// the test is about the pile, and the closed-form tests check the contact law at the default 20.
+// The material is the library's default (E = 1e7 Pa) with a 4 m/s guard, softer than the scene's
+// own for its 50 d drops: this batch falls 2 d. The Hertz overlap of an impact at speed v is
+// (5 m* v² / (4 k_n))^(2/5); for two granules (m* = half a granule) meeting at 2 m/s it is
+// 0.107 d at this E, and stacked impacts add a little. Everything else (geometry, granules,
+// density, restitution, friction, contact law) is the scene's default. The time step is t_n
+// over 8, the fewest substeps per contact the World accepts: the test is about the pile, and the
+// closed-form tests check the contact law at the default 20.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -31,7 +31,7 @@ namespace {
 TEST(CylinderPile, SixteenThousandGranulesSettle) {
   scenes::CylinderPile pile(scenes::CylinderPile::Config{.batches = 1, .firstDropHeight = 2.0f});
   WorldSettings settings = pile.settings();
-  settings.material.youngsModulus = 3.0e7f;
+  settings.material.youngsModulus = 1.0e7f;
   // A guard, not a limiter: the collapse reaches about 2 m/s, and at 3 m/s the guard already
   // clamps some granules (measured), which would hide the speeds this test is about.
   settings.maxSpeed = 4.0f;
@@ -75,15 +75,17 @@ TEST(CylinderPile, SixteenThousandGranulesSettle) {
   }
   std::printf(
       "dt %.3g s; settled after %.3f s simulated, %llu steps: KE %.3g J (threshold %.3g J), "
-      "contacts %u, max overlap %.4f d, guards: penetration %llu, velocity %llu\n",
+      "contacts %u, max overlap %.4f d, contacts without a slot %llu, velocity guard %llu\n",
       world.timeStep(), seconds, static_cast<unsigned long long>(stats.steps), stats.kineticEnergy,
       threshold, stats.contacts, maxOverlap / d,
-      static_cast<unsigned long long>(stats.penetrationClamps),
+      static_cast<unsigned long long>(stats.contactSlotOverflows),
       static_cast<unsigned long long>(stats.velocityClamps));
   EXPECT_EQ(dropped, 0.0);
   EXPECT_LT(stats.kineticEnergy, threshold);
-  EXPECT_LT(maxOverlap, 0.1 * d);
-  EXPECT_EQ(stats.penetrationClamps, 0u);
+  const double fastest =
+      hertzPeakOverlap(0.5 * granuleMass, ContactModel::fromSettings(settings).stiffnessGrain, 2.0);
+  EXPECT_LT(maxOverlap, 1.5 * fastest);
+  EXPECT_EQ(stats.contactSlotOverflows, 0u);
   EXPECT_EQ(stats.velocityClamps, 0u);
   EXPECT_EQ(stats.granulesAlive, 16384u);
   EXPECT_GT(stats.contacts, 16384u) << "a pile, resting on its granules";

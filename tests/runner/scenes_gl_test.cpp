@@ -35,7 +35,10 @@ TEST(RegisteredScenes, BuildInsideTheirContainerAndStep) {
     EXPECT_GT(granules + emitted, 0u) << "no sand at all";
     const WorldStats stats = world.readStats();
     EXPECT_EQ(stats.granulesAlive, granules + emitted);
-    EXPECT_EQ(stats.penetrationClamps, 0u) << "granules start overlapping";
+    // Nothing starts inside anything: the first frame's deepest contact is a fresh impact's, far
+    // below the overlap of two touching grains pressed together by a whole scene's weight.
+    EXPECT_LT(stats.maxOverlap, 0.05 * world.settings().particleDiameter)
+        << "granules start overlapping";
   }
 }
 

@@ -37,12 +37,67 @@ TEST(ContactModel, DerivedTimeStepResolvesTheContact) {
   WorldSettings s;
   ContactModel m = ContactModel::fromSettings(s);
   EXPECT_NEAR(m.timeStep, m.contactTime / s.stepsPerContact, 1e-9);
-  EXPECT_NEAR(m.maxOverlap, 0.1f * s.particleDiameter, 1e-9);
+  EXPECT_TRUE(std::isinf(m.maxOverlap)) << "HertzMindlin has no overlap cap";
+  WorldSettings paper = s;
+  paper.contactLaw = ContactLaw::PaperViscous;
+  EXPECT_NEAR(ContactModel::fromSettings(paper).maxOverlap, 0.1f * s.particleDiameter, 1e-9);
   EXPECT_NEAR(m.radius, 0.5f * s.particleDiameter, 1e-9);
   // Stiffer sand needs a shorter step: t_n ∝ E^(-2/5).
   WorldSettings stiff = s;
   stiff.material.youngsModulus *= 32.0f;
   EXPECT_NEAR(ContactModel::fromSettings(stiff).timeStep / m.timeStep, 0.25, 1e-3);
+}
+
+TEST(ContactModel, MindlinStiffnessFollowsTheShearModulus) {
+  // k_t0 = 8 G* sqrt(R*) with G* = E / (4 (1 + ν)(2 - ν)) for two grains and twice that against
+  // a rigid surface; against k_n = 4/3 E* sqrt(R*) that is the textbook ratio
+  // k_t / (dF_n/dξ) = 2 (1 - ν) / (2 - ν) for both.
+  WorldSettings s;
+  const ContactModel m = ContactModel::fromSettings(s);
+  const double nu = s.material.poissonRatio;
+  const double ratio = 2.0 * (1.0 - nu) / (2.0 - nu);
+  EXPECT_NEAR(m.shearStiffnessGrain / (1.5 * m.stiffnessGrain), ratio, 1e-6);
+  EXPECT_NEAR(m.shearStiffnessWall / (1.5 * m.stiffnessWall), ratio, 1e-6);
+}
+
+TEST(ContactModel, PeakOverlapIsTheEnergyBalanceOfAnUndampedImpact) {
+  // ½ m* v² = 2/5 k_n ξ^{5/2} at the deepest point.
+  const double m = 0.02, k = 4.0e5, v = 3.0;
+  const double xi = hertzPeakOverlap(m, k, v);
+  EXPECT_NEAR(0.4 * k * std::pow(xi, 2.5), 0.5 * m * v * v, 1e-9 * m * v * v);
+  WorldSettings s;
+  const ContactModel c = ContactModel::fromSettings(s);
+  EXPECT_FLOAT_EQ(c.peakOverlapGrain,
+                  float(hertzPeakOverlap(0.5 * c.granuleMass, c.stiffnessGrain, s.maxSpeed)));
+  EXPECT_FLOAT_EQ(c.peakOverlapWall,
+                  float(hertzPeakOverlap(c.granuleMass, c.stiffnessWall, s.maxSpeed)));
+  // Four floor particles around the hole: four times one contact's energy at the hole's overlap.
+  const double hole = 1.0 - 1.0 / std::sqrt(2.0);
+  EXPECT_NEAR(0.4 * std::pow(floorPassOverlap(1.0), 2.5), 4.0 * 0.4 * std::pow(hole, 2.5), 1e-12);
+}
+
+TEST(ContactModel, SandTooSoftForItsSpeedGuardIsRefusedWithTheStiffnessThatWouldDo) {
+  WorldSettings s;
+  s.material.youngsModulus = 5.0e6f;
+  s.maxSpeed = 10.0f;  // the defaults before the cap went: grains would pass through
+  try {
+    (void)ContactModel::fromSettings(s);
+    FAIL() << "accepted";
+  } catch (const InvalidArgument& e) {
+    const std::string message = e.what();
+    for (const char* part : {"youngsModulus = 5000000", "maxSpeed = 10", "would overlap by",
+                             "raise youngsModulus to at least", "lower maxSpeed to"}) {
+      EXPECT_NE(message.find(part), std::string::npos) << part << " in: " << message;
+    }
+    // The E it names does pass.
+    const std::size_t at = message.find("at least ") + 9;
+    s.material.youngsModulus = std::stof(message.substr(at)) * 1.001f;
+    EXPECT_NO_THROW((void)ContactModel::fromSettings(s));
+  }
+  // The paper's law caps the overlap instead and takes the same settings.
+  s.material.youngsModulus = 5.0e6f;
+  s.contactLaw = ContactLaw::PaperViscous;
+  EXPECT_NO_THROW((void)ContactModel::fromSettings(s));
 }
 
 // Each bad setting throws InvalidArgument whose message names the field, the value and a limit.
@@ -97,7 +152,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadSetting{"maxSpeed", [](WorldSettings& s) { s.maxSpeed = 0.0f; }, "0", "> 0"},
         BadSetting{"stepsPerContact", [](WorldSettings& s) { s.stepsPerContact = 4.0f; }, "4",
                    ">= 8"},
-        BadSetting{"timeStep", [](WorldSettings& s) { s.timeStep = 1e-3f; }, "0.001", "t_n / 8"}));
+        BadSetting{"timeStep", [](WorldSettings& s) { s.timeStep = 1e-3f; }, "0.001", "t_n / 8"},
+        BadSetting{"contactLaw", [](WorldSettings& s) { s.contactLaw = ContactLaw(7); }, "7",
+                   "PaperViscous"}));
 
 }  // namespace
 }  // namespace sandphys

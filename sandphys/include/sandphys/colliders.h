@@ -7,12 +7,24 @@
 
 namespace sandphys {
 
+/// How a collider's surface moves: contacts see the surface velocity v + ω × (x - reference) at
+/// the contact point x (at the particle's centre under ContactLaw::PaperViscous), for damping and
+/// friction (a rising gate, a plunger, a conveyor). The
+/// reference point is the box's centre, the cylinder's base, the funnel's outlet centre, or the
+/// plane's point nearest the origin. The pose itself changes only when World::setCollider or
+/// World::moveCollider gives a new one.
+struct ColliderMotion {
+  Vec3 velocity{};         ///< m/s
+  Vec3 angularVelocity{};  ///< rad/s, world frame
+};
+
 /// A smooth, infinite half-space: solid where dot(normal, x) < offset. normal need not be unit
 /// (it is normalised) but must be non-zero.
 struct Plane {
   Vec3 normal{0.0f, 1.0f, 0.0f};
   float offset = 0.0f;  ///< m
   SurfaceMaterial material{};
+  ColliderMotion motion{};
 };
 
 /// A smooth oriented box. inside = true: a closed container whose six walls keep grains in (a
@@ -24,6 +36,7 @@ struct Box {
   Quat orientation{};
   bool inside = true;
   SurfaceMaterial material{};
+  ColliderMotion motion{};
 };
 
 /// A smooth, thin vertical cylinder wall (axis along y) from base.y to base.y + height; open at
@@ -33,6 +46,7 @@ struct Cylinder {
   float radius = 1.0f;  ///< m, > 0
   float height = 1.0f;  ///< m, > 0
   SurfaceMaterial material{};
+  ColliderMotion motion{};
 };
 
 /// A smooth, thin cone wall around a vertical axis (the hourglass funnel of the paper's
@@ -44,6 +58,7 @@ struct Funnel {
   float halfAngle = 0.785398f;  ///< rad, in (0, π/2)
   float height = 1.0f;          ///< m, > 0
   SurfaceMaterial material{};
+  ColliderMotion motion{};
 };
 
 /// Any implicit collider, as given to World::addCollider or World::setCollider (see

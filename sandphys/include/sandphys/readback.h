@@ -40,6 +40,9 @@ struct ContactRecord {
   float normalForce = 0.0f;        ///< F_n on A, N (>= 0)
   Vec3 tangentialForce{};          ///< F_s on A, N
   float overlap = 0.0f;            ///< ξ, m
+  /// ContactLaw::HertzMindlin: A's tangential spring displacement δ after the substep, m (in
+  /// the tangent plane; its length times k_t is the stick force). Zero under PaperViscous.
+  Vec3 tangentialDisplacement{};
 };
 
 /// The sand's push on one body that is not a granule (a sampled mesh, a body coupled to another
@@ -65,10 +68,14 @@ struct WorldStats {
   std::uint32_t contacts = 0;        ///< particle-particle pairs + collider contacts, last substep
   double kineticEnergy = 0.0;        ///< translational + rotational of dynamic bodies, J
   double maxOverlap = 0.0;           ///< largest overlap since the last readStats, m
-  std::uint64_t penetrationClamps = 0;  ///< contacts whose overlap exceeded d/10 (total)
-  std::uint64_t velocityClamps = 0;     ///< bodies slowed to maxSpeed (total)
-  std::uint64_t steps = 0;              ///< substeps run in total
-  double simulatedTime = 0.0;           ///< s
+  /// ContactLaw::PaperViscous: contacts whose overlap exceeded d/10 and was capped (total).
+  std::uint64_t penetrationClamps = 0;
+  /// ContactLaw::HertzMindlin: contacts that found all of their particle's kContactSlots slots
+  /// taken and acted without history that substep (total; should stay 0).
+  std::uint64_t contactSlotOverflows = 0;
+  std::uint64_t velocityClamps = 0;  ///< bodies slowed to maxSpeed (total)
+  std::uint64_t steps = 0;           ///< substeps run in total
+  double simulatedTime = 0.0;        ///< s
 };
 
 }  // namespace sandphys

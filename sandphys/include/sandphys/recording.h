@@ -24,6 +24,19 @@ struct StoredBody {
   bool alive = true;                       ///< false once a sink removed it
 };
 
+/// Contact slots each particle owns under ContactLaw::HertzMindlin (docs/architecture.md,
+/// "contacts"): contacts beyond these get no history and are counted.
+inline constexpr std::uint32_t kContactSlots = 12;
+
+/// One particle's contact history exactly as the GPU stores it (ContactLaw::HertzMindlin): each
+/// slot's tangential spring (x, y, z as float bits) and partner key, the pair counts of its slots
+/// (one byte per slot in pairs[0..2]) and the number of slots in use (pairs[3]). What a contact
+/// carries from one substep to the next.
+struct StoredContacts {
+  std::array<std::array<std::uint32_t, 4>, kContactSlots> slots{};
+  std::array<std::uint32_t, 4> pairs{};
+};
+
 /// Every body slot in use at one moment (World::readSnapshot, a sync point).
 struct WorldSnapshot {
   std::uint64_t frame = 0;     ///< frames run when it was taken (the caller's count; 0 = built)
@@ -34,6 +47,9 @@ struct WorldSnapshot {
   /// do not store it (read back, it is 0).
   double unsteppedTime = 0.0;
   std::vector<StoredBody> bodies;
+  /// Under ContactLaw::HertzMindlin, every particle slot in use; empty under PaperViscous (whose
+  /// contacts keep nothing).
+  std::vector<StoredContacts> contacts;
 };
 
 /// The hash World::readStateHash computes on the GPU, computed here on the CPU from the same bits
@@ -42,12 +58,17 @@ std::uint64_t stateHash(const WorldSnapshot& snapshot);
 
 /// Where two states first differ: the lowest body slot, then the first field in the order of
 /// StoredBody ("position.x" ... "angularVelocity.z", "alive"); field "body count" when the
-/// number of slots differs (body is then the smaller count). Also for inputs (below).
+/// number of slots differs (body is then the smaller count). Then the contact history: the
+/// lowest particle (subject Particle), "contact slot K spring.x" ... "contact slot K key",
+/// "contact pairs W", or "particle count". Also for inputs (below).
 struct StateDifference {
-  std::uint32_t body = 0;
+  enum class Subject { Body, Particle };
+  std::uint32_t body = 0;  ///< body slot, or particle index when subject is Particle
   std::string field;
   double recorded = 0.0;
   double replayed = 0.0;
+  Subject subject = Subject::Body;
+  bool integer = false;  ///< the values are integers (keys, counts), not floats
   /// "body 17 velocity.y: recorded 0.123456791 (0x3dfcd6e9), replayed 0.123456798 (0x3dfcd6ea)";
   /// float fields with their bits.
   std::string describe() const;
@@ -79,7 +100,7 @@ struct RecordedFrame {
 };
 
 /// Version of the recording format this build writes and reads (docs/recording.md).
-inline constexpr std::uint32_t kRecordingVersion = 1;
+inline constexpr std::uint32_t kRecordingVersion = 2;
 
 /// A recording as read back: the application's description of the run (scene, parameters,
 /// flags, as key and value text in the order written), every frame, and the snapshots in frame

@@ -6,20 +6,40 @@
 
 namespace sandphys {
 
+/// How particles of different bodies (and particles and colliders) push on each other
+/// (docs/architecture.md, "contacts"). Fixed at World creation.
+enum class ContactLaw : unsigned {
+  /// What LAMMPS `pair granular` (hertz/material, damping tsuji, tangential mindlin) and
+  /// LIGGGHTS do: Hertz normal force with Tsuji damping; a Mindlin tangential spring with history
+  /// (k_t = 8 G* a), Coulomb-capped, kept per contact across substeps; both forces act at the
+  /// contact point, so friction turns bodies; damping from the masses of the two bodies. No force
+  /// cap: settings whose peak overlap could let grains pass through each other are refused.
+  HertzMindlin = 0,
+  /// The law of Longmore et al. 2013 as published (eq. 9, 10): friction min(μ F_n, γ_s |v_s|)
+  /// with no memory, applied at particle centres, damping from particle masses and the overlap
+  /// capped at d/10. For rerunning the paper's experiments; loaded sand creeps under it.
+  PaperViscous = 1,
+};
+
 /// Bulk material of the sand grains. Validated when a World is created.
 struct Material {
   /// Density of the grain material in kg/m³; > 0. Sets particle mass = density · πd³/6.
   float density = 2600.0f;
   /// Young's modulus E in Pa; > 0. Sets the Hertz stiffness (and so the time step, t_n ∝ E^-2/5).
-  float youngsModulus = 5.0e6f;
-  /// Poisson's ratio ν; in [0, 0.5). Enters the effective modulus E* = E / (2 (1 - ν²)).
+  /// Under ContactLaw::HertzMindlin a World refuses an E so low that a grain meeting another
+  /// grain or a wall at WorldSettings::maxSpeed would overlap it far enough to pass through.
+  float youngsModulus = 1.0e7f;
+  /// Poisson's ratio ν; in [0, 0.5). Enters the effective moduli E* = E / (2 (1 - ν²)) and,
+  /// for the tangential spring, G* = E / (4 (2 - ν)(1 + ν)).
   float poissonRatio = 0.3f;
   /// Normal coefficient of restitution of a grain-grain impact; in (0, 1]. Sets the normal damping.
   float restitution = 0.5f;
-  /// Coulomb friction coefficient μ between grains (eq. 10); >= 0.
+  /// Coulomb friction coefficient μ between grains; >= 0. A contact sticks while its tangential
+  /// force is below μ F_n.
   float friction = 0.5f;
-  /// Tangential damping γs of eq. 10 in N·s/m; >= 0. 0 selects the automatic value
-  /// 0.25 · particle mass / time step (a quarter of the explicit stability limit).
+  /// ContactLaw::PaperViscous only: tangential damping γs of eq. 10 in N·s/m; >= 0. 0 selects
+  /// the automatic value 0.25 · particle mass / time step (a quarter of the explicit stability
+  /// limit). HertzMindlin derives its tangential damping from the restitution.
   float tangentialDamping = 0.0f;
 };
 
@@ -40,14 +60,17 @@ struct WorldSettings {
   Vec3 gravity{0.0f, -9.81f, 0.0f};
   /// Grain material.
   Material material{};
+  /// The contact law (see ContactLaw).
+  ContactLaw contactLaw = ContactLaw::HertzMindlin;
   /// Fixed substep in s. 0 derives it: t_n(maxSpeed) / stepsPerContact (eq. 11, Hertz form).
   /// A value above t_n / kMinStepsPerContact is refused.
   float timeStep = 0.0f;
   /// Substeps per Hertz contact duration when the step is derived; >= kMinStepsPerContact.
   float stepsPerContact = 20.0f;
   /// Speed guard in m/s; > 0. Body speeds above it are clamped (and counted); it is also the
-  /// impact speed at which the contact duration t_n that sets the time step is evaluated.
-  float maxSpeed = 10.0f;
+  /// impact speed at which the contact duration t_n that sets the time step, and the peak
+  /// overlap that HertzMindlin checks, are evaluated. 4 m/s is a fall of 0.8 m.
+  float maxSpeed = 4.0f;
   /// Substeps one call of World::step may run; > 0. Time beyond it is dropped and reported.
   std::uint32_t maxSubstepsPerFrame = 512;
   /// Capacity of bodies (granules, sampled bodies, rough floors); fixed at creation, grown only

@@ -59,11 +59,17 @@ class World {
   ColliderId addCollider(const Box& box);
   ColliderId addCollider(const Cylinder& cylinder);
   ColliderId addCollider(const Funnel& funnel);
-  /// Moves or reshapes an existing collider (same kind or another). Throws InvalidId.
+  /// Moves or reshapes an existing collider (same kind or another) at once; its surface moves
+  /// as the descriptor's `motion` says. Throws InvalidId.
   void setCollider(ColliderId id, const Plane& plane);
   void setCollider(ColliderId id, const Box& box);
   void setCollider(ColliderId id, const Cylinder& cylinder);
   void setCollider(ColliderId id, const Funnel& funnel);
+  /// Like setCollider, with `motion` derived from the change of pose since the collider was last
+  /// given, over `seconds` (> 0; typically the frame about to be stepped): the reference point's
+  /// displacement / seconds, and for a box the rotation angle / seconds about its axis. A
+  /// descriptor of another kind than before gets zero motion. Throws InvalidId, InvalidArgument.
+  void moveCollider(ColliderId id, const ColliderShape& shape, float seconds);
   /// A kill volume; removed granules are counted in WorldStats::granulesKilled.
   SinkId addSink(const Sink& sink);
   /// A static particle floor (see RoughFloor); returns its body.

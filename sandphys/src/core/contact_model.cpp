@@ -1,10 +1,12 @@
 #include "sandphys/contact_model.h"
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <numbers>
 
+#include "core/overlap_check.h"
 #include "core/validation.h"
 
 namespace sandphys {
@@ -89,6 +91,46 @@ double hertzRestingOverlap(double load, double stiffness) {
   return std::pow(load / stiffness, 2.0 / 3.0);
 }
 
+double hertzPeakOverlap(double effectiveMass, double stiffness, double speed) {
+  return std::pow(1.25 * effectiveMass * speed * speed / stiffness, 0.4);
+}
+
+double floorPassOverlap(double spacingOverDiameter) {
+  // ½ m* v² = 4 · 2/5 k ξ_hole^{5/2} is a single contact's energy at 4^{2/5} ξ_hole.
+  return std::pow(4.0, 0.4) * (1.0 - spacingOverDiameter / std::numbers::sqrt2);
+}
+
+double youngsModulusForPeakOverlap(const WorldSettings& settings, double peakOverlap) {
+  detail::requirePositive("peakOverlap", peakOverlap, "(m)");
+  // The paper's law resolves the same peaks without refusing any.
+  WorldSettings probe = settings;
+  probe.contactLaw = ContactLaw::PaperViscous;
+  const ContactModel m = ContactModel::fromSettings(probe);
+  return settings.material.youngsModulus * std::pow(m.peakOverlapGrain / peakOverlap, 2.5);
+}
+
+namespace detail {
+
+void requireNoPassThrough(const WorldSettings& s, double peakOverlap, double passOverlap,
+                          const std::string& what) {
+  const double d = s.particleDiameter;
+  if (peakOverlap <= passOverlap * d) return;
+  // ξ ∝ E^{-2/5} v^{4/5}: the E (or the speed) that brings the peak down to the limit.
+  const double ratio = peakOverlap / (passOverlap * d);
+  const double youngs = s.material.youngsModulus * std::pow(ratio, 2.5);
+  const double speed = s.maxSpeed * std::pow(ratio, -1.25);
+  throw InvalidArgument(
+      "WorldSettings.material.youngsModulus = " + formatValue(s.material.youngsModulus) +
+      " Pa is too soft for WorldSettings.maxSpeed = " + formatValue(s.maxSpeed) + " m/s: " + what +
+      " at twice maxSpeed (a spinning grain's surface) would overlap by " +
+      formatValue(peakOverlap / d) + " d (closed-form Hertz peak), past " +
+      formatValue(passOverlap) + " d where it passes through; raise youngsModulus to at least " +
+      formatValue(youngs) + " Pa or lower maxSpeed to " + formatValue(speed) +
+      " m/s (ContactLaw::PaperViscous caps the overlap instead)");
+}
+
+}  // namespace detail
+
 ContactModel ContactModel::fromSettings(const WorldSettings& s) {
   using detail::require;
   using detail::requireFinite;
@@ -113,20 +155,49 @@ ContactModel ContactModel::fromSettings(const WorldSettings& s) {
           "must be >= " + detail::formatValue(kMinStepsPerContact) +
               " (substeps per contact time t_n)");
   requireNonNegative("WorldSettings.timeStep", s.timeStep, "(s)");
+  require(s.contactLaw == ContactLaw::HertzMindlin || s.contactLaw == ContactLaw::PaperViscous,
+          "WorldSettings.contactLaw", double(unsigned(s.contactLaw)),
+          "must be ContactLaw::HertzMindlin (0) or ContactLaw::PaperViscous (1)");
 
   ContactModel m;
+  m.law = s.contactLaw;
   const double d = s.particleDiameter;
   const double r = 0.5 * d;
   const double nu = s.material.poissonRatio;
-  const double eStar = s.material.youngsModulus / (2.0 * (1.0 - nu * nu));
-  const double eStarWall = s.material.youngsModulus / (1.0 - nu * nu);
+  const double youngs = s.material.youngsModulus;
+  const double eStar = youngs / (2.0 * (1.0 - nu * nu));
+  const double eStarWall = youngs / (1.0 - nu * nu);
+  // G = E / (2 (1 + ν)); G* = G / (2 (2 - ν)) for two equal grains, G / (2 - ν) against a rigid
+  // surface.
+  const double shear = youngs / (2.0 * (1.0 + nu));
+  const double gStar = shear / (2.0 * (2.0 - nu));
+  const double gStarWall = shear / (2.0 - nu);
   const double mass = s.material.density * std::numbers::pi * d * d * d / 6.0;
   m.radius = static_cast<float>(r);
   m.particleMass = static_cast<float>(mass);
+  m.granuleMass = static_cast<float>(4.0 * mass);
   m.stiffnessGrain = static_cast<float>(4.0 / 3.0 * eStar * std::sqrt(0.5 * r));
   m.stiffnessWall = static_cast<float>(4.0 / 3.0 * eStarWall * std::sqrt(r));
+  m.shearStiffnessGrain = static_cast<float>(8.0 * gStar * std::sqrt(0.5 * r));
+  m.shearStiffnessWall = static_cast<float>(8.0 * gStarWall * std::sqrt(r));
   m.dampingFactorGrain = static_cast<float>(hertzDampingFactor(s.material.restitution));
-  m.maxOverlap = static_cast<float>(0.1 * d);
+  const bool paper = s.contactLaw == ContactLaw::PaperViscous;
+  m.maxOverlap = paper ? static_cast<float>(0.1 * d) : std::numeric_limits<float>::infinity();
+
+  // The peak overlaps of the stiffness check: two granules head-on, and a granule against a rigid
+  // wall and against a static particle (a rough floor), all at the contact speed.
+  const double granule = 4.0 * mass;
+  const double speed = kContactSpeedFactor * s.maxSpeed;
+  m.peakOverlapGrain = static_cast<float>(hertzPeakOverlap(0.5 * granule, m.stiffnessGrain, speed));
+  m.peakOverlapWall = static_cast<float>(hertzPeakOverlap(granule, m.stiffnessWall, speed));
+  m.peakOverlapFixedParticle =
+      static_cast<float>(hertzPeakOverlap(granule, m.stiffnessGrain, speed));
+  if (!paper) {
+    detail::requireNoPassThrough(s, m.peakOverlapGrain, kGrainPassOverlap,
+                                 "a granule meeting another head-on");
+    detail::requireNoPassThrough(s, m.peakOverlapWall, kThinWallPassOverlap,
+                                 "a granule meeting a thin wall (cylinder, funnel)");
+  }
 
   // t_n: the shorter of a grain-grain (m* = m/2) and a grain-wall (m* = m) impact at maxSpeed.
   const double tGrain =

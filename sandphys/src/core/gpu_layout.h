@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "sandphys/recording.h"
+
 namespace sandphys::detail {
 
 /// SSBO binding points, one per attribute (layout.glsl).
@@ -37,7 +39,11 @@ enum Binding : unsigned {
   kLargeBodies = 24,
   kLargeBodyForces = 25,
   kStateHashPartials = 26,
-  kBindingCount = 27,
+  kParticleTorque = 27,
+  kSortedSpin = 28,
+  kContactSlots0 = 29,  // kContactSlotGroups buffers in a row
+  kContactPairs = 32,
+  kBindingCount = 33,
 };
 
 /// Texture units of the read-only buffer-texture views of some of the buffers above (layout.glsl,
@@ -60,7 +66,11 @@ enum TextureUnit : unsigned {
   kParticleForceTexture = 12,
   kCellParticlesTexture = 13,
   kCellCountTexture = 14,
-  kTextureCount = 15,
+  kParticleTorqueTexture = 15,
+  kSortedSpinTexture = 16,
+  kContactSlots0Texture = 17,  // kContactSlotGroups views in a row
+  kContactPairsTexture = 20,
+  kTextureCount = 21,
 };
 
 inline constexpr unsigned kSimParamsBinding = 0;
@@ -92,12 +102,21 @@ enum ColliderType : std::uint32_t {
   kColliderRevolution = 3,  // cylinder wall and funnel: a segment swept around the y axis
 };
 
+/// Contact slots of ContactLaw::HertzMindlin (layout.glsl, contact_slots.glsl): per particle,
+/// kContactSlots slots of one vec4 (spring xyz, partner key), kContactSlotsPerGroup of them in
+/// each of kContactSlotGroups buffers.
+inline constexpr std::uint32_t kContactSlotsPerGroup = 4;
+inline constexpr std::uint32_t kContactSlotGroups = 3;
+static_assert(kContactSlotsPerGroup * kContactSlotGroups == kContactSlots);
+
 /// struct Collider in layout.glsl.
 struct GpuCollider {
   GpuVec4 a;
   GpuVec4 b;
   GpuVec4 c;
   GpuVec4 material;  // x: type, y: friction, z: damping factor c(e), w: ColliderId (uint bits)
+  GpuVec4 velocity;  // surface velocity at x: velocity + spin × x
+  GpuVec4 spin;
 };
 
 /// struct SinkBox in layout.glsl.
@@ -106,13 +125,14 @@ struct GpuSink {
   GpuVec4 hi;
 };
 
-/// One record of the contact list (contacts.comp with CONTACT_LIST): 4 vec4.
+/// One record of the contact list (contacts.comp with CONTACT_LIST): 5 vec4.
 struct GpuContactRecord {
   std::uint32_t particleA, particleB, bodyA, bodyB;
   float px, py, pz, overlap;
   float nx, ny, nz, normalForce;
   float tx, ty, tz;
   std::uint32_t collider;
+  float sx, sy, sz, unused;
 };
 
 /// Partial sums written by one workgroup of stats_reduce.comp.
@@ -131,13 +151,14 @@ struct SimParams {
   GpuUVec4 counts;
   GpuUVec4 counts2;
   GpuUVec4 colliderEnds;
+  GpuVec4 shearContact;
 };
 
-static_assert(sizeof(GpuCollider) == 64);
+static_assert(sizeof(GpuCollider) == 96);
 static_assert(sizeof(GpuSink) == 32);
-static_assert(sizeof(GpuContactRecord) == 64);
+static_assert(sizeof(GpuContactRecord) == 80);
 static_assert(sizeof(GpuStatsPartial) == 32);
-static_assert(sizeof(SimParams) == 112);
+static_assert(sizeof(SimParams) == 128);
 static_assert(offsetof(SimParams, counts) == 64);
 
 }  // namespace sandphys::detail

@@ -5,8 +5,11 @@
 #include <cstdio>
 #include <cstring>
 #include <numbers>
+#include <variant>
 
+#include "core/contact_state.h"
 #include "core/granule_spawner.h"
+#include "core/overlap_check.h"
 #include "core/validation.h"
 #include "core/world_impl.h"
 #include "gl/gl_check.h"
@@ -18,8 +21,11 @@ using namespace detail;
 namespace {
 
 // Particle counts above this would exceed the 128 MiB a single GL storage buffer may hold on
-// Mesa (16 bytes per particle attribute) and the 2^31 dispatch range.
-constexpr std::uint32_t kMaxParticles = 1u << 23;
+// Mesa (64 bytes per particle in each group of contact slots).
+constexpr std::uint32_t kMaxParticles = 1u << 21;
+// Collider keys of contact slots hold collider * 8 + face in 23 bits (contact_slots.glsl); the
+// contact kernel loops over every collider, so far fewer are practical.
+constexpr std::uint32_t kMaxColliders = 1u << 16;
 
 GpuVec4 toGpu(Vec3 v, float w) {
   return {v.x, v.y, v.z, w};
@@ -55,6 +61,18 @@ GpuVec4 surfaceParams(ColliderType type, const SurfaceMaterial& m) {
   return {float(type), m.friction, float(hertzDampingFactor(m.restitution)), 0.0f};
 }
 
+// The surface velocity v + ω × (x - reference) as the kernel evaluates it: v0 + ω × x with
+// v0 = v - ω × reference.
+void setMotion(GpuCollider& c, const std::string& type, const ColliderMotion& m, Vec3 reference) {
+  requireFiniteVec(type + ".motion.velocity", m.velocity);
+  requireFiniteVec(type + ".motion.angularVelocity", m.angularVelocity);
+  const Vec3 w = m.angularVelocity;
+  const Vec3 wxr{w.y * reference.z - w.z * reference.y, w.z * reference.x - w.x * reference.z,
+                 w.x * reference.y - w.y * reference.x};
+  c.velocity = {m.velocity.x - wxr.x, m.velocity.y - wxr.y, m.velocity.z - wxr.z, 0.0f};
+  c.spin = toGpu(w, 0.0f);
+}
+
 GpuCollider toGpu(const Plane& p) {
   requireFiniteVec("Plane.normal", p.normal);
   requireFinite("Plane.offset", p.offset);
@@ -63,11 +81,14 @@ GpuCollider toGpu(const Plane& p) {
                        double(p.normal.z) * p.normal.z);
   require(n > 1e-12, "Plane.normal (length)", n, "must be non-zero");
   // dot(n/|n|, x) < offset/|n| describes the same half-space.
-  return {
+  GpuCollider c{
       {float(p.normal.x / n), float(p.normal.y / n), float(p.normal.z / n), float(p.offset / n)},
       {},
       {},
       surfaceParams(kColliderPlane, p.material)};
+  const float o = c.a.w;
+  setMotion(c, "Plane", p.motion, {c.a.x * o, c.a.y * o, c.a.z * o});
+  return c;
 }
 
 GpuCollider toGpu(const Box& b) {
@@ -77,10 +98,12 @@ GpuCollider toGpu(const Box& b) {
   requirePositive("Box.halfExtents.z", b.halfExtents.z, "(m)");
   requireSurface("Box", b.material);
   Quat q = normalised(b.orientation, "Box.orientation");
-  return {toGpu(b.center, b.inside ? 1.0f : 0.0f),
-          toGpu(b.halfExtents, 0.0f),
-          {q.x, q.y, q.z, q.w},
-          surfaceParams(kColliderBox, b.material)};
+  GpuCollider c{toGpu(b.center, b.inside ? 1.0f : 0.0f),
+                toGpu(b.halfExtents, 0.0f),
+                {q.x, q.y, q.z, q.w},
+                surfaceParams(kColliderBox, b.material)};
+  setMotion(c, "Box", b.motion, b.center);
+  return c;
 }
 
 GpuCollider toGpu(const Cylinder& c) {
@@ -88,10 +111,12 @@ GpuCollider toGpu(const Cylinder& c) {
   requirePositive("Cylinder.radius", c.radius, "(m)");
   requirePositive("Cylinder.height", c.height, "(m)");
   requireSurface("Cylinder", c.material);
-  return {toGpu(c.base, 0.0f),
-          {c.radius, 0.0f, c.radius, c.height},
-          {},
-          surfaceParams(kColliderRevolution, c.material)};
+  GpuCollider g{toGpu(c.base, 0.0f),
+                {c.radius, 0.0f, c.radius, c.height},
+                {},
+                surfaceParams(kColliderRevolution, c.material)};
+  setMotion(g, "Cylinder", c.motion, c.base);
+  return g;
 }
 
 GpuCollider toGpu(const Funnel& f) {
@@ -103,10 +128,12 @@ GpuCollider toGpu(const Funnel& f) {
   requirePositive("Funnel.height", f.height, "(m)");
   requireSurface("Funnel", f.material);
   float top = f.outletRadius + f.height * std::tan(f.halfAngle);
-  return {toGpu(f.outletCenter, 0.0f),
-          {f.outletRadius, 0.0f, top, f.height},
-          {},
-          surfaceParams(kColliderRevolution, f.material)};
+  GpuCollider c{toGpu(f.outletCenter, 0.0f),
+                {f.outletRadius, 0.0f, top, f.height},
+                {},
+                surfaceParams(kColliderRevolution, f.material)};
+  setMotion(c, "Funnel", f.motion, f.outletCenter);
+  return c;
 }
 
 }  // namespace
@@ -116,8 +143,9 @@ World::Impl::Impl(const GpuContext& context, const WorldSettings& s) : gpu(&cont
   require(settings.maxSubstepsPerFrame > 0, "WorldSettings.maxSubstepsPerFrame",
           settings.maxSubstepsPerFrame, "must be > 0");
   require(settings.maxBodies > 0, "WorldSettings.maxBodies", settings.maxBodies, "must be > 0");
-  require(settings.maxColliders > 0, "WorldSettings.maxColliders", settings.maxColliders,
-          "must be > 0");
+  require(settings.maxColliders > 0 && settings.maxColliders <= kMaxColliders,
+          "WorldSettings.maxColliders", settings.maxColliders,
+          "must be in [1, " + std::to_string(kMaxColliders) + "]");
   bodyCapacity = settings.maxBodies;
   std::uint64_t particles =
       settings.maxParticles ? settings.maxParticles : 4ull * settings.maxBodies;
@@ -128,8 +156,9 @@ World::Impl::Impl(const GpuContext& context, const WorldSettings& s) : gpu(&cont
   granule = tetrahedronTemplate(settings.particleDiameter, settings.material.density);
 
   context.makeCurrent();
-  kernels.compile();
-  buffers.allocate(bodyCapacity, particleCapacity, table.size, settings.maxColliders, 0, 0);
+  kernels.compile(settings.contactLaw);
+  buffers.allocate(bodyCapacity, particleCapacity, table.size, settings.maxColliders, 0, 0,
+                   keepsHistory());
   profiler.setEnabled(settings.profileKernels);
   uploadParams();
 }
@@ -179,9 +208,10 @@ std::uint32_t World::Impl::addBodies(const ParticleTemplate& shape,
                                 (std::uint32_t(motion) << kBodyMotionShift);
     info[i] = {std::uint32_t(firstParticle + i * perBody), std::uint32_t(perBody), flags, 0u};
     inertia[i] = toGpu(shape.principalInertia, shape.mass);
-    // -1 marks static particles, whose force the contact kernel skips (layout.glsl).
-    const float particleInvMass =
-        dynamic ? float(perBody) / shape.mass : (motion == Motion::Static ? -1.0f : 0.0f);
+    // -1 marks static particles, whose force the contact kernel skips (layout.glsl). The paper's
+    // law damps with the particle's share of the mass, HertzMindlin with the body's.
+    const float inverseMass = keepsHistory() ? 1.0f / shape.mass : float(perBody) / shape.mass;
+    const float particleInvMass = dynamic ? inverseMass : (motion == Motion::Static ? -1.0f : 0.0f);
     for (std::uint64_t k = 0; k < perBody; ++k) {
       local[i * perBody + k] = toGpu(shape.offsets[k], particleInvMass);
       owner[i * perBody + k] = std::uint32_t(firstBody + i);
@@ -206,6 +236,8 @@ std::uint32_t World::Impl::addBodies(const ParticleTemplate& shape,
   principalRotations.resize(bodyCount, shape.principalRotation);
   for (const BodyDesc& d : descs) bodyMotions.push_back(d.motion);
   bodyMasses.resize(bodyCount, shape.mass);
+  for (std::uint64_t i = 0; i < n; ++i)
+    particleEnds.push_back(std::uint32_t(firstParticle + (i + 1) * perBody));
   boundingRadii.resize(bodyCount, shape.boundingRadius);
   uploadBodyStates(firstBody, descs, shape);
   if (isGranule) granulesSpawned += std::uint32_t(n);
@@ -311,6 +343,65 @@ void World::setCollider(ColliderId id, const Funnel& f) {
   m_impl->putCollider(id.index, toGpu(f), f);
 }
 
+namespace {
+
+Vec3 displacementRate(Vec3 from, Vec3 to, float seconds) {
+  return {(to.x - from.x) / seconds, (to.y - from.y) / seconds, (to.z - from.z) / seconds};
+}
+
+// The plane's point nearest the origin (its motion's reference point).
+Vec3 planePoint(const Plane& p) {
+  const double n2 = double(p.normal.x) * p.normal.x + double(p.normal.y) * p.normal.y +
+                    double(p.normal.z) * p.normal.z;
+  const double k = n2 > 0.0 ? p.offset / n2 : 0.0;
+  return {float(p.normal.x * k), float(p.normal.y * k), float(p.normal.z * k)};
+}
+
+// The angular velocity that turns `from` into `to` in `seconds` (shortest way).
+Vec3 rotationRate(Quat from, Quat to, float seconds) {
+  from = normalised(from, "Box.orientation");
+  to = normalised(to, "Box.orientation");
+  Quat d = multiply(to, {from.w, -from.x, -from.y, -from.z});
+  if (d.w < 0.0f) d = {-d.w, -d.x, -d.y, -d.z};
+  const double s = std::sqrt(double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z);
+  if (s == 0.0) return {};
+  const double rate = 2.0 * std::atan2(s, double(d.w)) / s / seconds;
+  return {float(d.x * rate), float(d.y * rate), float(d.z * rate)};
+}
+
+// `shape` with the motion that takes the collider from `before` to it in `seconds`.
+ColliderShape withDerivedMotion(const ColliderShape& before, ColliderShape shape, float seconds) {
+  if (before.index() != shape.index()) {
+    std::visit([](auto& s) { s.motion = {}; }, shape);
+    return shape;
+  }
+  if (auto* p = std::get_if<Plane>(&shape)) {
+    p->motion = {displacementRate(planePoint(std::get<Plane>(before)), planePoint(*p), seconds),
+                 {}};
+  } else if (auto* b = std::get_if<Box>(&shape)) {
+    const Box& old = std::get<Box>(before);
+    b->motion = {displacementRate(old.center, b->center, seconds),
+                 rotationRate(old.orientation, b->orientation, seconds)};
+  } else if (auto* c = std::get_if<Cylinder>(&shape)) {
+    c->motion = {displacementRate(std::get<Cylinder>(before).base, c->base, seconds), {}};
+  } else if (auto* f = std::get_if<Funnel>(&shape)) {
+    f->motion = {displacementRate(std::get<Funnel>(before).outletCenter, f->outletCenter, seconds),
+                 {}};
+  }
+  return shape;
+}
+
+}  // namespace
+
+void World::moveCollider(ColliderId id, const ColliderShape& shape, float seconds) {
+  requirePositive("World::moveCollider seconds", seconds, "(s)");
+  if (!id.isValid() || id.index >= m_impl->colliderShapes.size()) {
+    throw InvalidId("ColliderId " + std::to_string(id.index) + " does not exist");
+  }
+  const ColliderShape moved = withDerivedMotion(m_impl->colliderShapes[id.index], shape, seconds);
+  std::visit([&](const auto& s) { setCollider(id, s); }, moved);
+}
+
 SinkId World::addSink(const Sink& sink) {
   requireFiniteVec("Sink.min", sink.min);
   requireFiniteVec("Sink.max", sink.max);
@@ -341,6 +432,12 @@ BodyId World::addRoughFloor(const RoughFloor& floor) {
     requirePositive("RoughFloor.halfExtentZ", floor.halfExtentZ, "(m) (or give a radius)");
     hx = floor.halfExtentX;
     hz = floor.halfExtentZ;
+  }
+  if (m_impl->keepsHistory()) {
+    // A granule landing on the floor at maxSpeed must not slip between its particles.
+    requireNoPassThrough(
+        m_impl->settings, m_impl->model.peakOverlapFixedParticle, floorPassOverlap(spacing / d),
+        "a granule meeting a RoughFloor of spacing " + formatValue(spacing / d) + " d");
   }
   const int nx = int(std::floor(hx / spacing));
   const int nz = int(std::floor(hz / spacing));
@@ -430,6 +527,14 @@ void World::restoreSnapshot(const WorldSnapshot& snapshot) {
   require(slots <= w.bodyCount, "WorldSnapshot.bodies.size()", slots,
           "must be <= the World's " + std::to_string(w.bodyCount) +
               " body slots (restore a snapshot into the World that reached its frame, or later)");
+  // The snapshot's bodies own the first particles; their contact history must come with them.
+  const std::uint32_t particles = slots == 0 ? 0u : w.particleEnd(slots - 1);
+  const std::size_t expected = w.keepsHistory() ? particles : 0u;
+  require(snapshot.contacts.size() == expected, "WorldSnapshot.contacts.size()",
+          double(snapshot.contacts.size()),
+          "must be " + std::to_string(expected) +
+              (w.keepsHistory() ? " (the particles of its bodies, under ContactLaw::HertzMindlin)"
+                                : " (ContactLaw::PaperViscous keeps no contact history)"));
   w.gpu->makeCurrent();
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   // Only the snapshot's fields change: each vec4's w (mass, inverse mass and the like) and the
@@ -459,6 +564,7 @@ void World::restoreSnapshot(const WorldSnapshot& snapshot) {
   w.buffers[kBodyVelocity].upload(0, count * sizeof(GpuVec4), velocity.data());
   w.buffers[kBodyAngularVelocity].upload(0, count * sizeof(GpuVec4), spin.data());
   w.buffers[kBodyInfo].upload(0, count * sizeof(GpuUVec4), info.data());
+  if (w.keepsHistory()) uploadContacts(w.buffers, snapshot.contacts, w.particleCount);
   gl::check("World::restoreSnapshot");
   w.steps = snapshot.steps;
   w.simTime = snapshot.simulatedTime;
@@ -474,7 +580,7 @@ void World::reserve(std::uint32_t maxBodies, std::uint32_t maxParticles) {
   w.particleCapacity = std::max(w.particleCapacity, maxParticles);
   w.table = HashTable::forParticles(w.particleCapacity);
   w.buffers.allocate(w.bodyCapacity, w.particleCapacity, w.table.size, w.settings.maxColliders,
-                     w.bodyCount, w.particleCount);
+                     w.bodyCount, w.particleCount, w.keepsHistory());
   w.paramsDirty = true;
 }
 

@@ -11,7 +11,17 @@ namespace sandphys::detail {
 namespace {
 
 // Element size of each binding and whether it is sized by bodies, particles or the hash table.
-enum class SizedBy { Bodies, Particles, Table, TablePlusOne, ScanBlocks, Colliders, Fixed };
+// History: by particles when the contact law keeps contact state (HertzMindlin), else unused.
+enum class SizedBy {
+  Bodies,
+  Particles,
+  History,
+  Table,
+  TablePlusOne,
+  ScanBlocks,
+  Colliders,
+  Fixed
+};
 struct BufferSpec {
   const char* name;
   std::size_t elementBytes;
@@ -46,7 +56,14 @@ constexpr BufferSpec kSpecs[kBindingCount] = {
     {"largeBodies", 4 * kMaxLargeBodies, SizedBy::Fixed},
     {"largeBodyForces", 32 * kMaxLargeBodies, SizedBy::Fixed},
     {"stateHashPartials", 8 * kStatsWorkgroups, SizedBy::Fixed},
+    {"particleTorque", 16, SizedBy::History},
+    {"sortedSpin", 16, SizedBy::History},
+    {"contactSlots0", 16 * kContactSlotsPerGroup, SizedBy::History},
+    {"contactSlots1", 16 * kContactSlotsPerGroup, SizedBy::History},
+    {"contactSlots2", 16 * kContactSlotsPerGroup, SizedBy::History},
+    {"contactPairs", 16, SizedBy::History},
 };
+static_assert(kContactSlots0 + kContactSlotGroups == kContactPairs);
 
 }  // namespace
 
@@ -71,7 +88,14 @@ constexpr TextureView kTextureViews[] = {
     {kParticleForceTexture, kParticleForce, GL_RGBA32F},
     {kCellParticlesTexture, kCellParticles, GL_R32UI},
     {kCellCountTexture, kCellCount, GL_R32UI},
+    {kParticleTorqueTexture, kParticleTorque, GL_RGBA32F},
+    {kSortedSpinTexture, kSortedSpin, GL_RGBA32F},
+    {TextureUnit(kContactSlots0Texture + 0), Binding(kContactSlots0 + 0), GL_RGBA32F},
+    {TextureUnit(kContactSlots0Texture + 1), Binding(kContactSlots0 + 1), GL_RGBA32F},
+    {TextureUnit(kContactSlots0Texture + 2), Binding(kContactSlots0 + 2), GL_RGBA32F},
+    {kContactPairsTexture, kContactPairs, GL_RGBA32UI},
 };
+static_assert(kContactSlots0Texture + kContactSlotGroups == kContactPairsTexture);
 static_assert(std::size(kTextureViews) == kTextureCount);
 
 // scan_blocks.comp reads whole blocks of the table without bounds checks.
@@ -108,7 +132,7 @@ HashTable HashTable::forParticles(std::uint32_t particles) {
 
 void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::uint32_t tableSize,
                             std::uint32_t colliders, std::uint32_t bodiesInUse,
-                            std::uint32_t particlesInUse) {
+                            std::uint32_t particlesInUse, bool history) {
   for (unsigned b = 0; b < kBindingCount; ++b) {
     const BufferSpec& spec = kSpecs[b];
     std::size_t count = 1;
@@ -121,6 +145,10 @@ void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::
       case SizedBy::Particles:
         count = particles;
         keep = particlesInUse;
+        break;
+      case SizedBy::History:
+        count = history ? particles : 1;
+        keep = history ? particlesInUse : 0;
         break;
       case SizedBy::Table:
         count = tableSize;
@@ -178,21 +206,27 @@ std::uint64_t WorldBuffers::bytes() const {
   return total;
 }
 
-void WorldKernels::compile() {
+void WorldKernels::compile(ContactLaw law) {
   gl::ShaderLibrary library;
-  bodiesToParticles = library.compileCompute("sim/bodies_to_particles.comp");
-  scanBlocks = library.compileCompute("sim/scan_blocks.comp");
-  scanBlockSums = library.compileCompute("sim/scan_block_sums.comp");
-  scanAdd = library.compileCompute("sim/scan_add.comp");
-  gridScatter = library.compileCompute("sim/grid_scatter.comp");
-  gridSort = library.compileCompute("sim/grid_sort.comp");
-  gridCopy = library.compileCompute("sim/grid_copy.comp");
-  contacts = library.compileCompute("sim/contacts.comp");
-  contactList = library.compileCompute("sim/contacts.comp", {"CONTACT_LIST 1"});
-  integrateBodies = library.compileCompute("sim/integrate_bodies.comp");
-  integrateLargeBodies = library.compileCompute("sim/integrate_large_bodies.comp");
-  statsReduce = library.compileCompute("sim/stats_reduce.comp");
-  stateHash = library.compileCompute("sim/state_hash.comp");
+  std::vector<std::string> defines;
+  if (law == ContactLaw::PaperViscous) defines.push_back("PAPER_LAW 1");
+  auto compile = [&](const char* name, std::vector<std::string> extra = {}) {
+    extra.insert(extra.end(), defines.begin(), defines.end());
+    return library.compileCompute(name, extra);
+  };
+  bodiesToParticles = compile("sim/bodies_to_particles.comp");
+  scanBlocks = compile("sim/scan_blocks.comp");
+  scanBlockSums = compile("sim/scan_block_sums.comp");
+  scanAdd = compile("sim/scan_add.comp");
+  gridScatter = compile("sim/grid_scatter.comp");
+  gridSort = compile("sim/grid_sort.comp");
+  gridCopy = compile("sim/grid_copy.comp");
+  contacts = compile("sim/contacts.comp");
+  contactList = compile("sim/contacts.comp", {"CONTACT_LIST 1"});
+  integrateBodies = compile("sim/integrate_bodies.comp");
+  integrateLargeBodies = compile("sim/integrate_large_bodies.comp");
+  statsReduce = compile("sim/stats_reduce.comp");
+  stateHash = compile("sim/state_hash.comp");
 }
 
 void WorldKernels::release() {

@@ -33,9 +33,11 @@ struct WorldBuffers {
   gl::Buffer& operator[](Binding b) { return storage[b]; }
   const gl::Buffer& operator[](Binding b) const { return storage[b]; }
 
-  /// Allocates (or, when already allocated, grows keeping contents) for these capacities.
+  /// Allocates (or, when already allocated, grows keeping contents) for these capacities;
+  /// `history`: the contact law keeps contact state (the contact slots and what goes with them).
   void allocate(std::uint32_t bodies, std::uint32_t particles, std::uint32_t tableSize,
-                std::uint32_t colliders, std::uint32_t bodiesInUse, std::uint32_t particlesInUse);
+                std::uint32_t colliders, std::uint32_t bodiesInUse, std::uint32_t particlesInUse,
+                bool history);
   void bindAll() const;
   std::uint64_t bytes() const;
 };
@@ -56,7 +58,8 @@ struct WorldKernels {
   GLuint statsReduce = 0;
   GLuint stateHash = 0;
 
-  void compile();
+  /// Compiles every kernel for `law` (PAPER_LAW defined for ContactLaw::PaperViscous).
+  void compile(ContactLaw law);
   void release();
 };
 
@@ -83,12 +86,13 @@ struct World::Impl {
   std::uint32_t bodyCount = 0;
   std::uint32_t particleCount = 0;
   std::uint32_t granulesSpawned = 0;
-  std::vector<std::uint32_t> generations;  // per body slot
-  std::vector<Quat> principalRotations;    // per body slot: template frame -> principal frame
-  std::vector<Motion> bodyMotions;         // per body slot, as added
-  std::vector<float> bodyMasses;           // per body slot, kg
-  std::vector<float> boundingRadii;        // per body slot, m
-  std::vector<std::uint32_t> largeBodies;  // body slots flagged kBodyLarge (layout.glsl)
+  std::vector<std::uint32_t> generations;   // per body slot
+  std::vector<Quat> principalRotations;     // per body slot: template frame -> principal frame
+  std::vector<Motion> bodyMotions;          // per body slot, as added
+  std::vector<float> bodyMasses;            // per body slot, kg
+  std::vector<float> boundingRadii;         // per body slot, m
+  std::vector<std::uint32_t> particleEnds;  // per body slot: one past its last particle
+  std::vector<std::uint32_t> largeBodies;   // body slots flagged kBodyLarge (layout.glsl)
   std::vector<detail::GpuCollider> colliders;
   std::vector<ColliderShape> colliderShapes;  // the descriptors of `colliders`, for renderers
   std::vector<detail::GpuSink> sinks;
@@ -106,6 +110,12 @@ struct World::Impl {
 
   Impl(const GpuContext& context, const WorldSettings& s);
   ~Impl();
+
+  /// The contact law keeps contact state across substeps (HertzMindlin): slots, pair counts,
+  /// torques and the sorted spins exist.
+  bool keepsHistory() const { return settings.contactLaw == ContactLaw::HertzMindlin; }
+  /// One past the last particle of body slot `body`.
+  std::uint32_t particleEnd(std::uint32_t body) const { return particleEnds[body]; }
 
   // Setup (world.cpp)
   std::uint32_t addBodies(const ParticleTemplate& shape, const std::vector<BodyDesc>& descs,

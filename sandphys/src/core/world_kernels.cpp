@@ -31,6 +31,8 @@ void World::Impl::uploadParams() {
     ends[type - kColliderPlane] = std::uint32_t(sorted.size());
   }
   p.colliderEnds = {ends[0], ends[1], ends[2], 0u};
+  p.shearContact = {model.shearStiffnessGrain, model.shearStiffnessWall,
+                    std::sqrt(model.stiffnessGrain), std::sqrt(model.stiffnessWall)};
   buffers[kColliders].upload(0, sorted.size() * sizeof(GpuCollider), sorted.data());
   buffers.params.upload(0, sizeof p, &p);
   paramsDirty = false;
@@ -115,7 +117,7 @@ WorldStats World::Impl::reduceStats() {
   for (const auto& p : partials) {
     pairEnds += p.counts.x;
     wallContacts += p.counts.y;
-    s.penetrationClamps += p.counts.z;
+    (keepsHistory() ? s.contactSlotOverflows : s.penetrationClamps) += p.counts.z;
     s.velocityClamps += p.counts.w;
     s.kineticEnergy += double(p.sums.x) + double(p.sums.y);
     s.maxOverlap = std::max(s.maxOverlap, double(p.sums.z));

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "core/contact_state.h"
 #include "core/world_impl.h"
 #include "gl/gl_check.h"
 
@@ -92,6 +93,7 @@ WorldSnapshot World::readSnapshot() const {
     b.angularVelocity = {omega.x, omega.y, omega.z};
     b.alive = (stored.info[i].z & kBodyAlive) != 0;
   }
+  if (w.keepsHistory()) snapshot.contacts = downloadContacts(w.buffers, w.particleCount);
   return snapshot;
 }
 
@@ -174,7 +176,8 @@ std::vector<ContactRecord> World::readContacts() const {
                 {r.nx, r.ny, r.nz},
                 r.normalForce,
                 {r.tx, r.ty, r.tz},
-                r.overlap};
+                r.overlap,
+                {r.sx, r.sy, r.sz}};
     }
     // Appends happen in thread order: sort so that the list is the same on every call.
     std::sort(out.begin(), out.end(), [](const ContactRecord& a, const ContactRecord& b) {

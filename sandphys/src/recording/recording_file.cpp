@@ -31,6 +31,8 @@ constexpr std::size_t kFileHeaderBytes = sizeof kMagic + 4;
 constexpr std::size_t kRecordHeaderBytes = 8;
 constexpr std::size_t kEndPayloadBytes = 32;
 constexpr std::size_t kSnapshotBodyBytes = 14 * 4;
+constexpr std::size_t kSnapshotContactBytes = sizeof(StoredContacts);
+static_assert(sizeof(StoredContacts) == (4 * kContactSlots + 4) * 4);
 // Fast and still about halves float state; recordings are written while a scene runs.
 constexpr int kZstdLevel = 3;
 
@@ -167,14 +169,17 @@ WorldSnapshot readSnapshot(Reader& in, const std::string& context) {
   snapshot.steps = in.get<std::uint64_t>();
   snapshot.simulatedTime = in.get<double>();
   const std::uint32_t bodies = in.get<std::uint32_t>();
+  const std::uint32_t particles = in.get<std::uint32_t>();
   const std::size_t compressedSize = in.remaining();
   const std::uint8_t* compressed = in.take(compressedSize);
-  const std::size_t rawSize = std::size_t(bodies) * kSnapshotBodyBytes;
+  const std::size_t rawSize =
+      std::size_t(bodies) * kSnapshotBodyBytes + std::size_t(particles) * kSnapshotContactBytes;
   const unsigned long long contentSize = ZSTD_getFrameContentSize(compressed, compressedSize);
   if (contentSize != rawSize) {
     throw RecordingError(context + " is malformed: the snapshot of frame " +
                          std::to_string(snapshot.frame) + " does not hold " +
-                         std::to_string(bodies) + " bodies");
+                         std::to_string(bodies) + " bodies and the contacts of " +
+                         std::to_string(particles) + " particles");
   }
   std::vector<std::uint8_t> raw(rawSize);
   const std::size_t result = ZSTD_decompress(raw.data(), raw.size(), compressed, compressedSize);
@@ -191,6 +196,13 @@ WorldSnapshot readSnapshot(Reader& in, const std::string& context) {
     for (float& v : b.velocity) v = body.get<float>();
     for (float& v : b.angularVelocity) v = body.get<float>();
     b.alive = body.get<std::uint32_t>() != 0;
+  }
+  snapshot.contacts.resize(particles);
+  for (StoredContacts& c : snapshot.contacts) {
+    for (auto& slot : c.slots) {
+      for (std::uint32_t& word : slot) word = body.get<std::uint32_t>();
+    }
+    for (std::uint32_t& word : c.pairs) word = body.get<std::uint32_t>();
   }
   return snapshot;
 }
@@ -279,6 +291,12 @@ void RecordingWriter::addSnapshot(const WorldSnapshot& snapshot) {
     for (float v : b.angularVelocity) raw.put(v);
     raw.put(std::uint32_t(b.alive ? 1u : 0u));
   }
+  for (const StoredContacts& c : snapshot.contacts) {
+    for (const auto& slot : c.slots) {
+      for (std::uint32_t word : slot) raw.put(word);
+    }
+    for (std::uint32_t word : c.pairs) raw.put(word);
+  }
   std::vector<std::uint8_t> compressed(ZSTD_compressBound(raw.data().size()));
   const std::size_t size = ZSTD_compress(compressed.data(), compressed.size(), raw.data().data(),
                                          raw.data().size(), kZstdLevel);
@@ -291,6 +309,7 @@ void RecordingWriter::addSnapshot(const WorldSnapshot& snapshot) {
   out.put(snapshot.steps);
   out.put(snapshot.simulatedTime);
   out.put(std::uint32_t(snapshot.bodies.size()));
+  out.put(std::uint32_t(snapshot.contacts.size()));
   out.putRaw(compressed.data(), size);
   writeRecord(kSnapshotTag, out.data());
   ++m_snapshots;

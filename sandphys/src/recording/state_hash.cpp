@@ -104,12 +104,30 @@ std::uint64_t stateHash(const WorldSnapshot& snapshot) {
     low += h.x;
     high += h.y;
   }
+  // The slots in the order the GPU reads them: the first slot of each of the three group
+  // buffers, then the second of each, and so on.
+  constexpr std::uint32_t kGroups = 3;
+  constexpr std::uint32_t kPerGroup = kContactSlots / kGroups;
+  for (std::uint32_t i = 0; i < snapshot.contacts.size(); ++i) {
+    const StoredContacts& c = snapshot.contacts[i];
+    Lanes h{fmix(i ^ 0x13198a2eu), fmix(i ^ 0x03707344u)};
+    for (std::uint32_t g = 0; g < kPerGroup; ++g) {
+      for (std::uint32_t group = 0; group < kGroups; ++group) {
+        for (std::uint32_t word : c.slots[group * kPerGroup + g]) h = absorb(h, word);
+      }
+    }
+    for (std::uint32_t word : c.pairs) h = absorb(h, word);
+    low += h.x;
+    high += h.y;
+  }
   return (std::uint64_t(high) << 32) | low;
 }
 
 std::string StateDifference::describe() const {
-  std::string text = "body " + std::to_string(body) + " " + field + ": recorded ";
-  if (field == "body count" || field == "alive" || field == "body" || field == "motion") {
+  std::string text = std::string(subject == Subject::Particle ? "particle " : "body ") +
+                     std::to_string(body) + " " + field + ": recorded ";
+  if (integer || field == "body count" || field == "alive" || field == "body" ||
+      field == "motion") {
     return text + std::to_string(static_cast<long long>(recorded)) + ", replayed " +
            std::to_string(static_cast<long long>(replayed));
   }
@@ -134,6 +152,38 @@ std::optional<StateDifference> firstDifference(const WorldSnapshot& recorded,
   if (recorded.bodies.size() != replayed.bodies.size()) {
     return StateDifference{std::uint32_t(common), "body count", double(recorded.bodies.size()),
                            double(replayed.bodies.size())};
+  }
+  // Contact history: named by particle, slot and word.
+  const std::size_t particles = std::min(recorded.contacts.size(), replayed.contacts.size());
+  for (std::size_t i = 0; i < particles; ++i) {
+    const StoredContacts& a = recorded.contacts[i];
+    const StoredContacts& b = replayed.contacts[i];
+    for (std::uint32_t k = 0; k < kContactSlots; ++k) {
+      for (std::uint32_t w = 0; w < 4; ++w) {
+        if (a.slots[k][w] == b.slots[k][w]) continue;
+        static constexpr const char* kWords[4] = {"spring.x", "spring.y", "spring.z", "key"};
+        const bool isFloat = w < 3;
+        return StateDifference{
+            std::uint32_t(i),
+            "contact slot " + std::to_string(k) + " " + kWords[w],
+            isFloat ? double(std::bit_cast<float>(a.slots[k][w])) : double(a.slots[k][w]),
+            isFloat ? double(std::bit_cast<float>(b.slots[k][w])) : double(b.slots[k][w]),
+            StateDifference::Subject::Particle,
+            !isFloat};
+      }
+    }
+    for (std::uint32_t w = 0; w < a.pairs.size(); ++w) {
+      if (a.pairs[w] != b.pairs[w]) {
+        return StateDifference{
+            std::uint32_t(i),   "contact pairs " + std::to_string(w), double(a.pairs[w]),
+            double(b.pairs[w]), StateDifference::Subject::Particle,   true};
+      }
+    }
+  }
+  if (recorded.contacts.size() != replayed.contacts.size()) {
+    return StateDifference{std::uint32_t(particles),           "particle count",
+                           double(recorded.contacts.size()),   double(replayed.contacts.size()),
+                           StateDifference::Subject::Particle, true};
   }
   return std::nullopt;
 }

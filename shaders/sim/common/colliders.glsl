@@ -50,6 +50,14 @@ vec4 boxHit(Collider c, vec3 local, float r, int axis) {
   return vec4(quatRotate(c.c, normal), r + depth[nearestAxis]);
 }
 
+// Which face of the box boxHit(c, local, r, axis) reports, for the contact's slot: a container's
+// wall (axis, and the side it is on), 0 for a solid obstacle's single contact.
+uint boxFace(Collider c, vec3 local, int axis) {
+  if (c.a.w <= 0.5) return 0u;
+  bool maxSide = c.b[axis] - local[axis] < c.b[axis] + local[axis];  // as boxHit decides
+  return uint(axis) * 2u + (maxSide ? 1u : 0u);
+}
+
 vec4 revolutionHit(Collider c, vec3 p, float r) {
   vec3 rel = p - c.a.xyz;
   float radial = length(rel.xz);

@@ -31,3 +31,55 @@ ContactResult contactForce(float xi, vec3 n, vec3 vRel, float kn, float dampingF
   result.tangentialForce = fs;
   return result;
 }
+
+// ContactLaw::HertzMindlin (docs/architecture.md, "contacts"), as LAMMPS pair granular with
+// hertz/material, damping tsuji and tangential mindlin (x_gamma_t = 1):
+//   F_n = k_n xi^3/2 + eta_n xi',            eta_n = c(e) sqrt(m* k_n) xi^1/4,  F_n >= 0
+//   delta <- delta rotated into the tangent plane (length kept) + v_t dt
+//   F_t = -k_t delta - eta_n v_t,            k_t = k_t0 xi^1/2
+//   |F_t| > mu F_n: F_t <- mu F_n F_t/|F_t|, delta <- -(F_t + eta_n v_t) / k_t   (slip)
+// n points from the other body towards this particle; vRel is this body's velocity minus the
+// other's at the contact point, so friction sees both spins. Every step is an odd function of
+// (n, vRel, delta), and the two sides of a pair start from the same zero spring: the two sides
+// keep exactly negated springs and forces, bit for bit. invMassSum = n_pairs (1/M_a + 1/M_b).
+// advance = false takes `spring` as this substep's (World::readContacts lists what was applied).
+
+struct MindlinResult {
+  vec3 force;
+  float normalForce;
+  vec3 tangentialForce;
+  vec3 spring;
+};
+
+MindlinResult hertzMindlin(float xi, vec3 n, vec3 vRel, float kn, float rootKn, float kt0,
+                           float dampingFactor, float invMassSum, float friction, float dt,
+                           vec3 spring, bool advance) {
+  float rootXi = sqrt(xi);
+  float eta = dampingFactor * rootKn * inversesqrt(invMassSum) * sqrt(rootXi);
+  float xiDot = -dot(vRel, n);
+  float fn = max(kn * xi * rootXi + eta * xiDot, 0.0);
+  vec3 vt = vRel + xiDot * n;
+
+  if (advance) {
+    // The spring turns with the contact: drop its normal part, keep its length.
+    vec3 planar = spring - dot(spring, n) * n;
+    float planar2 = dot(planar, planar);
+    spring = planar2 > 0.0 ? planar * sqrt(dot(spring, spring) / planar2) : vec3(0.0);
+    spring += vt * dt;
+  }
+
+  float kt = kt0 * rootXi;
+  vec3 ft = -kt * spring - eta * vt;
+  float ft2 = dot(ft, ft);
+  float cap = friction * fn;
+  if (ft2 > cap * cap) {
+    ft *= cap * inversesqrt(ft2);
+    spring = -(ft + eta * vt) / kt;
+  }
+  MindlinResult r;
+  r.force = fn * n + ft;
+  r.normalForce = fn;
+  r.tangentialForce = ft;
+  r.spring = spring;
+  return r;
+}

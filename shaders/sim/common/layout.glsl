@@ -42,7 +42,8 @@
 // xyz: contact + collider force of the last substep (N).
 #define PARTICLE_FORCE(access) layout(std430, binding = 10) access buffer ParticleForceBuffer { vec4 particleForce[]; };
 // x: particle-particle contacts in the last substep; y: largest overlap since the stats were read
-// (float bits); z: penetration-guard count since creation; w: collider contacts in the last substep.
+// (float bits); z: guard count since creation (PAPER_LAW: overlaps capped; otherwise contacts that
+// found no free slot); w: collider contacts in the last substep.
 #define PARTICLE_STATS(access) layout(std430, binding = 11) access buffer ParticleStatsBuffer { uvec4 particleStats[]; };
 // Particles per hash bucket; returns to zero after every scatter.
 #define CELL_COUNT(access) layout(std430, binding = 12) access buffer CellCountBuffer { uint cellCount[]; };
@@ -78,12 +79,22 @@
 #define PARTICLE_FORCE_TEXTURE layout(binding = 12) uniform samplerBuffer particleForceTexture;
 #define CELL_PARTICLES_TEXTURE layout(binding = 13) uniform usamplerBuffer cellParticlesTexture;
 #define CELL_COUNT_TEXTURE layout(binding = 14) uniform usamplerBuffer cellCountTexture;
+#define PARTICLE_TORQUE_TEXTURE layout(binding = 15) uniform samplerBuffer particleTorqueTexture;
+#define SORTED_SPIN_TEXTURE layout(binding = 16) uniform samplerBuffer sortedSpinTexture;
+#define CONTACT_SLOTS_0_TEXTURE layout(binding = 17) uniform samplerBuffer contactSlots0Texture;
+#define CONTACT_SLOTS_1_TEXTURE layout(binding = 18) uniform samplerBuffer contactSlots1Texture;
+#define CONTACT_SLOTS_2_TEXTURE layout(binding = 19) uniform samplerBuffer contactSlots2Texture;
+#define CONTACT_PAIRS_TEXTURE layout(binding = 20) uniform usamplerBuffer contactPairsTexture;
 
 struct Collider {
   vec4 a;         // meaning depends on the type (see colliders.glsl)
   vec4 b;
   vec4 c;
   vec4 material;  // x: type, y: friction, z: damping factor c(e), w: ColliderId (uint bits)
+  // The surface's velocity at x is velocity.xyz + cross(spin.xyz, x) (ColliderMotion, with the
+  // reference point folded into velocity on the CPU).
+  vec4 velocity;
+  vec4 spin;
 };
 #define COLLIDERS(access) layout(std430, binding = 19) access buffer ColliderBuffer { Collider colliders[]; };
 
@@ -102,7 +113,7 @@ struct StatsPartial {
   vec4 sums;     // x: translational KE (J); y: rotational KE (J); z: max overlap (m); w: alive granules
 };
 #define STATS_PARTIALS(access) layout(std430, binding = 22) access buffer StatsPartialsBuffer { StatsPartial statsPartials[]; };
-// Contact list for read-back: 16 floats per record (see contact_list.comp).
+// Contact list for read-back: 5 vec4 per record (contacts.comp with CONTACT_LIST).
 #define CONTACT_LIST_BUFFER(access) layout(std430, binding = 23) access buffer ContactListBuffer { uint contactListCount; uint contactListCapacity; uint pad0; uint pad1; vec4 contactList[]; };
 
 // Body slot of each body flagged BODY_LARGE, in the order they were added.
@@ -113,6 +124,28 @@ struct StatsPartial {
 #define LARGE_BODY_FORCES(access) layout(std430, binding = 25) access buffer LargeBodyForcesBuffer { vec4 largeBodyForces[]; };
 // Per workgroup of state_hash.comp, the two 32-bit lanes of its bodies' hash sums.
 #define STATE_HASH_PARTIALS(access) layout(std430, binding = 26) access buffer StateHashPartialsBuffer { uvec2 stateHashPartials[]; };
+// xyz: torque of the last substep's contact forces about the particle's centre (N m): friction
+// acting at the contact point (ContactLaw::HertzMindlin; zero under PAPER_LAW).
+#define PARTICLE_TORQUE(access) layout(std430, binding = 27) access buffer ParticleTorqueBuffer { vec4 particleTorque[]; };
+// Bucket-ordered copy for the contact gather (HertzMindlin). xyz: angular velocity of the owning
+// body (rad/s); w: particle id (uint bits).
+#define SORTED_SPIN(access) layout(std430, binding = 28) access buffer SortedSpinBuffer { vec4 sortedSpin[]; };
+// The contacts of ContactLaw::HertzMindlin that persist across substeps (common/contact_slots.glsl):
+// CONTACT_SLOTS slots per particle, CONTACT_SLOTS_PER_GROUP of them in each of the group buffers
+// (one buffer would outgrow the 128 MiB a storage block may hold). Slot k of particle i is entry
+// i * CONTACT_SLOTS_PER_GROUP + k % CONTACT_SLOTS_PER_GROUP of group k / CONTACT_SLOTS_PER_GROUP.
+// xyz: tangential spring displacement (m); w: partner key (uint bits, contact_slots.glsl).
+#define CONTACT_SLOTS 12
+#define CONTACT_SLOTS_PER_GROUP 4
+#define CONTACT_SLOT_GROUPS 3
+#define CONTACT_SLOTS_0(access) layout(std430, binding = 29) access buffer ContactSlots0Buffer { vec4 contactSlots0[]; };
+#define CONTACT_SLOTS_1(access) layout(std430, binding = 30) access buffer ContactSlots1Buffer { vec4 contactSlots1[]; };
+#define CONTACT_SLOTS_2(access) layout(std430, binding = 31) access buffer ContactSlots2Buffer { vec4 contactSlots2[]; };
+// Per particle, the number of contacts between its body and the partner of each slot, one byte
+// per slot (slot k in byte k % 4 of component k / 4), counted over the body's slots after the
+// contacts of a substep: the n that shares the bodies' masses among their contacts; w: slots in
+// use (at least that many: a particle left without contacts may keep a stale count).
+#define CONTACT_PAIRS(access) layout(std430, binding = 32) access buffer ContactPairsBuffer { uvec4 contactPairs[]; };
 
 // Constant for the whole step; set by World when settings or counts change.
 layout(std140, binding = 0) uniform SimParams {
@@ -123,6 +156,7 @@ layout(std140, binding = 0) uniform SimParams {
   uvec4 counts;        // x: particles; y: bodies; z: hash table mask; w: colliders
   uvec4 counts2;       // x: sinks; y: hash table size; z, w: hash multipliers for y and z
   uvec4 colliderEnds;  // colliders are sorted by type: planes end at x, boxes at y, walls of revolution at z
+  vec4 shearContact;   // x: k_t0 grain-grain; y: k_t0 grain-wall (N/m^3/2; k_t = k_t0 sqrt(xi)); z, w: sqrt(k_n) grain-grain, grain-wall
 };
 
 // Linear thread index of a dispatch that World may fold into two dimensions. A macro, because

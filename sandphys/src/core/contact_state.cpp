@@ -1,0 +1,53 @@
+// The contact history between the GPU's layout (layout.glsl: slot k of particle i is entry
+// 4 i + k % 4 of group buffer k / 4) and StoredContacts, for snapshots and their restore.
+#include "core/contact_state.h"
+
+#include <array>
+
+namespace sandphys::detail {
+
+using SlotWords = std::array<std::uint32_t, 4>;
+
+std::vector<StoredContacts> downloadContacts(const WorldBuffers& buffers, std::uint32_t particles) {
+  std::vector<StoredContacts> out(particles);
+  if (particles == 0) return out;
+  std::vector<SlotWords> group(std::size_t(particles) * kContactSlotsPerGroup);
+  for (std::uint32_t g = 0; g < kContactSlotGroups; ++g) {
+    buffers[Binding(kContactSlots0 + g)].download(0, group.size() * sizeof(SlotWords),
+                                                  group.data());
+    for (std::uint32_t i = 0; i < particles; ++i) {
+      for (std::uint32_t k = 0; k < kContactSlotsPerGroup; ++k) {
+        out[i].slots[g * kContactSlotsPerGroup + k] =
+            group[std::size_t(i) * kContactSlotsPerGroup + k];
+      }
+    }
+  }
+  std::vector<SlotWords> pairs(particles);
+  buffers[kContactPairs].download(0, pairs.size() * sizeof(SlotWords), pairs.data());
+  for (std::uint32_t i = 0; i < particles; ++i) {
+    for (std::uint32_t w = 0; w < out[i].pairs.size(); ++w) out[i].pairs[w] = pairs[i][w];
+  }
+  return out;
+}
+
+void uploadContacts(WorldBuffers& buffers, const std::vector<StoredContacts>& contacts,
+                    std::uint32_t particles) {
+  if (particles == 0) return;
+  std::vector<SlotWords> group(std::size_t(particles) * kContactSlotsPerGroup, SlotWords{});
+  for (std::uint32_t g = 0; g < kContactSlotGroups; ++g) {
+    for (std::uint32_t i = 0; i < contacts.size(); ++i) {
+      for (std::uint32_t k = 0; k < kContactSlotsPerGroup; ++k) {
+        group[std::size_t(i) * kContactSlotsPerGroup + k] =
+            contacts[i].slots[g * kContactSlotsPerGroup + k];
+      }
+    }
+    buffers[Binding(kContactSlots0 + g)].upload(0, group.size() * sizeof(SlotWords), group.data());
+  }
+  std::vector<SlotWords> pairs(particles, SlotWords{});
+  for (std::uint32_t i = 0; i < contacts.size(); ++i) {
+    for (std::uint32_t w = 0; w < contacts[i].pairs.size(); ++w) pairs[i][w] = contacts[i].pairs[w];
+  }
+  buffers[kContactPairs].upload(0, pairs.size() * sizeof(SlotWords), pairs.data());
+}
+
+}  // namespace sandphys::detail

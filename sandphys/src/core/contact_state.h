@@ -1,0 +1,20 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/world_impl.h"
+#include "sandphys/recording.h"
+
+namespace sandphys::detail {
+
+/// The contact history of the first `particles` particles as the GPU stores it (slots in their
+/// group buffers, pair counts). Sync point.
+std::vector<StoredContacts> downloadContacts(const WorldBuffers& buffers, std::uint32_t particles);
+
+/// Puts `contacts` back into the first contacts.size() particles and frees the slots of the
+/// particles after them, up to `particles`.
+void uploadContacts(WorldBuffers& buffers, const std::vector<StoredContacts>& contacts,
+                    std::uint32_t particles);
+
+}  // namespace sandphys::detail

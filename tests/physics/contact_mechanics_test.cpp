@@ -1,0 +1,355 @@
+// ContactLaw::HertzMindlin against closed forms and known results: static friction holds a
+// granule on a slope below atan μ and lets it slide at g (sin θ - μ cos θ) above; friction at
+// the contact point lets a sphere roll freely and keeps angular momentum in a glancing impact;
+// the set restitution is what a sphere, a face-down granule and a sampled box get; a block of
+// granules on a tilted floor does not creep; both sides of a contact get exactly opposite
+// forces; a moving collider drags what rests on it; contacts beyond the slots are counted.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <vector>
+
+#include "support/test_world.h"
+
+namespace sandphys {
+namespace {
+
+using testing::TestWorld;
+
+constexpr double kPi = std::numbers::pi;
+
+Vec3 operator+(Vec3 a, Vec3 b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+Vec3 operator-(Vec3 a, Vec3 b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+Vec3 operator*(float s, Vec3 v) {
+  return {s * v.x, s * v.y, s * v.z};
+}
+double dot(Vec3 a, Vec3 b) {
+  return double(a.x) * b.x + double(a.y) * b.y + double(a.z) * b.z;
+}
+Vec3 cross(Vec3 a, Vec3 b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+double norm(Vec3 v) {
+  return std::sqrt(dot(v, v));
+}
+
+Quat multiply(Quat a, Quat b) {
+  return {
+      a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z, a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
+      a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x, a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w};
+}
+
+// Rotation by `angle` (rad) about the unit `axis`.
+Quat aboutAxis(Vec3 axis, double angle) {
+  const double s = std::sin(0.5 * angle);
+  return {float(std::cos(0.5 * angle)), float(axis.x * s), float(axis.y * s), float(axis.z * s)};
+}
+
+// Orientation that turns the template's vertex (1, 1, 1)/√3 to +y: the opposite face lies flat.
+Quat faceDown() {
+  return aboutAxis({float(-1.0 / std::sqrt(2.0)), 0.0f, float(1.0 / std::sqrt(2.0))},
+                   std::acos(1.0 / std::sqrt(3.0)));
+}
+
+// Height of a face-down granule's centre above the surface it rests on: the particle radius
+// plus the distance from the centre to the plane of the face's particle centres.
+float restingHeight(float d) {
+  return 0.5f * d + d * std::sqrt(6.0f) / 12.0f;
+}
+
+WorldSettings settingsWith(float friction, Vec3 gravity = {0.0f, -9.81f, 0.0f}) {
+  WorldSettings s = testing::smallSettings();
+  s.material.friction = friction;
+  s.gravity = gravity;
+  return s;
+}
+
+// A plane through the origin tilted by θ about z: its surface rises along +x, so downhill is
+// `downhill(θ)`.
+Plane slope(double theta, float friction) {
+  return Plane{.normal = {float(-std::sin(theta)), float(std::cos(theta)), 0.0f},
+               .offset = 0.0f,
+               .material = {.friction = friction, .restitution = 0.5f}};
+}
+Vec3 downhill(double theta) {
+  return {float(-std::cos(theta)), float(-std::sin(theta)), 0.0f};
+}
+
+// A face-down granule resting on `slope(theta)`, just touching it, at distance `along` from the
+// origin along the slope.
+BodyId granuleOnSlope(TestWorld& w, double theta, float along = 0.0f) {
+  const float d = w->settings().particleDiameter;
+  const Quat tilt = aboutAxis({0.0f, 0.0f, 1.0f}, theta);
+  const Vec3 normal{float(-std::sin(theta)), float(std::cos(theta)), 0.0f};
+  const Vec3 position = (restingHeight(d) + 1e-5f) * normal + along * downhill(theta);
+  return w.addGranule(position, multiply(tilt, faceDown()));
+}
+
+TEST(ContactMechanics, GranuleRestsOnASlopeBelowAtanMu) {
+  // θ = 15° < atan 0.5 = 26.6°, and below the 22° at which a face-down granule would tip.
+  const double theta = 15.0 * kPi / 180.0;
+  TestWorld w(settingsWith(0.5f));
+  w->addCollider(slope(theta, 0.5f));
+  const BodyId g = granuleOnSlope(w, theta);
+  w.simulate(0.3);  // lands and loads its springs
+  const BodyState before = w->readBody(g);
+  w.simulate(2.0);
+  const BodyState after = w->readBody(g);
+  const float d = w->settings().particleDiameter;
+  const double drift = norm(after.position - before.position);
+  std::printf("granule on a 15 deg slope, mu 0.5: drift over 2 s %.3g d, speed %.3g m/s\n",
+              drift / d, norm(after.velocity));
+  EXPECT_LT(drift, 0.01 * d);
+}
+
+TEST(ContactMechanics, GranuleSlidesAboveAtanMuAtTheCoulombAcceleration) {
+  // μ = 0.2 (atan 11.3°) on 20°: sliding, and the contact force's tilt from the normal (atan μ)
+  // stays inside what a face-down granule can take without tipping.
+  const double theta = 20.0 * kPi / 180.0;
+  const float mu = 0.2f;
+  TestWorld w(settingsWith(mu));
+  w->addCollider(slope(theta, mu));
+  const BodyId g = granuleOnSlope(w, theta, -0.5f);
+  w.simulate(0.1);  // past the landing
+  const BodyState a = w->readBody(g);
+  const double seconds = 0.3;
+  w.simulate(seconds);
+  const BodyState b = w->readBody(g);
+  const double g0 = 9.81;
+  const double expected = g0 * (std::sin(theta) - mu * std::cos(theta));
+  const double measured =
+      (dot(b.velocity, downhill(theta)) - dot(a.velocity, downhill(theta))) / seconds;
+  std::printf("granule on a 20 deg slope, mu 0.2: acceleration %.4f m/s^2, closed form %.4f\n",
+              measured, expected);
+  EXPECT_NEAR(measured, expected, 0.05 * expected);
+}
+
+TEST(ContactMechanics, SphereRollingWithoutSlippingIsNotSlowed) {
+  TestWorld w(settingsWith(0.5f));
+  w.addFloor(0.0f, {.friction = 0.5f, .restitution = 0.5f});
+  const float d = w->settings().particleDiameter;
+  const ParticleTemplate sphere =
+      makeParticleTemplate({{0, 0, 0}}, d, w->settings().material.density);
+  // Settle on the floor first, then roll: v = ω × (centre - contact), ω about -z for +x.
+  const BodyId b = w->addBody(sphere, {.position = {0.0f, 0.5f * d, 0.0f}});
+  w.simulate(0.1);
+  const BodyState rest = w->readBody(b);
+  const float v = 0.5f;
+  const float radiusToContact = rest.position.y;  // the rolling radius: centre above the floor
+  w->setBodyState(b, {rest.position, rest.orientation, {v, 0, 0}, {0, 0, -v / radiusToContact}});
+  w.simulate(0.5);
+  const BodyState rolled = w->readBody(b);
+  std::printf("rolling sphere: speed %.5f m/s after 0.5 s (started %.5f), spin %.3f rad/s\n",
+              rolled.velocity.x, v, rolled.angularVelocity.z);
+  EXPECT_NEAR(rolled.velocity.x, v, 0.01 * v);
+  // The paper's friction acts at the centre and only brakes: the same sphere slides to a stop.
+  WorldSettings paper = settingsWith(0.5f);
+  paper.contactLaw = ContactLaw::PaperViscous;
+  TestWorld p(paper);
+  p.addFloor(0.0f, {.friction = 0.5f, .restitution = 0.5f});
+  const BodyId pb = p->addBody(sphere, {.position = {0.0f, 0.5f * d, 0.0f}});
+  p.simulate(0.1);
+  const BodyState prest = p->readBody(pb);
+  p->setBodyState(pb, {prest.position, prest.orientation, {v, 0, 0}, {0, 0, -v / radiusToContact}});
+  p.simulate(0.5);
+  EXPECT_LT(p->readBody(pb).velocity.x, 0.5f * v);
+}
+
+// Angular momentum about the origin of single-particle bodies: m x × v + I ω, I = m d²/10.
+Vec3 angularMomentum(const BodyState& s, double mass, double d) {
+  const double inertia = 0.1 * mass * d * d;
+  const Vec3 orbital = cross(s.position, s.velocity);
+  return {float(mass * orbital.x + inertia * s.angularVelocity.x),
+          float(mass * orbital.y + inertia * s.angularVelocity.y),
+          float(mass * orbital.z + inertia * s.angularVelocity.z)};
+}
+
+TEST(ContactMechanics, GlancingFrictionalCollisionKeepsAngularMomentum) {
+  TestWorld w(settingsWith(0.5f, {0, 0, 0}));
+  const float d = w->settings().particleDiameter;
+  const double mass = w->contactModel().particleMass;
+  // Impact parameter d/2: the contact's normal is 30° off the line of motion, so friction acts.
+  const float v = 0.5f;
+  const BodyId a = w.addSphere({-0.6f * d, 0.25f * d, 0.0f}, {v, 0.0f, 0.0f});
+  const BodyId b = w.addSphere({0.6f * d, -0.25f * d, 0.0f}, {-v, 0.0f, 0.0f});
+  auto total = [&] {
+    return angularMomentum(w->readBody(a), mass, d) + angularMomentum(w->readBody(b), mass, d);
+  };
+  const Vec3 before = total();
+  w.simulate(0.05);  // through the contact and apart
+  const Vec3 after = total();
+  const double spin = norm(w->readBody(a).angularVelocity);
+  std::printf("glancing collision: L %.6g -> %.6g kg m^2/s, spin %.3f rad/s\n", before.z, after.z,
+              spin);
+  EXPECT_LT(norm(after - before), 0.01 * norm(before));
+  EXPECT_GT(spin, 1.0) << "friction at the contact point spins the spheres";
+}
+
+TEST(ContactMechanics, BothSidesOfAContactGetExactlyOppositeForces) {
+  // Two spinning spheres in a glancing frictional contact: every substep, the force on one is the
+  // other's negated, bit for bit (each has this one contact only, so its sum is the contact).
+  TestWorld w(settingsWith(0.5f, {0, 0, 0}));
+  const float d = w->settings().particleDiameter;
+  w->addBody(makeParticleTemplate({{0, 0, 0}}, d, w->settings().material.density),
+             {.position = {-0.55f * d, 0.2f * d, 0.01f * d},
+              .velocity = {0.3f, 0.05f, -0.02f},
+              .angularVelocity = {3.0f, -7.0f, 11.0f}});
+  w->addBody(makeParticleTemplate({{0, 0, 0}}, d, w->settings().material.density),
+             {.position = {0.55f * d, -0.2f * d, 0.0f},
+              .velocity = {-0.3f, 0.0f, 0.04f},
+              .angularVelocity = {-5.0f, 2.0f, 1.0f}});
+  int touching = 0;
+  for (int i = 0; i < 400; ++i) {
+    w->substep(1);
+    const auto p = w->readParticles();
+    if (p[0].force.x == 0.0f && p[0].force.y == 0.0f) continue;
+    ++touching;
+    ASSERT_EQ(p[0].force.x, -p[1].force.x) << "substep " << i;
+    ASSERT_EQ(p[0].force.y, -p[1].force.y) << "substep " << i;
+    ASSERT_EQ(p[0].force.z, -p[1].force.z) << "substep " << i;
+  }
+  EXPECT_GT(touching, 10);
+}
+
+// Velocity along `normal` after a body launched into a plane at `speed` leaves it (no gravity),
+// over the velocity it came in with: the restitution it got.
+double bounce(TestWorld& w, BodyId body, float speed) {
+  const BodyState in = w->readBody(body);
+  w.simulate(0.08);
+  const BodyState out = w->readBody(body);
+  EXPECT_LT(in.velocity.y, 0.0f);
+  return out.velocity.y / speed;
+}
+
+TEST(ContactMechanics, RestitutionIsTheSetOneForASphereAGranuleAndASampledBox) {
+  const float e = 0.5f;
+  const float v = 0.5f;
+  WorldSettings s = settingsWith(0.5f, {0, 0, 0});
+  s.material.restitution = e;
+  const SurfaceMaterial floor{.friction = 0.5f, .restitution = e};
+  const float d = s.particleDiameter;
+  {
+    TestWorld w(s);
+    w.addFloor(0.0f, floor);
+    const BodyId b = w.addSphere({0.0f, 0.5f * d + 1e-4f, 0.0f}, {0.0f, -v, 0.0f});
+    const double got = bounce(w, b, v);
+    std::printf("restitution: sphere %.4f (set %.2f)\n", got, e);
+    EXPECT_NEAR(got, e, 0.05 * e);
+  }
+  {
+    TestWorld w(s);
+    w.addFloor(0.0f, floor);
+    const BodyId b =
+        w.addGranule({0.0f, restingHeight(d) + 1e-4f, 0.0f}, faceDown(), {0.0f, -v, 0.0f});
+    const double got = bounce(w, b, v);
+    std::printf("restitution: face-down granule %.4f (set %.2f)\n", got, e);
+    EXPECT_NEAR(got, e, 0.05 * e);
+  }
+  {
+    TestWorld w(s);
+    w.addFloor(0.0f, floor);
+    // A closed box of 8 x 3 x 6 d: its bottom face is a lattice of particles in one plane.
+    const SampledMesh box =
+        sampleMesh(boxMesh({-4.0f * d, -1.5f * d, -3.0f * d}, {4.0f * d, 1.5f * d, 3.0f * d}), d,
+                   {.density = 1000.0f});
+    float lowest = 0.0f;
+    for (const Vec3& c : box.centres) lowest = std::min(lowest, c.y);
+    const Vec3 com{float(box.massProperties.centreOfMass[0]),
+                   float(box.massProperties.centreOfMass[1]),
+                   float(box.massProperties.centreOfMass[2])};
+    const BodyId b =
+        w->addBody(box.shape, {.position = {0.0f, com.y - lowest + 0.5f * d + 1e-4f, 0.0f},
+                               .velocity = {0.0f, -v, 0.0f}});
+    const double got = bounce(w, b, v);
+    std::printf("restitution: sampled box of %zu particles %.4f (set %.2f)\n",
+                box.shape.offsets.size(), got, e);
+    EXPECT_NEAR(got, e, 0.05 * e);
+  }
+}
+
+TEST(ContactMechanics, BlockOfGranulesOnATiltedFloorDoesNotCreep) {
+  // A loose block of granules settles on a floor tilted by 10° (μ 0.5 everywhere) and then
+  // stays where it settled. A low drop: a soft material and a low speed guard allow a long step.
+  const double theta = 10.0 * kPi / 180.0;
+  WorldSettings s = settingsWith(0.5f);
+  s.material.youngsModulus = 2.0e6f;
+  s.maxSpeed = 1.0f;
+  TestWorld w(s);
+  w->addCollider(slope(theta, 0.5f));
+  const float d = s.particleDiameter;
+  const Vec3 normal{float(-std::sin(theta)), float(std::cos(theta)), 0.0f};
+  const BodyRange block = w->addGranules(
+      {.center = 3.0f * d * normal, .countX = 4, .countY = 2, .countZ = 4, .seed = 3});
+  auto centroid = [&] {
+    Vec3 sum{};
+    const auto bodies = w->readBodies();
+    for (std::uint32_t i = block.first; i < block.first + block.count; ++i)
+      sum = sum + bodies[i].position;
+    return (1.0f / float(block.count)) * sum;
+  };
+  w.simulate(1.5);  // falls, piles up and settles
+  const Vec3 before = centroid();
+  w.simulate(1.0);
+  const double drift = norm(centroid() - before);
+  std::printf("block of %u granules on a 10 deg floor: centroid drift over 1 s %.3g d\n",
+              block.count, drift / d);
+  EXPECT_LT(drift, 0.01 * d);
+}
+
+TEST(ContactMechanics, MovingColliderDragsWhatRestsOnIt) {
+  // A conveyor: a floor whose surface moves at 0.2 m/s along x carries a granule resting on it
+  // up to its own speed (the pose never changes; only the contacts see the motion).
+  TestWorld w(settingsWith(0.5f));
+  const float belt = 0.2f;
+  w->addCollider(Plane{.normal = {0, 1, 0},
+                       .offset = 0.0f,
+                       .material = {.friction = 0.5f, .restitution = 0.5f},
+                       .motion = {.velocity = {belt, 0.0f, 0.0f}}});
+  const float d = w->settings().particleDiameter;
+  const BodyId g = w.addGranule({0.0f, restingHeight(d) + 1e-5f, 0.0f}, faceDown());
+  w.simulate(0.5);
+  const BodyState s = w->readBody(g);
+  std::printf("granule on a belt at %.2f m/s: %.4f m/s after 0.5 s\n", belt, s.velocity.x);
+  EXPECT_NEAR(s.velocity.x, belt, 0.02 * belt);
+}
+
+TEST(ContactMechanics, MoveColliderDerivesTheVelocityFromThePoseChange) {
+  TestWorld w(settingsWith(0.5f));
+  const ColliderId id = w->addCollider(Box{.center = {0, 0, 0}, .halfExtents = {1, 1, 1}});
+  const Quat turned = aboutAxis({0, 1, 0}, 0.1);
+  w->moveCollider(id, Box{.center = {0.02f, 0, 0}, .halfExtents = {1, 1, 1}, .orientation = turned},
+                  0.1f);
+  const Box moved = std::get<Box>(w->colliders()[0]);
+  EXPECT_NEAR(moved.motion.velocity.x, 0.2f, 1e-5f);
+  EXPECT_NEAR(moved.motion.angularVelocity.y, 1.0f, 1e-4f);
+  EXPECT_THROW(w->moveCollider(id, Box{}, 0.0f), InvalidArgument);
+  EXPECT_THROW(w->moveCollider(ColliderId{5}, Box{}, 0.1f), InvalidId);
+}
+
+TEST(ContactMechanics, ContactsBeyondTheSlotsAreCounted) {
+  // One sphere pressed by 14 others at once: 12 slots take the first contacts found and the rest
+  // are counted, never silently dropped.
+  TestWorld w(settingsWith(0.5f, {0, 0, 0}));
+  const float d = w->settings().particleDiameter;
+  w.addSphere({0, 0, 0});
+  const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < 14; ++i) {
+    const double y = 1.0 - 2.0 * (i + 0.5) / 14.0;
+    const double r = std::sqrt(1.0 - y * y);
+    const Vec3 dir{float(r * std::cos(golden * i)), float(y), float(r * std::sin(golden * i))};
+    w.addSphere(0.95f * d * dir);
+  }
+  w->substep(1);
+  const WorldStats stats = w->readStats();
+  EXPECT_GE(stats.contactSlotOverflows, 2u);
+  EXPECT_EQ(stats.penetrationClamps, 0u);
+}
+
+}  // namespace
+}  // namespace sandphys
