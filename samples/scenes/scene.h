@@ -181,19 +181,18 @@ double fallTime(double height, double speed, double g);
 /// that is a whole number of spacings rounds alike).
 std::uint32_t emitterLayerGranules(float halfExtent, float particleDiameter);
 /// The Young's modulus (Pa) a scene's World gets for a configured `youngsModulus`: that value
-/// when > 0; for 0 (auto) the one at which two granules meeting head-on at twice the scene's
-/// speed guard (kContactSpeedFactor: spinning grains) overlap by kScenePeakOverlap
-/// (youngsModulusForPeakOverlap), so that no grain passes through anything and the largest
-/// overlap stays under 0.3 d. The stiffer the sand, the shorter the time step (t_n ∝ E^-2/5): a
-/// scene pays for its speed guard in substeps.
+/// when > 0; for 0 (auto) the one at which two granules meeting head-on at the scene's speed
+/// guard overlap by kScenePeakOverlap (youngsModulusForPeakOverlap), so that no grain passes
+/// through anything and the largest overlap stays under 0.3 d. The stiffer the sand, the shorter
+/// the time step (t_n ∝ E^-2/5): a scene pays for its speed guard in substeps.
 float sceneYoungsModulus(const WorldSettings& settings, float youngsModulus = 0.0f);
 /// The closed-form peak overlap, in particle diameters, that an auto Young's modulus allows
 /// (undamped: real impacts are slower than the guard and damped).
 inline constexpr float kScenePeakOverlap = 0.3f;
 /// Help of the scenes' "youngs-modulus" parameter (sceneYoungsModulus).
 inline constexpr const char* kYoungsModulusHelp =
-    "Young's modulus of the grains, Pa (0: auto, stiff enough that two grains meeting at twice "
-    "the scene's speed guard overlap by 0.3 d)";
+    "Young's modulus of the grains, Pa (0: auto, stiff enough that two grains meeting at the "
+    "scene's speed guard overlap by 0.3 d)";
 
 /// The name of a contact law on the command line and in recordings: "hertz-mindlin" or "paper".
 std::string_view contactLawName(ContactLaw law);

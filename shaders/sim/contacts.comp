@@ -160,8 +160,8 @@ vec3 surfaceVelocity(vec3 particleVelocity, vec3 spin, vec3 centre, vec3 point) 
 // a surface with many particles at once n times too hard (its overlap, about v dt, makes the
 // damping missed this way small). Contacts that found no slot are damped with n = 1.
 MindlinResult mindlinContact(Particle self, uint key, float xi, vec3 n, vec3 point, vec3 vRel,
-                             float kn, float rootKn, float kt0, float dampingFactor,
-                             float invMass, float friction) {
+                             float kn, float kt0, float dampingFactor, float invMass,
+                             float friction) {
   uint pairs;
   vec3 spring = previousSpring(key, pairs);
 #ifdef CONTACT_LIST
@@ -170,7 +170,7 @@ MindlinResult mindlinContact(Particle self, uint key, float xi, vec3 n, vec3 poi
   const bool advance = true;
   if (pairs == 0u && slotsUsed < uint(CONTACT_SLOTS)) dampingFactor = 0.0;
 #endif
-  MindlinResult r = hertzMindlin(xi, n, vRel, kn, rootKn, kt0, dampingFactor,
+  MindlinResult r = hertzMindlin(xi, n, vRel, kn, kt0, dampingFactor,
                                  float(max(pairs, 1u)) * invMass, friction, gravityDt.w, spring,
                                  advance);
 #ifndef CONTACT_LIST
@@ -201,8 +201,8 @@ void pairContact(Particle self, uint s) {
                       surfaceVelocity(otherVelocity.xyz, otherSpin.xyz, other.xyz, point);
   float invMassSum = max(self.velocity.w, 0.0) + max(otherVelocity.w, 0.0);
   MindlinResult r = mindlinContact(self, particleSlotKey(otherId), xi, n, point, vRel,
-                                   grainContact.x, shearContact.z, shearContact.x, grainContact.y,
-                                   invMassSum, grainContact.z);
+                                   grainContact.x, shearContact.x, grainContact.y, invMassSum,
+                                   grainContact.z);
 #ifdef CONTACT_LIST
   // Each pair once, from the side that keeps its history (static particles keep none).
   if (self.velocity.w >= 0.0 && (otherVelocity.w < 0.0 || self.id < otherId)) {
@@ -241,8 +241,8 @@ void colliderContact(Particle self, Collider c, vec4 hit, uint face, float radiu
   precise vec3 vRel =
       surfaceVelocity(self.velocity.xyz, self.spin, self.position.xyz, point) - surface;
   MindlinResult r = mindlinContact(self, colliderSlotKey(c, face), xi, n, point, vRel,
-                                   wallContact.x, shearContact.w, shearContact.y, c.material.z,
-                                   self.velocity.w, c.material.y);
+                                   wallContact.x, shearContact.y, c.material.z, self.velocity.w,
+                                   c.material.y);
   vec3 spring = r.spring;
 #endif
 #ifdef CONTACT_LIST

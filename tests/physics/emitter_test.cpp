@@ -24,6 +24,31 @@ TEST(Emitter, AddsGranulesAtItsRateWithoutOverlaps) {
   EXPECT_EQ(stats.contacts, 0u);
 }
 
+TEST(Emitter, LetsNoGranuleBeBornWherePlaceIsTaken) {
+  // A static granule sits in the emitter's plane, where some of its first granules would appear:
+  // those are not born (dead from the start, counted), the others fall past it untouched.
+  WorldSettings s = testing::smallSettings(1000);
+  s.gravity = {0.0f, 0.0f, 0.0f};
+  testing::TestWorld w(s);
+  w->addBody(tetrahedronTemplate(s.particleDiameter, s.material.density),
+             {.position = {0.0f, 0.5f, 0.0f}, .motion = Motion::Static});
+  w->substep(1);  // a grid to check the places against
+  w->addEmitter(EmitterSettings{.center = {0, 0.5f, 0},
+                                .halfExtentX = 0.1f,
+                                .halfExtentZ = 0.1f,
+                                .rate = 400.0f,
+                                .velocity = {0, -1.0f, 0},
+                                .maxGranules = 40});
+  w.simulate(0.15);
+  const WorldStats stats = w->readStats();
+  EXPECT_EQ(w->granulesSpawned(), 40u);
+  EXPECT_GE(stats.granulesNotBorn, 1u) << "a granule was born inside the one in its way";
+  EXPECT_LE(stats.granulesNotBorn, 8u) << "granules clear of the obstacle were refused too";
+  EXPECT_EQ(stats.granulesAlive, 40u - stats.granulesNotBorn);
+  // Nothing that was born started inside anything.
+  EXPECT_LT(stats.maxOverlap, 0.01 * w->settings().particleDiameter);
+}
+
 TEST(Emitter, RefusesARateItsLatticeCannotTake) {
   testing::TestWorld w;
   try {

@@ -1,7 +1,7 @@
 // The bulldozer scene at a small size: a block of 8 x 3 x 8 = 192 granules slumps against the
 // idle kinematic blade (no gap) for 0.8 s, then the blade pushes it 20 d at 0.5 m/s and stops.
-// One run of 1.8 s simulated (about 9,900 substeps, 35 s on two cores) is shared by the tests
-// below; the numbers quoted in them are from that run on llvmpipe.
+// One run of 2 s simulated is shared by the tests below; the numbers quoted in them are from that
+// run on llvmpipe.
 //
 // The sand's momentum closes the checks on the blade's force. Over any span of substeps, for the
 // granules (mass M, momentum P), with J the blade's impulse on the sand (minus what
@@ -34,7 +34,7 @@ constexpr float kPushStart = 0.8f;      // s
 constexpr float kPushDistance = 20.0f;  // d
 constexpr float kBladeSpeed = 0.5f;     // m/s
 // The push ends at 1.6 s; the rest lets the sand stop.
-constexpr double kRunSeconds = 1.8;
+constexpr double kRunSeconds = 2.0;
 // The stillness check before the push looks at this last stretch of the wait, s.
 constexpr double kStillSeconds = 0.1;
 
@@ -347,16 +347,16 @@ TEST_F(BulldozerRun, SandMovesAheadOfTheBlade) {
   EXPECT_GT(ahead, granules / 2);
 }
 
-// Once the blade stops the sand slides on a little, leaves the blade (the drag falls to under 1%
-// of the push's) and the floor's friction takes its momentum (3.5 N s at the stop, -0.016 N s
-// 0.2 s later); none is lost.
+// Once the blade stops the sand slides on a little and the floor's friction takes its momentum;
+// none is lost. Static friction lets the sand that leans on the blade stay there, pressing on it
+// with a small part of the push's drag (under 2%; a memoryless friction let it slump away).
 TEST_F(BulldozerRun, SandComesToRestAfterTheStop) {
   EXPECT_TRUE(scene().finished()) << scene().status();
   const std::vector<Bulldozer::DragSample>& drag = scene().dragSeries();
   ASSERT_FALSE(drag.empty());
   ASSERT_EQ(drag.back().phase, Phase::Stopped);
   const Balance push = balance(Phase::Pushing, scene().atPushStart(), scene().atPushEnd());
-  EXPECT_LT(std::abs(drag.back().drag), 0.01 * push.bladeX / push.seconds);
+  EXPECT_LT(std::abs(drag.back().drag), 0.02 * push.bladeX / push.seconds);
   for (const BodyState& body : s_end) {
     if (body.granule) {
       EXPECT_TRUE(scene().contains(body.position)) << "granule " << body.index;

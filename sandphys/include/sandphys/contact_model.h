@@ -27,9 +27,8 @@ struct ContactModel {
   /// PaperViscous: the overlap cap ξ_max = d/10, m. HertzMindlin has no cap (infinity).
   float maxOverlap = 0.0f;
   /// Closed-form peak overlap (undamped Hertz) of a granule meeting another granule head-on
-  /// (m* = half a granule), and a rigid wall or a static particle (m* = a granule), at the
-  /// contact speed kContactSpeedFactor · maxSpeed, m. HertzMindlin refuses settings where these
-  /// let a grain pass through.
+  /// (m* = half a granule), and a rigid wall or a static particle (m* = a granule), at maxSpeed,
+  /// m. HertzMindlin refuses settings where these let a grain pass through.
   float peakOverlapGrain = 0.0f;
   float peakOverlapWall = 0.0f;
   float peakOverlapFixedParticle = 0.0f;
@@ -39,12 +38,6 @@ struct ContactModel {
   /// Builds and validates the model; throws InvalidArgument naming the field, value and limit.
   static ContactModel fromSettings(const WorldSettings& settings);
 };
-
-/// The speed at which the stiffness check lets surfaces meet, in units of WorldSettings::maxSpeed:
-/// the guard limits a body's speed and its rim speed |ω| r each to maxSpeed, so a spinning
-/// granule's surface (friction spins grains that hit anything at an angle) meets another at up
-/// to twice the guard.
-inline constexpr double kContactSpeedFactor = 2.0;
 
 /// Overlaps, in particle diameters, of a single Hertz contact whose impact energy lets a grain
 /// pass through what it meets (docs/architecture.md, "no force cap"): a particle slips into the
@@ -56,7 +49,7 @@ inline constexpr double kGrainPassOverlap = 0.42264973;  // 1 - 1/sqrt(3)
 inline constexpr double kThinWallPassOverlap = 0.5;
 double floorPassOverlap(double spacingOverDiameter);
 
-/// The Young's modulus (Pa) at which two granules meeting head-on at the contact speed
+/// The Young's modulus (Pa) at which two granules meeting head-on at maxSpeed
 /// (ContactModel::peakOverlapGrain) overlap by `peakOverlap` (m), the other settings as given:
 /// the peaks scale as E^{-2/5}. Up to 0.3 d it also passes every check of
 /// ContactLaw::HertzMindlin (thin walls, a granule's face, a RoughFloor of spacing d). Throws

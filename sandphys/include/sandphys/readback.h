@@ -65,9 +65,12 @@ struct WorldStats {
   std::uint32_t granulesSpawned = 0;
   std::uint32_t granulesAlive = 0;
   std::uint32_t granulesKilled = 0;  ///< removed by sinks
-  std::uint32_t contacts = 0;        ///< particle-particle pairs + collider contacts, last substep
-  double kineticEnergy = 0.0;        ///< translational + rotational of dynamic bodies, J
-  double maxOverlap = 0.0;           ///< largest overlap since the last readStats, m
+  /// Emitted granules that were not born because their place was taken (a grain thrown back up
+  /// under an emitter); they never move nor touch anything.
+  std::uint32_t granulesNotBorn = 0;
+  std::uint32_t contacts = 0;  ///< particle-particle pairs + collider contacts, last substep
+  double kineticEnergy = 0.0;  ///< translational + rotational of dynamic bodies, J
+  double maxOverlap = 0.0;     ///< largest overlap since the last readStats, m
   /// ContactLaw::PaperViscous: contacts whose overlap exceeded d/10 and was capped (total).
   std::uint64_t penetrationClamps = 0;
   /// ContactLaw::HertzMindlin: contacts that found all of their particle's kContactSlots slots

@@ -122,10 +122,10 @@ void requireNoPassThrough(const WorldSettings& s, double peakOverlap, double pas
   throw InvalidArgument(
       "WorldSettings.material.youngsModulus = " + formatValue(s.material.youngsModulus) +
       " Pa is too soft for WorldSettings.maxSpeed = " + formatValue(s.maxSpeed) + " m/s: " + what +
-      " at twice maxSpeed (a spinning grain's surface) would overlap by " +
-      formatValue(peakOverlap / d) + " d (closed-form Hertz peak), past " +
-      formatValue(passOverlap) + " d where it passes through; raise youngsModulus to at least " +
-      formatValue(youngs) + " Pa or lower maxSpeed to " + formatValue(speed) +
+      " at maxSpeed would overlap by " + formatValue(peakOverlap / d) +
+      " d (closed-form Hertz peak), past " + formatValue(passOverlap) +
+      " d where it passes through; raise youngsModulus to at least " + formatValue(youngs) +
+      " Pa or lower maxSpeed to " + formatValue(speed) +
       " m/s (ContactLaw::PaperViscous caps the overlap instead)");
 }
 
@@ -185,13 +185,13 @@ ContactModel ContactModel::fromSettings(const WorldSettings& s) {
   m.maxOverlap = paper ? static_cast<float>(0.1 * d) : std::numeric_limits<float>::infinity();
 
   // The peak overlaps of the stiffness check: two granules head-on, and a granule against a rigid
-  // wall and against a static particle (a rough floor), all at the contact speed.
+  // wall and against a static particle (a rough floor), all at maxSpeed.
   const double granule = 4.0 * mass;
-  const double speed = kContactSpeedFactor * s.maxSpeed;
-  m.peakOverlapGrain = static_cast<float>(hertzPeakOverlap(0.5 * granule, m.stiffnessGrain, speed));
-  m.peakOverlapWall = static_cast<float>(hertzPeakOverlap(granule, m.stiffnessWall, speed));
+  m.peakOverlapGrain =
+      static_cast<float>(hertzPeakOverlap(0.5 * granule, m.stiffnessGrain, s.maxSpeed));
+  m.peakOverlapWall = static_cast<float>(hertzPeakOverlap(granule, m.stiffnessWall, s.maxSpeed));
   m.peakOverlapFixedParticle =
-      static_cast<float>(hertzPeakOverlap(granule, m.stiffnessGrain, speed));
+      static_cast<float>(hertzPeakOverlap(granule, m.stiffnessGrain, s.maxSpeed));
   if (!paper) {
     detail::requireNoPassThrough(s, m.peakOverlapGrain, kGrainPassOverlap,
                                  "a granule meeting another head-on");

@@ -78,6 +78,7 @@ inline constexpr unsigned kWorkgroupSize = 64;
 inline constexpr unsigned kScanBlock = 1024;      // elements per scan workgroup (256 x 4)
 inline constexpr unsigned kStatsWorkgroups = 32;  // fixed: the reduction order never changes
 inline constexpr std::uint32_t kCounterKilled = 0;
+inline constexpr std::uint32_t kCounterSpawnTaken = 1;
 inline constexpr std::uint32_t kCounterCount = 4;
 
 // bodyInfo.z flags

@@ -568,6 +568,7 @@ void World::restoreSnapshot(const WorldSnapshot& snapshot) {
   gl::check("World::restoreSnapshot");
   w.steps = snapshot.steps;
   w.simTime = snapshot.simulatedTime;
+  w.gridValid = false;
   w.accumulator = snapshot.unsteppedTime;
 }
 

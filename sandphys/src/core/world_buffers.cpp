@@ -227,12 +227,13 @@ void WorldKernels::compile(ContactLaw law) {
   integrateLargeBodies = compile("sim/integrate_large_bodies.comp");
   statsReduce = compile("sim/stats_reduce.comp");
   stateHash = compile("sim/state_hash.comp");
+  spawnCheck = compile("sim/spawn_check.comp");
 }
 
 void WorldKernels::release() {
-  for (GLuint p :
-       {bodiesToParticles, scanBlocks, scanBlockSums, scanAdd, gridScatter, gridSort, gridCopy,
-        contacts, contactList, integrateBodies, integrateLargeBodies, statsReduce, stateHash}) {
+  for (GLuint p : {bodiesToParticles, scanBlocks, scanBlockSums, scanAdd, gridScatter, gridSort,
+                   gridCopy, contacts, contactList, integrateBodies, integrateLargeBodies,
+                   statsReduce, stateHash, spawnCheck}) {
     if (p) glDeleteProgram(p);
   }
   *this = {};

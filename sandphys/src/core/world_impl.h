@@ -57,6 +57,7 @@ struct WorldKernels {
   GLuint integrateLargeBodies = 0;
   GLuint statsReduce = 0;
   GLuint stateHash = 0;
+  GLuint spawnCheck = 0;
 
   /// Compiles every kernel for `law` (PAPER_LAW defined for ContactLaw::PaperViscous).
   void compile(ContactLaw law);
@@ -103,6 +104,7 @@ struct World::Impl {
   double simTime = 0.0;
   bool warnedDroppedTime = false;
   bool paramsDirty = true;
+  bool gridValid = false;  // the grid buffers hold the last substep's grid (spawn_check.comp)
 
   detail::WorldBuffers buffers;
   detail::WorldKernels kernels;
@@ -131,6 +133,8 @@ struct World::Impl {
   void runSubstep();
   void dispatch(GLuint program, const char* name, std::uint32_t threads, std::uint32_t groupSize);
   void emit(double dt, StepReport* report);
+  /// spawn_check.comp over the `count` granules just added from body slot `firstBody`.
+  void checkSpawnPlaces(std::uint32_t firstBody, std::uint32_t count);
   WorldStats reduceStats();
 };
 

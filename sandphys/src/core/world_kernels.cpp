@@ -31,8 +31,7 @@ void World::Impl::uploadParams() {
     ends[type - kColliderPlane] = std::uint32_t(sorted.size());
   }
   p.colliderEnds = {ends[0], ends[1], ends[2], 0u};
-  p.shearContact = {model.shearStiffnessGrain, model.shearStiffnessWall,
-                    std::sqrt(model.stiffnessGrain), std::sqrt(model.stiffnessWall)};
+  p.shearContact = {model.shearStiffnessGrain, model.shearStiffnessWall, 0.0f, 0.0f};
   buffers[kColliders].upload(0, sorted.size() * sizeof(GpuCollider), sorted.data());
   buffers.params.upload(0, sizeof p, &p);
   paramsDirty = false;
@@ -78,6 +77,7 @@ void World::Impl::runSubstep() {
   }
   ++steps;
   simTime += model.timeStep;
+  gridValid = true;
 }
 
 void World::Impl::emit(double dt, StepReport* report) {
@@ -92,11 +92,24 @@ void World::Impl::emit(double dt, StepReport* report) {
       descs.reserve(spawns.size());
       for (const auto& s : spawns)
         descs.push_back({s.position, s.orientation, s.velocity, {}, Motion::Dynamic});
-      addBodies(granule, descs, true);
+      const std::uint32_t firstBody = addBodies(granule, descs, true);
+      checkSpawnPlaces(firstBody, std::uint32_t(descs.size()));
       if (report) report->granulesEmitted += std::uint32_t(spawns.size());
     }
     if (blocked && report) report->emitterBlocked = true;
   }
+}
+
+void World::Impl::checkSpawnPlaces(std::uint32_t firstBody, std::uint32_t count) {
+  // The grid is the last substep's; without one (a new or just restored World) nothing is checked.
+  if (count == 0 || !gridValid) return;
+  if (paramsDirty) uploadParams();
+  buffers.bindAll();
+  const std::uint32_t firstParticle = particleEnd(firstBody) - granule.offsets.size();
+  const auto particles = std::uint32_t(count * granule.offsets.size());
+  glUseProgram(kernels.spawnCheck);
+  glUniform2ui(0, firstParticle, particles);
+  dispatch(kernels.spawnCheck, "spawn_check", particles, kWorkgroupSize);
 }
 
 WorldStats World::Impl::reduceStats() {
@@ -128,6 +141,7 @@ WorldStats World::Impl::reduceStats() {
   s.granulesSpawned = granulesSpawned;
   s.granulesAlive = std::uint32_t(std::llround(alive));
   s.granulesKilled = counters[kCounterKilled];
+  s.granulesNotBorn = counters[kCounterSpawnTaken];
   s.contacts = std::uint32_t(pairEnds / 2 + wallContacts);
   s.steps = steps;
   s.simulatedTime = simTime;

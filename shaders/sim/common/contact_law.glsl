@@ -51,29 +51,30 @@ struct MindlinResult {
   vec3 spring;
 };
 
-MindlinResult hertzMindlin(float xi, vec3 n, vec3 vRel, float kn, float rootKn, float kt0,
-                           float dampingFactor, float invMassSum, float friction, float dt,
-                           vec3 spring, bool advance) {
+MindlinResult hertzMindlin(float xi, vec3 n, vec3 vRel, float kn, float kt0, float dampingFactor,
+                           float invMassSum, float friction, float dt, vec3 spring,
+                           bool advance) {
   float rootXi = sqrt(xi);
-  float eta = dampingFactor * rootKn * inversesqrt(invMassSum) * sqrt(rootXi);
+  float eta = dampingFactor * sqrt(kn / invMassSum) * sqrt(rootXi);
   float xiDot = -dot(vRel, n);
   float fn = max(kn * xi * rootXi + eta * xiDot, 0.0);
   vec3 vt = vRel + xiDot * n;
 
   if (advance) {
     // The spring turns with the contact: drop its normal part, keep its length.
+    float length0 = length(spring);
     vec3 planar = spring - dot(spring, n) * n;
-    float planar2 = dot(planar, planar);
-    spring = planar2 > 0.0 ? planar * sqrt(dot(spring, spring) / planar2) : vec3(0.0);
+    float planarLength = length(planar);
+    spring = planarLength > 0.0 ? planar * (length0 / planarLength) : vec3(0.0);
     spring += vt * dt;
   }
 
   float kt = kt0 * rootXi;
   vec3 ft = -kt * spring - eta * vt;
-  float ft2 = dot(ft, ft);
+  float ftLength = length(ft);
   float cap = friction * fn;
-  if (ft2 > cap * cap) {
-    ft *= cap * inversesqrt(ft2);
+  if (ftLength > cap) {
+    ft *= cap / ftLength;
     spring = -(ft + eta * vt) / kt;
   }
   MindlinResult r;

@@ -106,6 +106,8 @@ struct SinkBox {
 
 // Integer counters updated with atomics only on rare events (never in force sums).
 #define COUNTER_KILLED 0
+// Emitted granules not born because their place was taken (spawn_check.comp).
+#define COUNTER_SPAWN_TAKEN 1
 #define COUNTERS(access) layout(std430, binding = 21) access buffer CounterBuffer { uint counters[]; };
 // Partial sums of the statistics reduction, one per workgroup (see stats_reduce.comp).
 struct StatsPartial {
@@ -156,7 +158,7 @@ layout(std140, binding = 0) uniform SimParams {
   uvec4 counts;        // x: particles; y: bodies; z: hash table mask; w: colliders
   uvec4 counts2;       // x: sinks; y: hash table size; z, w: hash multipliers for y and z
   uvec4 colliderEnds;  // colliders are sorted by type: planes end at x, boxes at y, walls of revolution at z
-  vec4 shearContact;   // x: k_t0 grain-grain; y: k_t0 grain-wall (N/m^3/2; k_t = k_t0 sqrt(xi)); z, w: sqrt(k_n) grain-grain, grain-wall
+  vec4 shearContact;   // x: k_t0 grain-grain; y: k_t0 grain-wall (N/m^3/2; k_t = k_t0 sqrt(xi)); z, w: unused
 };
 
 // Linear thread index of a dispatch that World may fold into two dimensions. A macro, because
