@@ -216,7 +216,10 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
   }
   std::fprintf(out,
                "(pile top: initial -> start of timing -> end of timing; overlap: largest "
-               "particle overlap while timing; the paper's law caps it at 0.1 d)\n");
+               "particle overlap while timing%s)\n",
+               options.measure.pile.contactLaw == ContactLaw::PaperViscous
+                   ? "; the paper's law caps it at 0.1 d"
+                   : "");
 
   const std::vector<std::string> names = kernelNames(report);
   if (!names.empty()) {
