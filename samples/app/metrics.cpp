@@ -91,6 +91,7 @@ nlohmann::json metricsJson(const RunSummary& summary, scenes::Scene& scene) {
       {"velocity_clamps", stats.velocityClamps},
       {"granules_spawned", stats.granulesSpawned},
       {"granules_killed", stats.granulesKilled},
+      {"granules_not_born", stats.granulesNotBorn},
       {"granules_lost", summary.granulesLost},
       {"particle_diameter", shortest(summary.particleDiameter)},
       {"gpu", summary.gpu},

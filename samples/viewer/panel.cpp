@@ -241,6 +241,9 @@ void Panel::drawStats(const Session& session, const FrameStats& stats,
   ImGui::Text("dropped %.3f s%s", stats.droppedSeconds,
               stats.report.emitterBlocked ? "  emitter blocked (capacity)" : "");
   ImGui::Text("poured %u of %u", session.tools().poured(), SandTools::kPourGranules);
+  if (s.granulesNotBorn > 0) {
+    ImGui::Text("emitted granules not born (place taken) %u", s.granulesNotBorn);
+  }
   if (session.recording()) {
     ImGui::Text("recording: %llu frames (ends at a restart)",
                 static_cast<unsigned long long>(session.recordedFrames()));

@@ -55,6 +55,8 @@ TEST(SmallRun, MetricsHaveEveryField) {
                           "velocity_clamps",
                           "granules_spawned",
                           "granules_killed",
+                          "granules_not_born",
+                          "contact_slot_overflows",
                           "granules_lost",
                           "time_step",
                           "gpu",
@@ -70,6 +72,7 @@ TEST(SmallRun, MetricsDescribeTheRun) {
   EXPECT_EQ(m["granules"], kGranules);
   EXPECT_EQ(m["granules_spawned"], kGranules);
   EXPECT_EQ(m["granules_killed"], 0);
+  EXPECT_EQ(m["granules_not_born"], 0);       // a batch is placed, not emitted
   EXPECT_EQ(m["body_slots"], kGranules + 1);  // + the rough floor
   // The cylinder pile has no bodies but sand.
   EXPECT_EQ(m["bodies"], nlohmann::json::array());
