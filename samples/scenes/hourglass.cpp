@@ -33,8 +33,8 @@ constexpr float kSinkHalfWidth = 20.0f;
 constexpr float kSinkHeight = 50.0f;
 
 // The speed guard is the speed of a free fall from an arch of the outlet's size over the outlet
-// to the sink, with this margin, and never below kMinGuardSpeed: grains inside the funnel move
-// far slower.
+// to the sink, or of the fill's collapse if that is faster, with this margin, and never below
+// kMinGuardSpeed: grains inside the funnel move far slower.
 constexpr float kGuardMargin = 1.1f;
 constexpr float kMinGuardSpeed = 2.0f;
 // Granules of a startFrom packing are first added in lines of this many this far above the
@@ -145,7 +145,13 @@ WorldSettings Hourglass::worldSettings() const {
   settings.maxParticles = static_cast<std::uint32_t>(4 * granules);
   // The count of granules remaining comes from every step's stats.
   settings.statsEachFrame = true;
-  const float fall = (0.5f * m_config.outlet + kSinkDepth) * d();
+  float fall = (0.5f * m_config.outlet + kSinkDepth) * d();
+  if (m_packing.empty()) {
+    // Before the release the fill's lattice collapses: its top falls about a third of its
+    // height, and some grains fall further: the guard takes a fall of half its height.
+    const std::vector<Row> rows = fillRows();
+    fall = std::max(fall, 0.5f * (rows.back().center.y - rows.front().center.y));
+  }
   settings.maxSpeed =
       std::max(kMinGuardSpeed, kGuardMargin * std::sqrt(2.0f * gravityMagnitude(settings) * fall));
   settings.stepsPerContact = m_config.stepsPerContact;
