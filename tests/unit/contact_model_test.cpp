@@ -67,11 +67,10 @@ TEST(ContactModel, PeakOverlapIsTheEnergyBalanceOfAnUndampedImpact) {
   EXPECT_NEAR(0.4 * k * std::pow(xi, 2.5), 0.5 * m * v * v, 1e-9 * m * v * v);
   WorldSettings s;
   const ContactModel c = ContactModel::fromSettings(s);
-  const double speed = s.maxSpeed;
   EXPECT_FLOAT_EQ(c.peakOverlapGrain,
-                  float(hertzPeakOverlap(0.5 * c.granuleMass, c.stiffnessGrain, speed)));
+                  float(hertzPeakOverlap(0.5 * c.granuleMass, c.stiffnessGrain, s.maxSpeed)));
   EXPECT_FLOAT_EQ(c.peakOverlapWall,
-                  float(hertzPeakOverlap(c.granuleMass, c.stiffnessWall, speed)));
+                  float(hertzPeakOverlap(c.granuleMass, c.stiffnessWall, s.maxSpeed)));
   // Four floor particles around the hole: four times one contact's energy at the hole's overlap.
   const double hole = 1.0 - 1.0 / std::sqrt(2.0);
   EXPECT_NEAR(0.4 * std::pow(floorPassOverlap(1.0), 2.5), 4.0 * 0.4 * std::pow(hole, 2.5), 1e-12);
