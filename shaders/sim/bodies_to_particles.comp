@@ -20,6 +20,8 @@ PARTICLE_VELOCITY(writeonly)
 PARTICLE_CELL(writeonly)
 CELL_COUNT(coherent)
 
+#include "common/particle_offset.glsl"
+
 void main() {
   uint i = threadIndex();
   if (i >= counts.x) return;
@@ -28,8 +30,7 @@ void main() {
     particleCell[i] = INVALID_CELL;
     return;
   }
-  vec3 offset = quatRotate(texelFetch(bodyOrientationTexture, body),
-                           texelFetch(particleLocalTexture, int(i)).xyz);
+  vec3 offset = particleOffset(body, int(i));
   vec3 position = texelFetch(bodyPositionTexture, body).xyz + offset;
   vec3 velocity = texelFetch(bodyVelocityTexture, body).xyz +
                   cross(texelFetch(bodyAngularVelocityTexture, body).xyz, offset);

@@ -20,6 +20,7 @@ PARTICLE_LOCAL_TEXTURE
 PARTICLE_BODY_TEXTURE
 BODY_INFO(coherent)
 COUNTERS(coherent)
+#include "common/particle_offset.glsl"
 
 // The first new particle and how many there are.
 layout(location = 0) uniform uvec2 spawned;
@@ -29,9 +30,8 @@ void main() {
   if (t >= spawned.y) return;
   uint i = spawned.x + t;
   uint body = texelFetch(particleBodyTexture, int(i)).x;
-  vec3 position = texelFetch(bodyPositionTexture, int(body)).xyz +
-                  quatRotate(texelFetch(bodyOrientationTexture, int(body)),
-                             texelFetch(particleLocalTexture, int(i)).xyz);
+  vec3 position =
+      texelFetch(bodyPositionTexture, int(body)).xyz + particleOffset(int(body), int(i));
   float diameter = particleGeom.y;
   ivec3 cell = cellOf(position);
   bool taken = false;
