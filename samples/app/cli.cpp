@@ -219,7 +219,8 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
   app.add_option("--scale", scale, "rock-drop: scale factor applied to the mesh")->type_name("S");
   app.add_option(
          "--friction", friction,
-         "friction coefficient (hourglass: of the grains and the funnel wall; repose-heap: of "
+         "friction coefficient (hourglass: of the grains, the wall's is --param wall-friction; "
+         "repose-heap: of "
          "every contact; repose-scupper: of the grains and the sump's floor; slope-avalanche, "
          "avalanche: of the slope and the walls)")
       ->type_name("MU");

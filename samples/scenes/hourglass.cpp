@@ -117,7 +117,7 @@ Box Hourglass::gate(bool open) const {
   return Box{.center = {x, outletY() - 0.5f * kGateThickness * d(), 0.0f},
              .halfExtents = {half, 0.5f * kGateThickness * d(), half},
              .inside = false,
-             .material = {.friction = m_config.friction, .restitution = m_config.restitution}};
+             .material = {.friction = m_config.wallFriction, .restitution = m_config.restitution}};
 }
 
 WorldSettings Hourglass::worldSettings() const {
@@ -178,7 +178,7 @@ void Hourglass::build(World& world) {
              .outletRadius = outletRadius(),
              .halfAngle = radians(m_config.halfAngle),
              .height = m_funnelTop - outletY(),
-             .material = {.friction = m_config.friction, .restitution = m_config.restitution}});
+             .material = {.friction = m_config.wallFriction, .restitution = m_config.restitution}});
   m_gate = world.addCollider(gate(false));
   const float sinkHalf = outletRadius() + kSinkHalfWidth * d();
   world.addSink(Sink{.min = {-sinkHalf, outletY() - (kSinkDepth + kSinkHeight) * d(), -sinkHalf},
@@ -360,8 +360,9 @@ std::vector<SceneParameter> Hourglass::parameters() {
       {"outlet", "outlet diameter D, d (0 closes the funnel)", &m_config.outlet, 0.0, 1000.0},
       {"half-angle", "angle of the funnel wall from the vertical, degrees", &m_config.halfAngle,
        1.0, 80.0},
-      {"friction", "friction coefficient of grains and of the funnel wall", &m_config.friction, 0.0,
-       10.0},
+      {"friction", "friction coefficient of grain-grain contacts", &m_config.friction, 0.0, 10.0},
+      {"wall-friction", "friction coefficient of the funnel wall and the gate",
+       &m_config.wallFriction, 0.0, 10.0},
       {"youngs-modulus", kYoungsModulusHelp, &m_config.youngsModulus, 0.0, 1e12},
       {"restitution", "coefficient of restitution of impacts", &m_config.restitution, 0.01, 1.0},
       {"release-time", "earliest time the outlet opens, s", &m_config.releaseTime, 0.0, 1e9},

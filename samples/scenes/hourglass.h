@@ -31,9 +31,10 @@ namespace sandphys::scenes {
 /// Where it differs from the paper, and why:
 /// - The paper's floor 50 d below the outlet, where a pile forms, is left out: the pile does not
 ///   change the flow while it stays below the outlet, and its granules would cost substeps.
-/// - `friction` is the μ of grain-grain contacts (eq. 10, the paper's variable in Fig. 23) and
-///   also of the funnel wall and the gate, as the paper's containers take the grains'
-///   properties (6.1.1).
+/// - `friction` is the μ of grain-grain contacts (eq. 10, the paper's variable in Fig. 23);
+///   the funnel wall and the gate have their own, `wallFriction`, held at 0.5 as the paper holds
+///   its containers' for the angle of repose against μ (Fig. 22), so that a sweep over μ changes
+///   the grains alone.
 /// - The paper asks for a fill at least 2.5 times as high as it is wide, W > D + 30 d (the
 ///   conditions for a constant mean flow, its ref. [8]) and uses 64 K granules. The defaults
 ///   hold 8192 granules over the paper's outlet (D = 16 d), which settle 38 d high and 48 d
@@ -73,8 +74,10 @@ class Hourglass final : public Scene {
     float outlet = 16.0f;
     /// Angle of the funnel wall from the vertical axis, degrees; in (0, 80].
     float halfAngle = 22.5f;
-    /// Coulomb friction coefficient μ of grain-grain contacts and of the funnel wall.
+    /// Coulomb friction coefficient μ of grain-grain contacts.
     float friction = 0.5f;
+    /// Coulomb friction coefficient of the funnel wall and the gate.
+    float wallFriction = 0.5f;
     /// Young's modulus of the grains, Pa (see the class comment).
     float youngsModulus = 0.0f;
     /// Coefficient of restitution of grain-grain and grain-wall impacts; in (0, 1].

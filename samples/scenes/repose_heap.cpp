@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 
 #include "scenes/heap_metrics.h"
@@ -15,11 +16,26 @@ namespace {
 // Depth of the sink's top below the floor's particle centres, d: past the floor's edge a grain
 // that deep has left.
 constexpr float kSinkDepth = 3.0f;
+// Bulk volume of one granule in a settled heap, d³ (its four spheres fill 2.1 d³, loosely packed).
+constexpr double kSettledVolume = 3.6;
+// Room left between the foot of the heap and the floor's edge, d.
+constexpr float kFootMargin = 4.0f;
 
 }  // namespace
 
 float ReposeHeap::emitterSpeed() const {
   return pourSpeed(0.5f * m_config.outlet * d(), m_config.rate, d());
+}
+
+float ReposeHeap::floorRadiusHolding(std::uint32_t granules, float angleDegrees) {
+  if (!(angleDegrees > 0.0f && angleDegrees < 90.0f)) {
+    throw InvalidArgument("repose-heap: the flank's angle " + numberText(angleDegrees) +
+                          "° must lie in (0°, 90°)");
+  }
+  // A cone of radius r and flank angle θ holds π r³ tan θ / 3.
+  const double slope = std::tan(angleDegrees * std::numbers::pi / 180.0);
+  const double radius = std::cbrt(3.0 * kSettledVolume * granules / (std::numbers::pi * slope));
+  return static_cast<float>(radius) + kFootMargin;
 }
 
 WorldSettings ReposeHeap::worldSettings() const {

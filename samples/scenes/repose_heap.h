@@ -95,6 +95,9 @@ class ReposeHeap final : public Scene {
   analysis::HeapAngle heapAngle(std::span<const BodyState> bodies) const;
   /// Speed of the emitter's granules, m/s.
   float emitterSpeed() const;
+  /// Floor radius, d, on which a cone of `granules` settled granules with its flank at
+  /// `angleDegrees` ends a margin short of the edge: for a floor that follows the pour's size.
+  static float floorRadiusHolding(std::uint32_t granules, float angleDegrees);
 
  private:
   float d() const { return m_config.particleDiameter; }

@@ -23,15 +23,14 @@ nlohmann::json duneProfile(const ExperimentContext& context, const DuneOptions& 
   auto point = [&](const std::array<double, 2>& p) {
     return nlohmann::json{{"x_d", p[0] / d}, {"height_d", p[1] / d}};
   };
-  return {{"granules_per_column", options.granulesPerColumn},
-          {"separation_d", options.separation},
-          {"finished", run.sceneFinished},
-          {"wall_seconds", run.wallSeconds},
-          {"simulated_seconds", run.stats.simulatedTime},
-          {"profile_d", points},
-          {"left_crest", point(profile.leftCrest)},
-          {"right_crest", point(profile.rightCrest)},
-          {"saddle", point(profile.saddle)}};
+  nlohmann::json result = runFacts(run);
+  result.update({{"granules_per_column", options.granulesPerColumn},
+                 {"separation_d", options.separation},
+                 {"profile_d", points},
+                 {"left_crest", point(profile.leftCrest)},
+                 {"right_crest", point(profile.rightCrest)},
+                 {"saddle", point(profile.saddle)}});
+  return result;
 }
 
 }  // namespace sandphys::validation

@@ -26,6 +26,10 @@ struct ExperimentContext {
 /// `maxSeconds` have been simulated, with frames of context.frameDt.
 samples::RunSummary runToEnd(const ExperimentContext& context, scenes::Scene& scene,
                              double maxSeconds);
+/// What every run's entry in the results carries: finished, wall_seconds, simulated_seconds,
+/// max_overlap_d (the largest overlap of the run over d), granules_not_born (emitted where a
+/// granule already was) and substeps_per_frame.
+nlohmann::json runFacts(const samples::RunSummary& run);
 
 /// The hourglass against friction (the paper's Fig. 23): one fill per μ over a fixed outlet, each
 /// drained; the granules remaining over time and the flow rate of the steady part.
@@ -53,6 +57,14 @@ struct ReposeOptions {
   std::uint32_t granules = 1500;
   /// μ = 0 is measured but left out of the power law.
   std::vector<double> frictions{0.0, 0.1, 0.2, 0.4, 0.6, 0.8};
+  /// The floor follows the granule count: a heap with its flank this steep ends short of the
+  /// floor's edge (ReposeHeap::floorRadiusHolding), degrees; μ = 0 spreads wider, as it must.
+  float lowestAngle = 10.0f;
+  /// At rest below this rms speed, m/s: a tenth of the scenes' default, so that a heap still
+  /// sagging is not measured as settled.
+  float settleSpeed = 0.002f;
+  /// Longest wait for rest after the pour, s.
+  float maxSettleSeconds = 6.0f;
 };
 nlohmann::json reposeAgainstFriction(const ExperimentContext& context,
                                      const ReposeOptions& options);
@@ -63,6 +75,8 @@ struct ScupperOptions {
   std::uint32_t granules = scenes::ReposeScupper::Config{}.granules;
   /// μ = 0 is measured but left out of the power law.
   std::vector<double> frictions{0.0, 0.1, 0.2, 0.4, 0.6, 0.8};
+  /// At rest below this rms speed, m/s (as for ReposeOptions).
+  float settleSpeed = 0.002f;
 };
 nlohmann::json scupperAgainstFriction(const ExperimentContext& context,
                                       const ScupperOptions& options);

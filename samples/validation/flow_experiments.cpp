@@ -25,17 +25,17 @@ nlohmann::json drain(const ExperimentContext& context, const scenes::Hourglass::
   const scenes::Hourglass::FlowFit fit = scene.flowFit();
   nlohmann::json remaining = nlohmann::json::array();
   for (const auto& point : scene.remaining()) remaining.push_back({point[0], point[1]});
-  return {{"friction", config.friction},
-          {"outlet_d", config.outlet},
-          {"granules_at_release", scene.granulesAtRelease()},
-          {"flow_rate", fit.rate},
-          {"flow_rate_r2", fit.rSquared},
-          {"steady_start_s", fit.start},
-          {"steady_end_s", fit.end},
-          {"steady_samples", fit.samples},
-          {"finished", run.sceneFinished},
-          {"wall_seconds", run.wallSeconds},
-          {"remaining", remaining}};
+  nlohmann::json entry = runFacts(run);
+  entry.update({{"friction", config.friction},
+                {"outlet_d", config.outlet},
+                {"granules_at_release", scene.granulesAtRelease()},
+                {"flow_rate", fit.rate},
+                {"flow_rate_r2", fit.rSquared},
+                {"steady_start_s", fit.start},
+                {"steady_end_s", fit.end},
+                {"steady_samples", fit.samples},
+                {"remaining", remaining}});
+  return entry;
 }
 
 scenes::Hourglass::Config hourglass(std::uint32_t granules, float outlet, float friction) {
@@ -55,7 +55,10 @@ nlohmann::json flowAgainstFriction(const ExperimentContext& context,
     runs.push_back(
         drain(context, hourglass(options.granules, options.outlet, static_cast<float>(mu))));
   }
-  return {{"granules", options.granules}, {"outlet_d", options.outlet}, {"runs", runs}};
+  return {{"granules", options.granules},
+          {"outlet_d", options.outlet},
+          {"wall_friction", scenes::Hourglass::Config{}.wallFriction},
+          {"runs", runs}};
 }
 
 nlohmann::json flowAgainstOutlet(const ExperimentContext& context,
@@ -75,6 +78,7 @@ nlohmann::json flowAgainstOutlet(const ExperimentContext& context,
   }
   nlohmann::json result = {{"granules", options.granules},
                            {"friction", options.friction},
+                           {"wall_friction", scenes::Hourglass::Config{}.wallFriction},
                            {"runs", runs},
                            {"paper", {{"c", kPaperBeverlooC}, {"k", kPaperBeverlooK}}}};
   try {

@@ -187,16 +187,14 @@ nlohmann::json compressionAndForces(const ExperimentContext& context,
     const double d = config.particleDiameter;
     nlohmann::json curve = nlohmann::json::array();
     for (const auto& point : scene.stressStrain()) curve.push_back({point[0], point[1]});
-    nlohmann::json entry = {{"friction", friction},
-                            {"granules", scene.granulesPerLayer() * config.layers},
-                            {"finished", run.sceneFinished},
-                            {"wall_seconds", run.wallSeconds},
-                            {"simulated_seconds", run.stats.simulatedTime},
-                            {"stress_strain", curve},
-                            {"turn_index", scene.turnIndex()},
-                            {"max_strain", scene.maxStrain()},
-                            {"residual_strain", scene.residualStrain()},
-                            {"recovered_fraction", scene.recoveredFraction()}};
+    nlohmann::json entry = runFacts(run);
+    entry.update({{"friction", friction},
+                  {"granules", scene.granulesPerLayer() * config.layers},
+                  {"stress_strain", curve},
+                  {"turn_index", scene.turnIndex()},
+                  {"max_strain", scene.maxStrain()},
+                  {"residual_strain", scene.residualStrain()},
+                  {"recovered_fraction", scene.recoveredFraction()}});
     if (scene.atRest().time >= 0.0) entry["rest"] = forces(scene.atRest(), d, true);
     if (scene.atPeak().time >= 0.0) entry["peak"] = forces(scene.atPeak(), d, false);
     runs.push_back(std::move(entry));

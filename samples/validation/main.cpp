@@ -53,6 +53,15 @@ samples::RunSummary runToEnd(const ExperimentContext& context, scenes::Scene& sc
   return run;
 }
 
+nlohmann::json runFacts(const samples::RunSummary& run) {
+  return {{"finished", run.sceneFinished},
+          {"wall_seconds", run.wallSeconds},
+          {"simulated_seconds", run.stats.simulatedTime},
+          {"max_overlap_d", run.maxOverlap / run.particleDiameter},
+          {"granules_not_born", run.stats.granulesNotBorn},
+          {"substeps_per_frame", run.frameDt / run.timeStep}};
+}
+
 }  // namespace sandphys::validation
 
 int main(int argc, char** argv) {

@@ -31,10 +31,8 @@ nlohmann::json angleSweep(const ExperimentContext& context, std::uint32_t granul
   for (double mu : frictionList) {
     SceneType scene = makeScene(static_cast<float>(mu));
     const samples::RunSummary run = runToEnd(context, scene, kLongestRunSeconds);
-    nlohmann::json entry = {{"friction", mu},
-                            {"finished", run.sceneFinished},
-                            {"wall_seconds", run.wallSeconds},
-                            {"simulated_seconds", run.stats.simulatedTime}};
+    nlohmann::json entry = runFacts(run);
+    entry.update({{"friction", mu}, {"kinetic_energy_j", run.stats.kineticEnergy}});
     for (const scenes::SceneMetric& metric : scene.metrics(run.bodies)) {
       if (metric.name.starts_with("granules_") || metric.name == "settled") {
         entry[metric.name] = metric.value;
@@ -78,25 +76,35 @@ nlohmann::json angleSweep(const ExperimentContext& context, std::uint32_t granul
 
 nlohmann::json reposeAgainstFriction(const ExperimentContext& context,
                                      const ReposeOptions& options) {
-  return angleSweep<scenes::ReposeHeap>(context, options.granules, options.frictions,
-                                        [&](float mu) {
-                                          scenes::ReposeHeap::Config config;
-                                          config.granules = options.granules;
-                                          config.friction = mu;
-                                          return scenes::ReposeHeap(config);
-                                        });
+  nlohmann::json result =
+      angleSweep<scenes::ReposeHeap>(context, options.granules, options.frictions, [&](float mu) {
+        scenes::ReposeHeap::Config config;
+        config.granules = options.granules;
+        config.friction = mu;
+        config.floorRadius =
+            scenes::ReposeHeap::floorRadiusHolding(options.granules, options.lowestAngle);
+        config.settleSpeed = options.settleSpeed;
+        config.maxSettleSeconds = options.maxSettleSeconds;
+        return scenes::ReposeHeap(config);
+      });
+  result["floor_radius_d"] =
+      scenes::ReposeHeap::floorRadiusHolding(options.granules, options.lowestAngle);
+  result["settle_speed_m_s"] = options.settleSpeed;
+  return result;
 }
 
 nlohmann::json scupperAgainstFriction(const ExperimentContext& context,
                                       const ScupperOptions& options) {
-  nlohmann::json result = angleSweep<scenes::ReposeScupper>(context, options.granules,
-                                                            options.frictions, [&](float mu) {
-                                                              scenes::ReposeScupper::Config config;
-                                                              config.granules = options.granules;
-                                                              config.friction = mu;
-                                                              return scenes::ReposeScupper(config);
-                                                            });
+  nlohmann::json result = angleSweep<scenes::ReposeScupper>(
+      context, options.granules, options.frictions, [&](float mu) {
+        scenes::ReposeScupper::Config config;
+        config.granules = options.granules;
+        config.friction = mu;
+        config.settleSpeed = options.settleSpeed;
+        return scenes::ReposeScupper(config);
+      });
   const scenes::ReposeScupper::Config geometry;
+  result["settle_speed_m_s"] = options.settleSpeed;
   result["wall_friction"] = geometry.wallFriction;
   result["geometry_d"] = {{"depth", geometry.depth},
                           {"reservoir_width", geometry.reservoirWidth},

@@ -4,7 +4,10 @@ sandphys-validation. Every number in the report comes from that file; the paper'
 the reference the program wrote beside its own. Needs python3-matplotlib. The plots are
 report_plots.py, the summary table and its verdicts report_tables.py.
 
-Usage: scripts/validation/make_report.py RESULTS.json OUT_DIR
+Usage: scripts/validation/make_report.py RESULTS.json OUT_DIR [BESIDE.json]
+
+BESIDE.json, a second run under the other contact law (sandphys-validation --contact-law), puts
+its angle-of-repose sweeps beside the main run's.
 """
 import json
 import sys
@@ -15,6 +18,12 @@ from report_plots import (plot_beverloo, plot_dunes, plot_flow_friction, plot_fo
 from report_tables import (EXPONENT_TOLERANCE, MIN_LAW_R2, MIN_STEADY_R2, compression_runs,
                            fit_text, fmt, rows_compression, rows_dunes, rows_flow_friction,
                            rows_flow_outlet, rows_repose)
+
+
+def cost(r):
+    """Two table cells of a run: its largest overlap (d) and substeps per frame (n/a in results
+    written before sandphys-validation recorded them)."""
+    return f"{fmt(r.get('max_overlap_d'), 2)} | {fmt(r.get('substeps_per_frame'), 3)}"
 
 
 def angle_lines(section):
@@ -31,8 +40,33 @@ def angle_lines(section):
         # A run that stopped at its time limit with the sand still moving says so.
         creeping = " (not at rest)" if r.get("settled") == 0 else ""
         lines.append(f"| {r['friction']:g} | {angle}{creeping} | {r2} | {cells} | {height} | "
-                     f"{r['simulated_seconds']:.2f} | {r['wall_seconds']:.0f} |")
+                     f"{r['simulated_seconds']:.2f} | {cost(r)} | {r['wall_seconds']:.0f} |")
     return lines
+
+
+# What each value of sandphys-validation's --contact-law is called in the report.
+LAW_NAMES = {"hertz-mindlin": "Hertz–Mindlin", "paper": "the paper's law"}
+
+
+def law_of(results):
+    return results.get("contact_law", "hertz-mindlin")
+
+
+def beside_text(section, beside, law):
+    """The other law's sweep of the same experiment, as a paragraph and table, or nothing."""
+    if not beside:
+        return []
+    return [
+        "",
+        f"The same sweep under {LAW_NAMES[law]} (`--contact-law {law}`):",
+        "",
+        "| μ | angle (°) | R² | flank cells | height (d) | simulated (s) | largest overlap (d) | "
+        "substeps per frame | wall (s) |",
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- |",
+        *angle_lines(beside),
+        "",
+        power_law_text(beside),
+    ]
 
 
 def power_law_text(section):
@@ -47,10 +81,15 @@ def power_law_text(section):
 
 
 def main():
-    if len(sys.argv) != 3:
+    if len(sys.argv) not in (3, 4):
         sys.exit(__doc__)
     results = json.loads(Path(sys.argv[1]).read_text())
     out = Path(sys.argv[2])
+    other = json.loads(Path(sys.argv[3]).read_text()) if len(sys.argv) == 4 else {}
+    main_law, other_law = law_of(results), law_of(other) if other else None
+    # The summary names the law of each angle row once a second law is beside.
+    main_name = f", {LAW_NAMES[main_law]}" if other else ""
+    other_name = f", {LAW_NAMES[other_law]}" if other else ""
     out.mkdir(parents=True, exist_ok=True)
 
     rows = []
@@ -61,17 +100,21 @@ def main():
         rows += rows_flow_friction(s)
         lines = [f"| {r['friction']:g} | {r['granules_at_release']} | {r['flow_rate']:.1f} | "
                  f"{fmt(r['flow_rate_r2'], 5)} | {r['steady_start_s']:.2f}–{r['steady_end_s']:.2f} | "
-                 f"{r['wall_seconds']:.0f} |" for r in s["runs"]]
+                 f"{cost(r)} | {r['wall_seconds']:.0f} |" for r in s["runs"]]
         sections.append("\n".join([
             "## Flow rate against friction",
             "",
             f"The `hourglass` scene: {s['granules']} granules settle in the funnel (45° full "
-            f"aperture) over an outlet of {s['outlet_d']:g} d, then drain. The flow rate is the "
+            f"aperture) over an outlet of {s['outlet_d']:g} d, then drain"
+            + (f"; the funnel wall's friction is held at {s['wall_friction']:g} while the grains' "
+               "μ changes" if "wall_friction" in s else "")
+            + ". The flow rate is the "
             "slope of a least-squares line through the granules remaining while 10% to 80% of "
             "them have left.",
             "",
-            "| μ | granules at release | flow rate (granules/s) | R² | steady window (s) | wall (s) |",
-            "| --- | --- | --- | --- | --- | --- |",
+            "| μ | granules at release | flow rate (granules/s) | R² | steady window (s) | "
+            "largest overlap (d) | substeps per frame | wall (s) |",
+            "| --- | --- | --- | --- | --- | --- | --- | --- |",
             *lines,
             "",
             "![flow against friction](flow_friction.png)",
@@ -81,7 +124,8 @@ def main():
         plot_beverloo(s, out)
         rows += rows_flow_outlet(s)
         lines = [f"| {r['outlet_d']:g} | {r['granules_at_release']} | {r['flow_rate']:.1f} | "
-                 f"{fmt(r['flow_rate_r2'], 5)} | {r['wall_seconds']:.0f} |" for r in s["runs"]]
+                 f"{fmt(r['flow_rate_r2'], 5)} | {cost(r)} | {r['wall_seconds']:.0f} |"
+                 for r in s["runs"]]
         fit = s.get("beverloo")
         beverloo_text = (f"Fitted (`analysis::fitBeverloo`): C = {fit['c']:.4g}, k = {fit['k']:.4g} d, "
                     f"R² = {fit['r2']:.4f}; the paper: C = {s['paper']['c']:g}, "
@@ -92,8 +136,9 @@ def main():
             f"The same funnel and fill size at μ = {s['friction']:g}, for each outlet diameter D. "
             "A run whose outlet jammed has no steady part (rate 0) and is left out of the fit.",
             "",
-            "| D (d) | granules at release | flow rate (granules/s) | R² | wall (s) |",
-            "| --- | --- | --- | --- | --- |",
+            "| D (d) | granules at release | flow rate (granules/s) | R² | largest overlap (d) | "
+            "substeps per frame | wall (s) |",
+            "| --- | --- | --- | --- | --- | --- | --- |",
             *lines,
             "",
             beverloo_text,
@@ -107,32 +152,48 @@ def main():
         ]))
     if "repose" in results:
         s = results["repose"]
-        plot_repose(s, out)
-        rows += rows_repose(s)
+        b = other.get("repose")
+        plot_repose(s, out, beside=b, labels=(LAW_NAMES[main_law], other_law and LAW_NAMES[other_law]))
+        rows += rows_repose(s, law_name=main_name)
+        if b:
+            rows += rows_repose(b, law_name=other_name)
         lines = angle_lines(s)
         law_text = power_law_text(s)
         sections.append("\n".join([
             "## Angle of repose against friction",
             "",
-            f"The `repose-heap` scene: {s['granules']} granules poured from a narrow emitter onto "
-            "a rough floor. Once the heap has settled, the surface is the highest granule centre "
+            f"The `repose-heap` scene under {LAW_NAMES[main_law]}: {s['granules']} granules poured "
+            "from a narrow emitter onto a rough floor"
+            + (f" {s['floor_radius_d']:.1f} d in radius (wide enough for a heap of them at "
+               "10°, so that only a heap flatter than that reaches the edge)"
+               if "floor_radius_d" in s else "")
+            + (f", until the rms speed is below {s['settle_speed_m_s']:g} m/s"
+               if "settle_speed_m_s" in s else "")
+            + ". Once the heap has settled, the surface is the highest granule centre "
             "in every square cell one granule wide; the flank is the part between 15% and 85% of "
             "the peak height (chosen by radius, see `analysis::angleOfRepose`), and the angle is "
             "that of a bisquare-weighted line through it.",
             "",
-            "| μ | angle (°) | R² | flank cells | height (d) | simulated (s) | wall (s) |",
-            "| --- | --- | --- | --- | --- | --- | --- |",
+            "| μ | angle (°) | R² | flank cells | height (d) | simulated (s) | largest overlap (d) | "
+            "substeps per frame | wall (s) |",
+            "| --- | --- | --- | --- | --- | --- | --- | --- | --- |",
             *lines,
             "",
             law_text,
+            *beside_text(s, b, other_law),
             "",
             "![angle of repose](repose.png)",
         ]))
     if "repose-scupper" in results:
         s = results["repose-scupper"]
         g = s["geometry_d"]
-        plot_repose(s, out, "repose_scupper.png", "sump piles", "the ledge's face")
-        rows += rows_repose(s, "sump of the reservoir and scupper", "Figs. 15 and 22")
+        b = other.get("repose-scupper")
+        plot_repose(s, out, "repose_scupper.png", "sump piles", "the ledge's face", beside=b,
+                    labels=(LAW_NAMES[main_law], other_law and LAW_NAMES[other_law]))
+        rows += rows_repose(s, "sump of the reservoir and scupper", "Figs. 15 and 22", main_name)
+        if b:
+            rows += rows_repose(b, "sump of the reservoir and scupper", "Figs. 15 and 22",
+                                other_name)
         lines = [line + f" {r.get('granules_in_sump', 0):.0f} |"
                  for line, r in zip(angle_lines(s), s["runs"])]
         sections.append("\n".join([
@@ -151,11 +212,13 @@ def main():
                if "wall_friction" in s else "(the grains' μ)")
             + " holds the pile up a little.",
             "",
-            "| μ | angle (°) | R² | flank cells | height (d) | simulated (s) | wall (s) | granules in the sump |",
-            "| --- | --- | --- | --- | --- | --- | --- | --- |",
+            "| μ | angle (°) | R² | flank cells | height (d) | simulated (s) | largest overlap (d) | "
+            "substeps per frame | wall (s) | granules in the sump |",
+            "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |",
             *lines,
             "",
             power_law_text(s),
+            *beside_text(s, b, other_law),
             "",
             "![angle of repose in the sump](repose_scupper.png)",
         ]))
@@ -240,11 +303,17 @@ def main():
         "Generated by `scripts/validation-report.sh` (which runs `sandphys-validation` and then "
         "`scripts/validation/make_report.py`); every number below comes from that run.",
         "",
-        f"- Run started {results['started']}, {wall / 60:.1f} min wall, on {results['gpu']}.",
+        f"- Run started {results['started']}, {wall / 60:.1f} min wall, on {results['gpu']}, "
+        f"under {LAW_NAMES[main_law]}.",
         f"- Command: `{results['command']}`",
+        *([f"- Beside it, the angle-of-repose sweeps under {LAW_NAMES[other_law]}: run started "
+           f"{other['started']}, {other.get('wall_seconds', 0.0) / 60:.1f} min wall, command "
+           f"`{other['command']}` ([{Path(sys.argv[3]).name}]({Path(sys.argv[3]).name}))."]
+          if other else []),
         "- The measurements: [results.json](results.json); "
-        "`scripts/validation/make_report.py docs/validation/results.json docs/validation` redraws "
-        "this report from them.",
+        "`scripts/validation/make_report.py docs/validation/results.json docs/validation"
+        + (f" docs/validation/{Path(sys.argv[3]).name}" if other else "")
+        + "` redraws this report from them.",
         "",
         "## Summary",
         "",

@@ -63,11 +63,18 @@ def plot_beverloo(section, out):
     plt.close(fig)
 
 
-def plot_repose(section, out, name="repose.png", what="heaps", distance="the heap's axis"):
+def plot_repose(section, out, name="repose.png", what="heaps", distance="the heap's axis",
+                beside=None, labels=("sandphys", None)):
+    """`beside`: the same sweep under another contact law, drawn on the left beside the first
+    (whose flanks alone are drawn on the right); `labels`: the two laws' names."""
     fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
     runs = [r for r in section["runs"] if "angle_deg" in r]
     mus = [r["friction"] for r in runs]
-    left.plot(mus, [r["angle_deg"] for r in runs], "o", label="sandphys")
+    left.plot(mus, [r["angle_deg"] for r in runs], "o", label=f"sandphys, {labels[0]}")
+    if beside:
+        other = [r for r in beside["runs"] if "angle_deg" in r]
+        left.plot([r["friction"] for r in other], [r["angle_deg"] for r in other], "s",
+                  fillstyle="none", label=f"sandphys, {labels[1]}")
     law = section.get("power_law")
     if law and mus:
         grid = [max(mus) * i / 100 for i in range(1, 101)]

@@ -62,30 +62,54 @@ def rows_flow_outlet(section):
         return [("Beverloo's law (Fig. 24)", f"W = {paper['c']:g} (D − {paper['k']:g})^5/2",
                  section.get("beverloo_error", "no fit"), "disagrees")]
     obeys = fit["r2"] >= MIN_LAW_R2
+    # k is the empty annulus at the outlet's rim: a negative one is no annulus, and no Beverloo.
+    if not obeys:
+        verdict = "disagrees"
+    elif fit["k"] < 0:
+        verdict = "disagrees (the curve fits, but k < 0 has no meaning as an empty annulus)"
+    else:
+        verdict = "agrees (law obeyed; constants differ, see below)"
     return [("Beverloo's law W = C (D − k)^5/2 (Fig. 24)",
              f"obeyed; C = {paper['c']:g}, k = {paper['k']:g} d",
-             f"C = {fit['c']:.3g}, k = {fit['k']:.3g} d, R² {fit['r2']:.4f}",
-             "agrees (law obeyed; constants differ, see below)" if obeys else "disagrees")]
+             f"C = {fit['c']:.3g}, k = {fit['k']:.3g} d, R² {fit['r2']:.4f}", verdict)]
 
 
-def rows_repose(section, setup="poured heap", figures="Fig. 22"):
+# Dry sand's angle of repose (natural sands, about 30° to 35°), to compare the heaps' with.
+REAL_SAND_DEGREES = (30.0, 35.0)
+# The grain-on-grain friction of quartz sand, about 0.5: the runs compared with real sand.
+REAL_SAND_FRICTIONS = (0.4, 0.6)
+
+
+def rows_repose(section, setup="poured heap", figures="Fig. 22", law_name=""):
+    """Rows of an angle sweep; `law_name` (", paper's law") tells a second contact law's apart."""
     law = section.get("power_law")
     runs = [r for r in section["runs"] if "angle_deg" in r]
     angles = [r["angle_deg"] for r in runs]
     rising = all(b > a for a, b in zip(angles, angles[1:]))
     expected = section["paper"]["exponent"]
     if not law:
-        return [(f"Angle of repose against friction, {setup} ({figures})",
+        return [(f"Angle of repose against friction, {setup}{law_name} ({figures})",
                  f"power law, exponent {expected:g}", section.get("power_law_error", "no fit"),
                  "disagrees")]
     close = abs(law["exponent"] - expected) <= EXPONENT_TOLERANCE and law["r2"] >= MIN_LAW_R2
     listing = ", ".join(f"μ {r['friction']:g}: {r['angle_deg']:.1f}°" for r in runs)
+    lo, hi = REAL_SAND_FRICTIONS
+    sandlike = [r for r in runs if lo <= r["friction"] <= hi]
+    real = []
+    if sandlike:
+        inside = all(REAL_SAND_DEGREES[0] <= r["angle_deg"] <= REAL_SAND_DEGREES[1]
+                     for r in sandlike)
+        real = [(f"Angle of repose at sand's friction (μ {lo:g} to {hi:g}), {setup}{law_name}",
+                 f"real dry sand: {REAL_SAND_DEGREES[0]:g}° to {REAL_SAND_DEGREES[1]:g}°",
+                 ", ".join(f"μ {r['friction']:g}: {r['angle_deg']:.1f}°" for r in sandlike),
+                 "agrees" if inside else "disagrees")]
     return [
-        (f"Angle of repose rises with friction, {setup} ({figures})",
+        (f"Angle of repose rises with friction, {setup}{law_name} ({figures})",
          "steeper with more friction", listing, "agrees" if rising else "disagrees"),
-        (f"Power law of the angle in μ, {setup} ({figures})", f"exponent {expected:g}",
+        (f"Power law of the angle in μ, {setup}{law_name} ({figures})", f"exponent {expected:g}",
          f"exponent {law['exponent']:.2f}, coefficient {law['coefficient']:.3g}°, R² {law['r2']:.3f}",
          "agrees" if close else "disagrees"),
+        *real,
     ]
 
 

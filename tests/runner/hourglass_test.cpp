@@ -34,9 +34,8 @@ constexpr std::uint32_t kGranules = 1500;
 constexpr float kSmallOutlet = 14.0f;  // d
 constexpr float kLargeOutlet = 18.0f;  // d
 constexpr float kRoughFriction = 0.8f;
-// Under the weight of the fill a softer material (5e5 Pa) lets the strongest contacts pass the
-// penetration guard (d/10, where the Hertz force stops growing) and the granules sink into each
-// other; 2e6 Pa keeps the guard count negligible.
+// The hourglass scene's material: a softer one (5e5 Pa) presses the fill's strongest contacts
+// deeper under its weight, and the paper's law caps its force at d/10 deep.
 constexpr float kYoungsModulus = 2.0e6f;
 constexpr float kFrame = 1.0f / 120.0f;
 // The lattice the fill starts on collapses within 0.35 s (the kinetic energy peaks at 0.2 s) and
