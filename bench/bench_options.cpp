@@ -142,6 +142,11 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
       ->capture_default_str();
   app.add_option("--chunk", measure.chunk, "substeps per World::substep call")
       ->capture_default_str();
+  app.add_option("--reserve-particles", measure.reserveParticles,
+                 "particles every World reserves (and a quarter as many bodies), for what spare "
+                 "capacity costs; 0: what the pile needs")
+      ->check(CLI::Range(0u, 1u << 28))
+      ->capture_default_str();
   app.add_option("--packing", packing,
                  "initial pile: 'crystal' (aligned granules whose particles form an FCC packing "
                  "on the floor, pressed by their weight: nearly static at once, denser and more "

@@ -105,12 +105,17 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   WorldSettings settings = pile.settings();
   settings.profileKernels = options.kernelTimes;
   settings.statsEachFrame = false;  // substep() is used; stats are read when needed
+  if (options.reserveParticles > settings.maxParticles) {
+    settings.maxParticles = options.reserveParticles;
+    settings.maxBodies = std::max(settings.maxBodies, options.reserveParticles / 4u);
+  }
   World world(gpu, settings);
   pile.build(world);
   result.setupSeconds = secondsSince(setupStart);
   result.granules = world.granulesSpawned();
   result.particles = world.particleCount();
   result.floorParticles = result.particles - 4 * result.granules;
+  result.particleCapacity = world.particleCapacity();
   result.timeStep = world.timeStep();
   result.gpuMemoryBytes = world.gpuMemoryBytes();
   result.built = readPileState(world, pile, world.readStats());

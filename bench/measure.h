@@ -37,6 +37,9 @@ struct MeasureOptions {
   bool progress = true;
   /// Time the renderer on the measured pile (off unless a size is given).
   RenderOptions render{};
+  /// Particles (and a quarter as many bodies) the World reserves; 0 or fewer than the pile
+  /// needs: exactly what it needs. What a game reserving room for more costs.
+  std::uint32_t reserveParticles = 0;
 };
 
 /// How settled the pile is at one moment (one readStats and one readBodies, both sync points).
@@ -64,6 +67,7 @@ struct SizeResult {
   std::uint32_t granules = 0;
   std::uint32_t particles = 0;  ///< granule particles + rough floor particles
   std::uint32_t floorParticles = 0;
+  std::uint32_t particleCapacity = 0;  ///< the World's WorldSettings::maxParticles
   DensePileLayout layout{};
   float timeStep = 0.0f;      ///< s
   double setupSeconds = 0.0;  ///< World creation (kernel compilation) and build, wall s

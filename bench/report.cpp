@@ -85,6 +85,7 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
       {"granules", size.granules},
       {"particles", size.particles},
       {"floor_particles", size.floorParticles},
+      {"particle_capacity", size.particleCapacity},
       {"contacts", size.measured.contacts},
       {"contacts_per_granule", size.measured.contactsPerGranule},
       {"cundall_number", size.cundallNumber()},
@@ -178,12 +179,12 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
                std::string(packingName(measure.pile.packing)).c_str(), report.gpu.c_str(),
                report.hardwareThreads);
 
-  std::fprintf(out, "%9s %10s %9s %11s %12s %12s %9s %9s %9s\n", "granules", "particles",
-               "contacts", "Cundall", "us/gran-step", "sim s/wall s", "ms/step", "CPU ms",
-               "B/gran");
+  std::fprintf(out, "%9s %10s %10s %9s %11s %12s %12s %9s %9s %9s\n", "granules", "particles",
+               "capacity", "contacts", "Cundall", "us/gran-step", "sim s/wall s", "ms/step",
+               "CPU ms", "B/gran");
   for (const SizeResult& s : report.sizes) {
-    std::fprintf(out, "%9u %10u %9u %11.4g %12.4g %12.4g %9.2f %9.2f %9.0f\n", s.granules,
-                 s.particles, s.measured.contacts, s.cundallNumber(),
+    std::fprintf(out, "%9u %10u %10u %9u %11.4g %12.4g %12.4g %9.2f %9.2f %9.0f\n", s.granules,
+                 s.particles, s.particleCapacity, s.measured.contacts, s.cundallNumber(),
                  s.microsecondsPerGranuleStep(), s.simulatedPerWallSecond(),
                  s.wallMillisecondsPerStep(), s.cpuMillisecondsPerStep(),
                  double(s.gpuMemoryBytes) / s.granules);

@@ -60,6 +60,31 @@ TEST(Determinism, TwoWorldsSideBySideAgreeBitForBit) {
   EXPECT_TRUE(identical(a->readBodies(), b->readBodies()));
 }
 
+TEST(Determinism, CapacityDoesNotChangeTheResult) {
+  // A World with room for a thousand times more granules computes the same pile bit for bit, and
+  // scans the same grid table every substep: the table follows the particles in use.
+  testing::TestWorld exact(testing::smallSettings(96));
+  testing::TestWorld roomy(testing::smallSettings(96 * 1024));
+  buildPile(*exact);
+  buildPile(*roomy);
+  exact->substep(300);
+  roomy->substep(300);
+  EXPECT_TRUE(identical(exact->readBodies(), roomy->readBodies()));
+  EXPECT_GT(exact->readStats().contacts, 30u);
+  EXPECT_EQ(roomy->readStats().gridBuckets, exact->readStats().gridBuckets);
+  // ... and grows with what is added: past the smallest table's 4096 particles, twice as big.
+  const std::uint32_t before = roomy->readStats().gridBuckets;
+  for (std::uint32_t layer = 0; layer < 16; ++layer) {
+    roomy->addGranules(GranuleBlock{.center = {0, 0.6f + 0.1f * float(layer), 0},
+                                    .countX = 8,
+                                    .countY = 1,
+                                    .countZ = 8,
+                                    .seed = 20u + layer});
+  }
+  roomy->substep(1);
+  EXPECT_EQ(roomy->readStats().gridBuckets, 2 * before);
+}
+
 TEST(Determinism, ADifferentSeedGivesADifferentPile) {
   testing::TestWorld a, b;
   buildPile(*a);

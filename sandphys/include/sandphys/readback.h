@@ -69,6 +69,9 @@ struct WorldStats {
   /// under an emitter); they never move nor touch anything.
   std::uint32_t granulesNotBorn = 0;
   std::uint32_t contacts = 0;  ///< particle-particle pairs + collider contacts, last substep
+  /// Buckets of the neighbour grid's hash table that the last substep scanned: a power of two of
+  /// at least 4096 that follows the particles in use, not the capacity reserved.
+  std::uint32_t gridBuckets = 0;
   double kineticEnergy = 0.0;  ///< translational + rotational of dynamic bodies, J
   double maxOverlap = 0.0;     ///< largest overlap since the last readStats, m
   /// ContactLaw::PaperViscous: contacts whose overlap exceeded d/10 and was capped (total).

@@ -152,12 +152,13 @@ World::Impl::Impl(const GpuContext& context, const WorldSettings& s) : gpu(&cont
   require(particles <= kMaxParticles, "WorldSettings.maxParticles", double(particles),
           "must be <= " + std::to_string(kMaxParticles) + " (GPU buffer limit)");
   particleCapacity = std::uint32_t(particles);
-  table = HashTable::forParticles(particleCapacity);
+  tableCapacity = HashTable::sizeFor(particleCapacity);
+  table = HashTable::forParticles(0);
   granule = tetrahedronTemplate(settings.particleDiameter, settings.material.density);
 
   context.makeCurrent();
   kernels.compile(settings.contactLaw);
-  buffers.allocate(bodyCapacity, particleCapacity, table.size, settings.maxColliders, 0, 0,
+  buffers.allocate(bodyCapacity, particleCapacity, tableCapacity, settings.maxColliders, 0, 0,
                    keepsHistory());
   profiler.setEnabled(settings.profileKernels);
   uploadParams();
@@ -579,10 +580,11 @@ void World::reserve(std::uint32_t maxBodies, std::uint32_t maxParticles) {
   w.gpu->makeCurrent();
   w.bodyCapacity = std::max(w.bodyCapacity, maxBodies);
   w.particleCapacity = std::max(w.particleCapacity, maxParticles);
-  w.table = HashTable::forParticles(w.particleCapacity);
-  w.buffers.allocate(w.bodyCapacity, w.particleCapacity, w.table.size, w.settings.maxColliders,
+  w.tableCapacity = HashTable::sizeFor(w.particleCapacity);
+  w.buffers.allocate(w.bodyCapacity, w.particleCapacity, w.tableCapacity, w.settings.maxColliders,
                      w.bodyCount, w.particleCount, w.keepsHistory());
   w.paramsDirty = true;
+  w.gridValid = false;  // a grown table is a new, empty buffer
 }
 
 StepReport World::step(float frameDt) {

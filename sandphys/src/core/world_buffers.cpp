@@ -102,10 +102,14 @@ static_assert(std::size(kTextureViews) == kTextureCount);
 constexpr std::uint32_t kMinTableSize = 4096;
 static_assert(kMinTableSize % kScanBlock == 0);
 
+std::uint32_t HashTable::sizeFor(std::uint32_t particles) {
+  return std::max<std::uint32_t>(kMinTableSize,
+                                 std::bit_ceil(std::max<std::uint32_t>(particles, 1u)));
+}
+
 HashTable HashTable::forParticles(std::uint32_t particles) {
   HashTable t;
-  t.size =
-      std::max<std::uint32_t>(kMinTableSize, std::bit_ceil(std::max<std::uint32_t>(particles, 1u)));
+  t.size = sizeFor(particles);
   const std::uint32_t mask = t.size - 1u;
   // Like a dense grid of side ~size^(1/3): nearby cells get nearby buckets.
   std::uint32_t side = 1;

@@ -65,12 +65,14 @@ struct WorldKernels {
 };
 
 /// Smallest power of two >= 4096 and >= `particles`, with hash multipliers that send the 27
-/// cells around any cell to 27 distinct buckets.
+/// cells around any cell to 27 distinct buckets. A World allocates the table for its capacity
+/// but uses the one for the particles it holds, so that the scans cost what is in use.
 struct HashTable {
   std::uint32_t size = 0;
   std::uint32_t multiplierY = 0;
   std::uint32_t multiplierZ = 0;
   static HashTable forParticles(std::uint32_t particles);
+  static std::uint32_t sizeFor(std::uint32_t particles);
 };
 
 }  // namespace detail
@@ -83,7 +85,8 @@ struct World::Impl {
 
   std::uint32_t bodyCapacity = 0;
   std::uint32_t particleCapacity = 0;
-  detail::HashTable table;
+  detail::HashTable table;          // in use: for particleCount (fitTable)
+  std::uint32_t tableCapacity = 0;  // buckets allocated: for particleCapacity
   std::uint32_t bodyCount = 0;
   std::uint32_t particleCount = 0;
   std::uint32_t granulesSpawned = 0;
@@ -130,6 +133,9 @@ struct World::Impl {
 
   // GPU work (world_kernels.cpp)
   void uploadParams();
+  /// The table for particleCount, from the start of a substep on (the grid of the last substep,
+  /// which spawn checks read, keeps the table it was built with).
+  void fitTable();
   void runSubstep();
   void dispatch(GLuint program, const char* name, std::uint32_t threads, std::uint32_t groupSize);
   void emit(double dt, StepReport* report);

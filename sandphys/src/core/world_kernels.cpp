@@ -52,7 +52,15 @@ void World::Impl::dispatch(GLuint program, const char* name, std::uint32_t threa
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
+void World::Impl::fitTable() {
+  if (HashTable::sizeFor(particleCount) == table.size) return;
+  // Buckets past the smaller table hold no count: grid_scatter takes every count back to zero.
+  table = HashTable::forParticles(particleCount);
+  paramsDirty = true;
+}
+
 void World::Impl::runSubstep() {
+  fitTable();
   if (paramsDirty) uploadParams();
   // 1. Bodies -> particles, bucket counts (eq. 7, 8).
   dispatch(kernels.bodiesToParticles, "bodies_to_particles", particleCount, kWorkgroupSize);
@@ -142,6 +150,7 @@ WorldStats World::Impl::reduceStats() {
   s.granulesAlive = std::uint32_t(std::llround(alive));
   s.granulesKilled = counters[kCounterKilled];
   s.granulesNotBorn = counters[kCounterSpawnTaken];
+  s.gridBuckets = table.size;
   s.contacts = std::uint32_t(pairEnds / 2 + wallContacts);
   s.steps = steps;
   s.simulatedTime = simTime;
