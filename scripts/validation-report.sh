@@ -6,7 +6,8 @@
 # beside it (docs/validation/results.json).
 # Usage: scripts/validation-report.sh [sandphys-validation options, e.g. --heap-granules 800,
 # given to both runs; not --contact-law or --only]
-# (sandphys-validation --help lists them; the defaults take about an hour on 2 cores without a GPU).
+# (sandphys-validation --help lists them; on 2 cores without a GPU the defaults take about two
+# hours, the paper's law's sweeps about one more).
 set -euo pipefail
 
 cd -- "$(dirname -- "${BASH_SOURCE[0]}")/.."

@@ -165,7 +165,7 @@ std::vector<SceneMetric> Dunes::metrics(std::span<const BodyState> bodies) const
       {"saddle_x_d", p.saddle[0] / d()},
       {"saddle_depth_d", (lowerCrest - p.saddle[1]) / d()},
       {"crest_separation_d", (p.rightCrest[0] - p.leftCrest[0]) / d()},
-      {"settled", m_settling.settled() ? 1.0 : 0.0},
+      {"settled", m_settling.calm() ? 1.0 : 0.0},
   };
 }
 

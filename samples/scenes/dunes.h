@@ -82,7 +82,7 @@ class Dunes final : public Scene {
   /// profile.
   void update(World& world, const StepReport& report, double simTime) override;
   bool finished() const override { return m_settling.settled(); }
-  /// "pouring n/N", "settling", "settled".
+  /// "pouring n/N", "settling", "settled" (calm) or "stopped" (the wait ran out).
   std::string status() const override;
   /// On or above the floor.
   bool contains(const Vec3& centre) const override;

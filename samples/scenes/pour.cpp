@@ -50,14 +50,15 @@ bool PourSettling::update(const StepReport& report, double simTime, std::uint32_
   const double landing = (1.0 + kLandingMargin) * m_fallSeconds;
   if (sincePour < landing) return false;
   const std::uint32_t alive = report.hasStats ? report.stats.granulesAlive : poured;
-  m_settled = granulesCalm(report, alive, m_granuleMass, m_settleSpeed) ||
-              sincePour >= landing + m_maxSettleSeconds;
+  m_calm = granulesCalm(report, alive, m_granuleMass, m_settleSpeed);
+  m_settled = m_calm || sincePour >= landing + m_maxSettleSeconds;
   return m_settled;
 }
 
 std::string PourSettling::status(std::uint32_t poured, std::uint32_t budget) const {
   if (m_pourEnd < 0.0) return "pouring " + std::to_string(poured) + "/" + std::to_string(budget);
-  return m_settled ? "settled" : "settling";
+  if (!m_settled) return "settling";
+  return m_calm ? "settled" : "stopped";
 }
 
 }  // namespace sandphys::scenes

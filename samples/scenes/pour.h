@@ -52,8 +52,11 @@ class PourSettling {
   bool update(const StepReport& report, double simTime, std::uint32_t poured, std::uint32_t budget);
   /// Simulated time at which the last granule was poured, s; negative while pouring.
   double pourEnd() const { return m_pourEnd; }
+  /// The wait is over: the sand is calm, or maxSettleSeconds ran out.
   bool settled() const { return m_settled; }
-  /// "pouring n/N", "settling" or "settled".
+  /// The sand was calm when the wait ended (false when it ran out with the sand still moving).
+  bool calm() const { return m_calm; }
+  /// "pouring n/N", "settling", "settled" or "stopped" (the wait ran out).
   std::string status(std::uint32_t poured, std::uint32_t budget) const;
 
  private:
@@ -63,6 +66,7 @@ class PourSettling {
   float m_maxSettleSeconds;
   double m_pourEnd = -1.0;
   bool m_settled = false;
+  bool m_calm = false;
 };
 
 }  // namespace sandphys::scenes

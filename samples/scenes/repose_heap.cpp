@@ -135,7 +135,7 @@ std::vector<SceneMetric> ReposeHeap::metrics(std::span<const BodyState> bodies) 
       {"granules_in_flight", static_cast<double>(elsewhere)},
       {"pour_end_s", m_settling.pourEnd()},
       {"friction", m_config.friction},
-      {"settled", m_settling.settled() ? 1.0 : 0.0},
+      {"settled", m_settling.calm() ? 1.0 : 0.0},
   };
   appendHeapAngleMetrics(
       result, [&] { return heapAngle(bodies); }, d());

@@ -79,7 +79,7 @@ class ReposeHeap final : public Scene {
   /// Waits for the pour to end and the heap to settle.
   void update(World& world, const StepReport& report, double simTime) override;
   bool finished() const override { return m_settling.settled(); }
-  /// "pouring n/N", "settling", "settled".
+  /// "pouring n/N", "settling", "settled" (calm) or "stopped" (the wait ran out).
   std::string status() const override;
   /// On or above the floor, within its radius.
   bool contains(const Vec3& centre) const override;

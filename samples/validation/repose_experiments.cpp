@@ -58,10 +58,13 @@ nlohmann::json angleSweep(const ExperimentContext& context, std::uint32_t granul
     }
     runs.push_back(std::move(entry));
   }
-  nlohmann::json result = {{"granules", granules},
-                           {"particle_diameter_m", typename SceneType::Config{}.particleDiameter},
-                           {"runs", runs},
-                           {"paper", {{"exponent", kPaperExponent}}}};
+  nlohmann::json result = {
+      {"granules", granules},
+      {"particle_diameter_m", typename SceneType::Config{}.particleDiameter},
+      {"granule_mass_kg",
+       tetrahedronTemplate(typename SceneType::Config{}.particleDiameter, Material{}.density).mass},
+      {"runs", runs},
+      {"paper", {{"exponent", kPaperExponent}}}};
   try {
     const analysis::PowerLawFit fit = analysis::fitPowerLaw(frictions, angles);
     result["power_law"] = {
