@@ -79,19 +79,19 @@ nlohmann::json angleSweep(const ExperimentContext& context, std::uint32_t granul
 
 nlohmann::json reposeAgainstFriction(const ExperimentContext& context,
                                      const ReposeOptions& options) {
+  const float floorRadius =
+      scenes::ReposeHeap::floorRadiusHolding(options.granules, options.lowestAngle);
   nlohmann::json result =
       angleSweep<scenes::ReposeHeap>(context, options.granules, options.frictions, [&](float mu) {
         scenes::ReposeHeap::Config config;
         config.granules = options.granules;
         config.friction = mu;
-        config.floorRadius =
-            scenes::ReposeHeap::floorRadiusHolding(options.granules, options.lowestAngle);
+        config.floorRadius = floorRadius;
         config.settleSpeed = options.settleSpeed;
         config.maxSettleSeconds = options.maxSettleSeconds;
         return scenes::ReposeHeap(config);
       });
-  result["floor_radius_d"] =
-      scenes::ReposeHeap::floorRadiusHolding(options.granules, options.lowestAngle);
+  result["floor_radius_d"] = floorRadius;
   result["settle_speed_m_s"] = options.settleSpeed;
   return result;
 }
