@@ -42,6 +42,13 @@ def at_rest(section, r):
     return math.sqrt(2 * r["kinetic_energy_j"] / (max(moving, 1) * mass)) <= section["settle_speed_m_s"]
 
 
+def angle_header(*extra):
+    """The two header lines of an angle table (angle_lines' rows), with `extra` columns after."""
+    columns = ["μ", "angle (°)", "R²", "flank cells", "height (d)", "simulated (s)",
+               "largest overlap (d)", "substeps per frame", "wall (s)", *extra]
+    return ["| " + " | ".join(columns) + " |", "|" + " --- |" * len(columns)]
+
+
 def angle_lines(section):
     """Table rows of an angle sweep: μ, angle, R², flank cells, height, simulated and wall time."""
     lines = []
@@ -76,9 +83,7 @@ def beside_text(section, beside, law):
         "",
         f"The same sweep under {LAW_NAMES[law]} (`--contact-law {law}`):",
         "",
-        "| μ | angle (°) | R² | flank cells | height (d) | simulated (s) | largest overlap (d) | "
-        "substeps per frame | wall (s) |",
-        "| --- | --- | --- | --- | --- | --- | --- | --- | --- |",
+        *angle_header(),
         *angle_lines(beside),
         "",
         power_law_text(beside),
@@ -190,9 +195,7 @@ def main():
             "the peak height (chosen by radius, see `analysis::angleOfRepose`), and the angle is "
             "that of a bisquare-weighted line through it.",
             "",
-            "| μ | angle (°) | R² | flank cells | height (d) | simulated (s) | largest overlap (d) | "
-            "substeps per frame | wall (s) |",
-            "| --- | --- | --- | --- | --- | --- | --- | --- | --- |",
+            *angle_header(),
             *lines,
             "",
             law_text,
@@ -228,9 +231,7 @@ def main():
                if "wall_friction" in s else "(the grains' μ)")
             + " holds the pile up a little.",
             "",
-            "| μ | angle (°) | R² | flank cells | height (d) | simulated (s) | largest overlap (d) | "
-            "substeps per frame | wall (s) | granules in the sump |",
-            "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |",
+            *angle_header("granules in the sump"),
             *lines,
             "",
             power_law_text(s),
