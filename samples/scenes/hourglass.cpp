@@ -8,6 +8,8 @@
 #include <numbers>
 #include <string>
 
+#include "scenes/pour.h"
+
 namespace sandphys::scenes {
 
 namespace {
@@ -32,11 +34,6 @@ constexpr float kGateClearance = 3.0f;
 constexpr float kSinkHalfWidth = 20.0f;
 constexpr float kSinkHeight = 50.0f;
 
-// The speed guard is the speed of a free fall from an arch of the outlet's size over the outlet
-// to the sink, or of the fill's collapse if that is faster, with this margin, and never below
-// kMinGuardSpeed: grains inside the funnel move far slower.
-constexpr float kGuardMargin = 1.1f;
-constexpr float kMinGuardSpeed = 2.0f;
 // Granules of a startFrom packing are first added in lines of this many this far above the
 // funnel (GranuleBlock orients them at random) and then posed one by one.
 constexpr std::uint32_t kParkingLine = 1024;
@@ -145,6 +142,8 @@ WorldSettings Hourglass::worldSettings() const {
   settings.maxParticles = static_cast<std::uint32_t>(4 * granules);
   // The count of granules remaining comes from every step's stats.
   settings.statsEachFrame = true;
+  // The speed guard is that of a free fall from an arch of the outlet's size over the outlet to
+  // the sink, or of the fill's collapse if that is faster: grains inside the funnel move slower.
   float fall = (0.5f * m_config.outlet + kSinkDepth) * d();
   if (m_packing.empty()) {
     // Before the release the fill's lattice collapses: its top falls about a third of its
@@ -152,8 +151,7 @@ WorldSettings Hourglass::worldSettings() const {
     const std::vector<Row> rows = fillRows();
     fall = std::max(fall, 0.5f * (rows.back().center.y - rows.front().center.y));
   }
-  settings.maxSpeed =
-      std::max(kMinGuardSpeed, kGuardMargin * std::sqrt(2.0f * gravityMagnitude(settings) * fall));
+  settings.maxSpeed = pourGuardSpeed(0.0f, fall, gravityMagnitude(settings));
   settings.stepsPerContact = m_config.stepsPerContact;
   settings.material.youngsModulus = sceneYoungsModulus(settings, m_config.youngsModulus);
   return settings;

@@ -33,7 +33,8 @@ constexpr float kRunout = 20.0f;
 constexpr float kCollapse = 2.0f / 3.0f;
 
 // Lattice slots across a reservoir `width` d wide (x or z), clear of the walls on either side for
-// a granule at its farthest jitter; shifted layers lose half a spacing.
+// a granule at its farthest jitter; alternate layers are half a spacing apart, which costs half a
+// spacing of the room.
 std::uint32_t latticeSlots(float width) {
   const float room = width - 2.0f * (kReach + kAxisJitter + kClearance);
   return static_cast<std::uint32_t>(std::max(
@@ -50,24 +51,55 @@ std::uint32_t ReposeScupper::rowsPerLayer() const {
   return latticeSlots(m_config.depth);
 }
 
-std::vector<ReposeScupper::Layer> ReposeScupper::fillLayers() const {
-  const std::uint32_t perLayer = rowLength() * rowsPerLayer();
-  std::vector<Layer> layers;
-  if (perLayer == 0) return layers;
+std::vector<GranuleBlock> ReposeScupper::fillBlocks() const {
+  const std::uint32_t rowLen = rowLength();
+  const std::uint32_t rows = rowsPerLayer();
+  const std::uint32_t perLayer = rowLen * rows;
+  std::vector<GranuleBlock> blocks;
+  if (perLayer == 0) return blocks;
+  const float spacing = kDefaultGranuleSpacing * d();
+  const float centreX = -kWall * d() - 0.5f * m_config.reservoirWidth * d();
+  const float firstZ = -0.5f * static_cast<float>(rows - 1) * spacing;
+  const float bottom = (m_config.ledge + kReach + kAxisJitter + kClearance) * d();
+  std::uint64_t seed = m_config.seed * 1000003u;
   std::uint32_t left = m_config.granules;
-  const float bottom = m_config.ledge + kReach + kAxisJitter + kClearance;
   for (std::uint32_t i = 0; left > 0; ++i) {
     const std::uint32_t count = std::min(left, perLayer);
-    layers.push_back(
-        {(bottom + static_cast<float>(i) * kShiftedLayerHeight) * d(), count, i % 2 == 1});
     left -= count;
+    const float y = bottom + static_cast<float>(i) * kShiftedLayerHeight * d();
+    // Layers alternate a quarter spacing either side of the centre along x and z: half a
+    // spacing apart, and each clear of the walls by the same room (latticeSlots).
+    const float shift = (i % 2 == 1 ? 0.25f : -0.25f) * spacing;
+    const std::uint32_t fullRows = count / rowLen;
+    const std::uint32_t rest = count % rowLen;
+    if (fullRows > 0) {
+      blocks.push_back(GranuleBlock{
+          .center = {centreX + shift, y,
+                     firstZ + 0.5f * static_cast<float>(fullRows - 1) * spacing + shift},
+          .countX = rowLen,
+          .countY = 1,
+          .countZ = fullRows,
+          .spacing = spacing,
+          .seed = seed++});
+    }
+    if (rest > 0) {
+      const float firstX = centreX - 0.5f * static_cast<float>(rowLen - 1) * spacing;
+      blocks.push_back(
+          GranuleBlock{.center = {firstX + 0.5f * static_cast<float>(rest - 1) * spacing + shift, y,
+                                  firstZ + static_cast<float>(fullRows) * spacing + shift},
+                       .countX = rest,
+                       .countY = 1,
+                       .countZ = 1,
+                       .spacing = spacing,
+                       .seed = seed++});
+    }
   }
-  return layers;
+  return blocks;
 }
 
 float ReposeScupper::wallTop() const {
-  const std::vector<Layer> layers = fillLayers();
-  const float top = layers.empty() ? m_config.ledge * d() : layers.back().y;
+  const std::vector<GranuleBlock> blocks = fillBlocks();
+  const float top = blocks.empty() ? m_config.ledge * d() : blocks.back().center.y;
   return top + (kReach + kHeadroom) * d();
 }
 
@@ -181,41 +213,7 @@ void ReposeScupper::build(World& world) {
   world.addSink(Sink{.min = {far, sinkBottom, -halfDepth - w},
                      .max = {runoutEnd + w, sinkTop, halfDepth + w}});
 
-  // The fill: one lattice block per layer (odd layers shifted by half a spacing along x and z),
-  // the last one in rows along x and a short row.
-  const float spacing = kDefaultGranuleSpacing * d();
-  const std::uint32_t rowLen = rowLength();
-  const std::uint32_t rows = rowsPerLayer();
-  const float centreX = -w - 0.5f * inside;
-  const std::vector<Layer> layers = fillLayers();
-  std::uint64_t blockSeed = m_config.seed * 1000003u;
-  for (const Layer& layer : layers) {
-    const float shift = layer.shifted ? 0.5f * spacing : 0.0f;
-    const std::uint32_t fullRows = layer.count / rowLen;
-    const std::uint32_t rest = layer.count % rowLen;
-    const float firstZ = -0.5f * static_cast<float>(rows - 1) * spacing;
-    if (fullRows > 0) {
-      world.addGranules(GranuleBlock{
-          .center = {centreX + shift, layer.y,
-                     firstZ + 0.5f * static_cast<float>(fullRows - 1) * spacing + shift},
-          .countX = rowLen,
-          .countY = 1,
-          .countZ = fullRows,
-          .spacing = spacing,
-          .seed = blockSeed++});
-    }
-    if (rest > 0) {
-      const float firstX = centreX - 0.5f * static_cast<float>(rowLen - 1) * spacing;
-      world.addGranules(
-          GranuleBlock{.center = {firstX + 0.5f * static_cast<float>(rest - 1) * spacing + shift,
-                                  layer.y, firstZ + static_cast<float>(fullRows) * spacing + shift},
-                       .countX = rest,
-                       .countY = 1,
-                       .countZ = 1,
-                       .spacing = spacing,
-                       .seed = blockSeed++});
-    }
-  }
+  for (const GranuleBlock& block : fillBlocks()) world.addGranules(block);
 }
 
 void ReposeScupper::update(World& world, const StepReport& report, double simTime) {

@@ -128,17 +128,12 @@ class ReposeScupper final : public Scene {
   bool inReservoir(const Vec3& centre) const;
   /// Simulated time at which the gate opened, s (negative before).
   double releasedAt() const { return m_releasedAt; }
+  /// The fill's lattice, bottom layer first, exactly `granules` in all: every granule, at any
+  /// orientation and jitter, clear of the reservoir's walls, the gate and the ledge.
+  std::vector<GranuleBlock> fillBlocks() const;
 
  private:
-  /// One lattice layer of the fill: rows of granules along x at height y.
-  struct Layer {
-    float y = 0.0f;
-    std::uint32_t count = 0;
-    bool shifted = false;
-  };
   float d() const { return m_config.particleDiameter; }
-  /// The fill's layers, bottom first, exactly `granules` in all.
-  std::vector<Layer> fillLayers() const;
   /// Granules per row (x) and rows (z) of a lattice layer in the reservoir.
   std::uint32_t rowLength() const;
   std::uint32_t rowsPerLayer() const;

@@ -64,6 +64,45 @@ Sump drain(float friction) {
   return sump;
 }
 
+// Every slot of the fill's lattice, widened by a granule's reach and its largest jitter, lies in
+// the reservoir: x between the far wall and the gate (2 d thick, its face at x = -2 d), z between
+// the side walls, y above the ledge. A granule started inside a wall is thrown out at once.
+void expectFillClearOfTheWalls(const ReposeScupper::Config& config) {
+  const ReposeScupper scene(config);
+  const float d = config.particleDiameter;
+  const float gate = -2.0f * d;
+  const float far = gate - config.reservoirWidth * d;
+  const float side = 0.5f * config.depth * d;
+  std::uint32_t granules = 0;
+  for (const GranuleBlock& block : scene.fillBlocks()) {
+    const float reach = static_cast<float>(kGranuleReach) * d + block.jitter * block.spacing;
+    const Vec3 half{0.5f * static_cast<float>(block.countX - 1) * block.spacing,
+                    0.5f * static_cast<float>(block.countY - 1) * block.spacing,
+                    0.5f * static_cast<float>(block.countZ - 1) * block.spacing};
+    EXPECT_GT(block.center.x - half.x - reach, far);
+    EXPECT_LT(block.center.x + half.x + reach, gate);
+    EXPECT_GT(block.center.z - half.z - reach, -side);
+    EXPECT_LT(block.center.z + half.z + reach, side);
+    EXPECT_GT(block.center.y - half.y - reach, config.ledge * d);
+    granules += block.countX * block.countY * block.countZ;
+  }
+  EXPECT_EQ(granules, config.granules);
+}
+
+TEST(ReposeScupper, TheFillStartsClearOfTheWalls) {
+  ReposeScupper::Config config;
+  expectFillClearOfTheWalls(config);
+  for (float depth : {6.0f, 12.0f, 16.0f, 17.0f, 23.5f}) {
+    for (float width : {6.0f, 12.0f, 13.3f, 20.0f}) {
+      config.depth = depth;
+      config.reservoirWidth = width;
+      config.granules = 257;
+      SCOPED_TRACE(::testing::Message() << "depth " << depth << " d, reservoir " << width << " d");
+      expectFillClearOfTheWalls(config);
+    }
+  }
+}
+
 TEST(ReposeScupper, TheSumpPileBuriesTheSlotAndStandsSteeperWithMoreFriction) {
   const Sump rough = drain(0.5f);
   const Sump smooth = drain(0.1f);
