@@ -23,9 +23,11 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Defaults of the paper's benchmark sizes (4K, 16K, 64K, 256K granules).
+// Defaults of the paper's benchmark sizes (4K, 16K, 64K, 256K granules), also the box pile's.
 const std::vector<std::string> kDefaultSizes = {"4K", "16K", "64K", "256K"};
 constexpr std::uint32_t kDefaultSteps = 200;
+// The box pile times 2000 substeps, as DEM codes time it: 0.1 s simulated at its fixed 5e-5 s.
+constexpr std::uint32_t kDefaultBoxSteps = 2000;
 
 // Substeps of settling by default. A crystal is static from the start: a short settle lets the
 // column take up its elastic load. A lattice has to fall and compact: about 0.13 s simulated for
@@ -103,35 +105,54 @@ std::string formatValue(double value) {
 
 std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options) {
   CLI::App app{
-      "sandphys benchmark: the settled cylinder pile of Longmore et al. 2013 (wall radius 50 d, "
-      "rough particle floor, smooth wall) at several granule counts. Per size: Cundall number "
-      "(granule-steps per wall second), microseconds per granule-step, simulated seconds per "
-      "wall second, GPU memory per granule and GPU time per kernel.\n"
-      "The pile is built directly (--packing) and settles for --settle-steps substeps before "
-      "--steps substeps are timed; the output states how settled it is (kinetic energy, "
-      "contacts per granule, largest overlap).",
+      "sandphys benchmark at several granule counts, on one of two scenes (--scene):\n"
+      "  cylinder (default): the settled cylinder pile of Longmore et al. 2013 (wall radius "
+      "50 d, rough particle floor, smooth wall), d = 0.02 m; built directly (--packing).\n"
+      "  box: the standard box pile: a square box of flat walls with friction, side "
+      "36 d * sqrt(N/4096) so that the settled pile is about 15 d high, d = 0.01 m, 2500 kg/m^3, "
+      "E = 1e7 Pa, nu = 0.3, e = 0.5, mu = 0.5 on every contact (grains, walls, floor), fixed "
+      "dt = 5e-5 s, settled from a loose random lattice; 2000 substeps timed.\n"
+      "Per size: granule-steps and particle-steps per wall second (the Cundall number is the "
+      "first), contacts per particle, microseconds per particle-contact, dispatches per "
+      "substep, neighbour-grid builds per 1000 substeps, GPU memory per granule, simulated "
+      "seconds per wall second and GPU time per kernel. The pile settles for --settle-steps "
+      "substeps before --steps substeps are timed; the output states how settled it is "
+      "(kinetic energy, contacts per granule, pile top, largest overlap).",
       kProgram};
   std::vector<std::string> sizes = kDefaultSizes;
-  std::vector<std::string> steps = {std::to_string(kDefaultSteps)};
+  std::vector<std::string> steps;
   std::vector<std::string> settleSteps;
+  std::string scene = "cylinder";
   MeasureOptions& measure = options.measure;
   measure.budgetSeconds = kDefaultBudgetSeconds;
   measure.settleBudgetSeconds = kDefaultBudgetSeconds;
   bool noKernelTimes = false;
   std::string packing = std::string(packingName(measure.pile.packing));
+  // The lattice options serve the cylinder's lattice packing and the box alike.
+  float spacing = measure.pile.spacing;
+  float jitter = measure.pile.jitter;
+  std::uint64_t seed = measure.pile.seed;
   bool quiet = false;
   std::vector<int> renderSize;
 
+  app.add_option("--scene", scene,
+                 "benchmark scene: 'cylinder' (the paper's pile, the default) or 'box' (the "
+                 "standard box pile)")
+      ->check(CLI::IsMember({"cylinder", "box"}))
+      ->capture_default_str();
   app.add_option("--sizes", sizes, "granule counts, comma-separated (K = 1024)")
       ->delimiter(',')
       ->capture_default_str();
-  app.add_option("--steps", steps, "substeps timed per size: one value, or one per size")
-      ->delimiter(',')
-      ->capture_default_str();
+  app.add_option("--steps", steps,
+                 "substeps timed per size: one value, or one per size (default: cylinder " +
+                     std::to_string(kDefaultSteps) + ", box " + std::to_string(kDefaultBoxSteps) +
+                     ")")
+      ->delimiter(',');
   app.add_option("--settle-steps", settleSteps,
                  "substeps the pile settles before timing: one value, or one per size "
-                 "(default: crystal 200; lattice 2000 up to 16K granules, 1000 up to 64K, 400 "
-                 "above)")
+                 "(default: cylinder crystal 200; cylinder lattice 2000 up to 16K granules, 1000 "
+                 "up to 64K, 400 above; box 1.5 free-fall times of the initial column's top onto "
+                 "the floor, about 8,400-8,900 substeps = 0.42-0.44 s)")
       ->delimiter(',');
   app.add_option("--budget-seconds", measure.budgetSeconds,
                  "wall-time cap of the timed substeps per size, s (0 = none; checked every "
@@ -147,33 +168,35 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
                  "capacity costs; 0: what the pile needs")
       ->check(CLI::Range(0u, 1u << 28))
       ->capture_default_str();
-  app.add_option("--packing", packing,
-                 "initial pile: 'crystal' (aligned granules whose particles form an FCC packing "
-                 "on the floor, pressed by their weight: nearly static at once, denser and more "
-                 "ordered than a poured pile) or 'lattice' (random orientations 2.25 d apart: "
-                 "loose, the column still has to fall and compact, which takes far longer than "
-                 "a benchmark can wait)")
-      ->check(CLI::IsMember({"lattice", "crystal"}))
-      ->capture_default_str();
+  CLI::Option* packingOption = app.add_option(
+      "--packing", packing,
+      "cylinder: initial pile: 'crystal' (aligned granules whose particles form an FCC packing "
+      "on the floor, pressed by their weight: nearly static at once, denser and more "
+      "ordered than a poured pile) or 'lattice' (random orientations 2.25 d apart: "
+      "loose, the column still has to fall and compact, which takes far longer than "
+      "a benchmark can wait); the box always starts from a lattice");
+  packingOption->check(CLI::IsMember({"lattice", "crystal"}))->capture_default_str();
   std::string law = "hertz-mindlin";
   app.add_option("--contact-law", law,
                  "hertz-mindlin (the default) or paper (the law of Longmore et al. 2013)")
       ->check(CLI::IsMember({"hertz-mindlin", "paper"}))
       ->capture_default_str();
-  app.add_option("--cylinder-radius", measure.pile.cylinderRadius,
-                 "radius of the wall and the rough floor, d (the paper: 50)")
+  CLI::Option* radiusOption =
+      app.add_option("--cylinder-radius", measure.pile.cylinderRadius,
+                     "cylinder: radius of the wall and the rough floor, d (the paper: 50)")
+          ->capture_default_str();
+  CLI::Option* heightOption =
+      app.add_option("--cylinder-height", measure.pile.cylinderHeight,
+                     "cylinder: height of the wall, d (the paper: 100); raised when the initial "
+                     "pile is taller")
+          ->capture_default_str();
+  app.add_option("--spacing", spacing,
+                 "lattice packing and box: spacing, d; spacing*(1-2*jitter) >= 2.225")
       ->capture_default_str();
-  app.add_option("--cylinder-height", measure.pile.cylinderHeight,
-                 "height of the wall, d (the paper: 100); raised when the initial pile is taller")
+  app.add_option("--jitter", jitter,
+                 "lattice packing and box: random offset per axis, units of spacing")
       ->capture_default_str();
-  app.add_option("--spacing", measure.pile.spacing,
-                 "lattice packing: spacing, d; spacing*(1-2*jitter) >= 2.225")
-      ->capture_default_str();
-  app.add_option("--jitter", measure.pile.jitter,
-                 "lattice packing: random offset per axis, units of spacing")
-      ->capture_default_str();
-  app.add_option("--seed", measure.pile.seed,
-                 "lattice packing: seed of the jitter and orientations")
+  app.add_option("--seed", seed, "lattice packing and box: seed of the jitter and orientations")
       ->capture_default_str();
   app.add_flag("--no-kernel-times", noKernelTimes,
                "do not record per-kernel GL timer queries (to see their cost)");
@@ -198,16 +221,40 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
   }
 
   try {
+    measure.scene = scene == "box" ? BenchScene::Box : BenchScene::Cylinder;
+    const bool box = measure.scene == BenchScene::Box;
+    if (box) {
+      for (const CLI::Option* option : {packingOption, radiusOption, heightOption}) {
+        if (option->count() > 0) {
+          throw UsageError(option->get_name() + ": applies to --scene cylinder only");
+        }
+      }
+    }
     measure.pile.packing = packing == "crystal" ? Packing::Crystal : Packing::Lattice;
     measure.pile.contactLaw = *scenes::contactLawFromName(law);
+    measure.box.contactLaw = measure.pile.contactLaw;
+    measure.pile.spacing = measure.box.spacing = spacing;
+    measure.pile.jitter = measure.box.jitter = jitter;
+    measure.pile.seed = measure.box.seed = seed;
     if (sizes.empty()) throw UsageError("--sizes: give at least one granule count");
     std::vector<std::uint32_t> granules;
     for (const std::string& size : sizes) granules.push_back(parseCount("--sizes", size, false));
+    if (steps.empty()) steps = {std::to_string(box ? kDefaultBoxSteps : kDefaultSteps)};
     const std::vector<std::uint32_t> timed = perSize("--steps", steps, granules.size(), false);
     std::vector<std::uint32_t> settle;
     if (settleSteps.empty()) {
       for (std::uint32_t n : granules) {
-        settle.push_back(defaultSettleSteps(n, measure.pile.packing));
+        if (box) {
+          BoxPileConfig config = measure.box;
+          config.granules = n;
+          try {
+            settle.push_back(boxPileSettleSteps(config));
+          } catch (const Error& error) {
+            throw UsageError("--sizes " + std::to_string(n) + ": " + error.what());
+          }
+        } else {
+          settle.push_back(defaultSettleSteps(n, measure.pile.packing));
+        }
       }
     } else {
       settle = perSize("--settle-steps", settleSteps, granules.size(), true);

@@ -52,7 +52,7 @@ std::vector<Site> columnsInside(double radius, double spacing, double reach) {
 }
 
 // The sites of layer `layer` of a layout: every column, except in the partial top layer.
-std::vector<Site> layerSites(const std::vector<Site>& sites, const DensePileLayout& layout,
+std::vector<Site> layerSites(const std::vector<Site>& sites, const PileLayout& layout,
                              std::uint32_t layer) {
   if (layer < layout.fullLayers) return sites;
   return {sites.begin(), sites.begin() + layout.topLayerGranules};
@@ -161,8 +161,7 @@ WorldSettings withThePoursGuard(const DensePileConfig& config, WorldSettings set
 // these 8 contacts with load / (8 cos 45°). Starting at this overlap (0.04 d under 70 layers for
 // the default material, summing to several d over a tall pile) instead of just touching spares
 // the column a free fall and an elastic wave that take hundreds of milliseconds to die down.
-std::vector<float> crystalLayerHeights(const DensePileConfig& config,
-                                       const DensePileLayout& layout) {
+std::vector<float> crystalLayerHeights(const DensePileConfig& config, const PileLayout& layout) {
   const double d = config.particleDiameter;
   const WorldSettings settings = withThePoursGuard(
       config, scenes::CylinderPile(sceneConfig(config, config.cylinderHeight)).settings());
@@ -213,7 +212,7 @@ DensePile::DensePile(const DensePileConfig& config) : m_config(config) {
   const float radius = config.cylinderRadius * d;
   const bool crystal = config.packing == Packing::Crystal;
 
-  DensePileLayout& layout = m_layout;
+  PileLayout& layout = m_layout;
   // Crystal: the unloaded layer spacing (the layers are pressed closer, see below); within a
   // layer the columns are exactly √2 d apart.
   layout.spacing = crystal ? static_cast<float>(std::numbers::sqrt2 * d) : config.spacing * d;
@@ -256,6 +255,16 @@ DensePile::DensePile(const DensePileConfig& config) : m_config(config) {
 
 WorldSettings DensePile::settings() const {
   return withThePoursGuard(m_config, m_scene.settings());
+}
+
+float DensePile::pileTop(std::span<const BodyState> bodies) const {
+  return m_scene.pileTop(bodies) + m_granuleOuterRadius;
+}
+
+scenes::SceneBounds DensePile::bounds() const {
+  const float d = m_config.particleDiameter;
+  const float r = m_config.cylinderRadius * d;
+  return {{-r, -d, -r}, {r, m_layout.columnTop, r}};
 }
 
 void DensePile::build(World& world) const {

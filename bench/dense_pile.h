@@ -1,11 +1,13 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string_view>
 #include <vector>
 
 #include <sandphys/sandphys.h>
 
+#include "bench_pile.h"
 #include "scenes/cylinder_pile.h"
 
 namespace sandphys::bench {
@@ -38,7 +40,7 @@ struct DensePileConfig {
   /// Radius of the cylinder wall and of the rough floor, d (the paper: 50 d).
   float cylinderRadius = 50.0f;
   /// Height of the cylinder wall, d (the paper: 100 d). Raised when the initial column is taller
-  /// (see DensePileLayout::wallRaised).
+  /// (see PileLayout::wallRaised).
   float cylinderHeight = 100.0f;
   /// Lattice packing: spacing, d. With jitter it must satisfy spacing · (1 - 2 jitter) >= 2.225 d
   /// (the room a granule needs in any orientation, see GranuleBlock::spacing).
@@ -51,56 +53,47 @@ struct DensePileConfig {
   ContactLaw contactLaw = ContactLaw::HertzMindlin;
 };
 
-/// Where the granules of a dense pile go; computed before any World exists.
-struct DensePileLayout {
-  /// Lattice spacing used, m (crystal: between columns; the layers are a little closer).
-  float spacing = 0.0f;
-  /// Lattice columns inside the wall (one granule per column and layer).
-  std::uint32_t columns = 0;
-  /// Complete layers, and granules in the partial top layer (0 when the top layer is complete).
-  std::uint32_t fullLayers = 0;
-  std::uint32_t topLayerGranules = 0;
-  /// Centre height of each layer, m (crystal layers are pressed together by their load).
-  std::vector<float> layerY;
-  /// Height of the highest particle surface of the initial column, m.
-  float columnTop = 0.0f;
-  /// Wall height used, d: the configured height, or higher when the column does not fit.
-  float wallHeight = 0.0f;
-  bool wallRaised = false;
-};
-
 /// The pile of `config`: its layout, the scene whose container and sizing it reuses, and the
 /// settings of a World that holds exactly it.
-class DensePile {
+class DensePile final : public BenchPile {
  public:
   /// Throws InvalidArgument when no lattice column fits inside the wall or the granules do not
   /// fit a World.
   explicit DensePile(const DensePileConfig& config);
 
   const DensePileConfig& config() const { return m_config; }
-  const DensePileLayout& layout() const { return m_layout; }
+  const PileLayout& layout() const override { return m_layout; }
   /// The cylinder pile scene with this pile's geometry; used for its settings, container test
   /// and pile-top measure (its build() is never called: it would drop a batch).
   const scenes::CylinderPile& scene() const { return m_scene; }
 
   /// Settings of the scene (material, diameter) with capacities for the floor and every granule.
-  WorldSettings settings() const;
+  WorldSettings settings() const override;
   /// Adds the container of CylinderPile::build and the granules to an empty `world` made from
   /// settings(). Crystal packing poses every granule with World::setBodyState (a small sync per
   /// granule: seconds for 256K granules).
-  void build(World& world) const;
+  void build(World& world) const override;
 
+  std::uint32_t granules() const override { return m_config.granules; }
+  float particleDiameter() const override { return m_config.particleDiameter; }
   /// Mass of one granule, kg, and the distance of its outermost particle surface from its
   /// centre, m.
-  float granuleMass() const { return m_granuleMass; }
+  float granuleMass() const override { return m_granuleMass; }
   float granuleOuterRadius() const { return m_granuleOuterRadius; }
+  /// CylinderPile::pileTop plus the granule's outer radius (the scene is never built, so its
+  /// own pileTop measures centre heights).
+  float pileTop(std::span<const BodyState> bodies) const override;
+  /// CylinderPile::contains: within the wall's radius and not below the floor.
+  bool contains(const Vec3& centre) const override { return m_scene.contains(centre); }
+  /// The cylinder from one diameter below the floor to the initial column's top.
+  scenes::SceneBounds bounds() const override;
 
  private:
   void addLattice(World& world) const;
   void addCrystal(World& world) const;
 
   DensePileConfig m_config;
-  DensePileLayout m_layout;
+  PileLayout m_layout;
   scenes::CylinderPile m_scene;
   float m_granuleMass = 0.0f;
   float m_granuleOuterRadius = 0.0f;

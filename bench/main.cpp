@@ -1,5 +1,5 @@
-// sandphys-bench: Cundall number vs granule count on the settled cylinder pile of the paper, with
-// per-kernel GPU times. See --help, and report.h for the output.
+// sandphys-bench: Cundall number vs granule count on the settled cylinder pile of the paper or the
+// standard box pile (--scene), with per-kernel GPU times. See --help, and report.h for the output.
 #include <cstdio>
 #include <exception>
 #include <thread>

@@ -20,9 +20,9 @@ double secondsSince(Clock::time_point start) {
 // Seconds between progress lines.
 constexpr double kProgressInterval = 15.0;
 
-PileState readPileState(World& world, const DensePile& pile, const WorldStats& stats) {
-  const double d = pile.config().particleDiameter;
-  const double granules = pile.config().granules;
+PileState readPileState(World& world, const BenchPile& pile, const WorldStats& stats) {
+  const double d = pile.particleDiameter();
+  const double granules = pile.granules();
   PileState state;
   state.simulatedSeconds = world.simulatedTime();
   state.contacts = stats.contacts;
@@ -31,10 +31,9 @@ PileState readPileState(World& world, const DensePile& pile, const WorldStats& s
   state.rmsSpeed = std::sqrt(2.0 * state.kineticEnergyPerGranule / pile.granuleMass());
   state.maxOverlap = stats.maxOverlap / d;
   const std::vector<BodyState> bodies = world.readBodies();
-  // The scene was never built, so pileTop measures centre heights: add the granule's reach.
-  state.pileTop = (pile.scene().pileTop(bodies) + pile.granuleOuterRadius()) / d;
+  state.pileTop = pile.pileTop(bodies) / d;
   for (const BodyState& body : bodies) {
-    if (body.alive && body.granule && !pile.scene().contains(body.position)) {
+    if (body.alive && body.granule && !pile.contains(body.position)) {
       ++state.granulesOutside;
     }
   }
@@ -84,6 +83,48 @@ double SizeResult::kernelMillisecondsPerStep() const {
   return sum;
 }
 
+double SizeResult::particleStepsPerSecond() const {
+  return wallSeconds > 0.0 ? double(particles) * steps / wallSeconds : 0.0;
+}
+
+double SizeResult::contactsPerParticle() const {
+  return particles > 0 ? double(measured.contacts) / particles : 0.0;
+}
+
+double SizeResult::microsecondsPerParticleContact() const {
+  return measured.contacts > 0 ? 1.0e3 * wallMillisecondsPerStep() / measured.contacts : 0.0;
+}
+
+double SizeResult::dispatchesPerStep() const {
+  double sum = 0.0;
+  for (const KernelStep& kernel : kernels) sum += kernel.dispatchesPerStep;
+  return sum;
+}
+
+double SizeResult::gridBuildsPer1000Steps() const {
+  if (kernels.empty()) return -1.0;
+  for (const KernelStep& kernel : kernels) {
+    if (kernel.name == "grid_scatter") return 1000.0 * kernel.dispatchesPerStep;
+  }
+  return 0.0;
+}
+
+std::unique_ptr<BenchPile> makePile(const MeasureOptions& options, std::uint32_t granules) {
+  if (options.scene == BenchScene::Box) {
+    BoxPileConfig config = options.box;
+    config.granules = granules;
+    return std::make_unique<BoxPile>(config);
+  }
+  DensePileConfig config = options.pile;
+  config.granules = granules;
+  return std::make_unique<DensePile>(config);
+}
+
+float particleDiameter(const MeasureOptions& options) {
+  return options.scene == BenchScene::Box ? options.box.particleDiameter
+                                          : options.pile.particleDiameter;
+}
+
 double loadAverage() {
   std::ifstream file("/proc/loadavg");
   double load = -1.0;
@@ -96,9 +137,9 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   result.plan = plan;
   result.loadBefore = loadAverage();
 
-  DensePileConfig config = options.pile;
-  config.granules = plan.granules;
-  const DensePile pile(config);
+  const std::unique_ptr<BenchPile> pilePointer = makePile(options, plan.granules);
+  const BenchPile& pile = *pilePointer;
+  const float d = pile.particleDiameter();
   result.layout = pile.layout();
 
   const Clock::time_point setupStart = Clock::now();
@@ -117,6 +158,7 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   result.floorParticles = result.particles - 4 * result.granules;
   result.particleCapacity = world.particleCapacity();
   result.timeStep = world.timeStep();
+  result.contactTime = world.contactModel().contactTime;
   result.gpuMemoryBytes = world.gpuMemoryBytes();
   result.built = readPileState(world, pile, world.readStats());
 
@@ -124,13 +166,19 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   std::snprintf(tagText, sizeof tagText, "[%u]", result.granules);
   const auto tag = [&] { return std::string(tagText); };
   if (options.progress) {
+    char container[64] = "";
+    if (result.layout.boxSide > 0.0f) {
+      std::snprintf(container, sizeof container, " in a box of %.1f d x %.0f d",
+                    double(result.layout.boxSide), double(result.layout.wallHeight));
+    } else if (result.layout.wallRaised) {
+      std::snprintf(container, sizeof container, " (wall raised)");
+    }
     std::fprintf(stderr,
                  "%s built in %.1f s: %u granules in %u columns x %u layers (+%u), column top "
                  "%.1f d%s; dt %.3g s\n",
                  tag().c_str(), result.setupSeconds, result.granules, result.layout.columns,
                  result.layout.fullLayers, result.layout.topLayerGranules,
-                 result.layout.columnTop / config.particleDiameter,
-                 result.layout.wallRaised ? " (wall raised)" : "", double(result.timeStep));
+                 result.layout.columnTop / d, container, double(result.timeStep));
   }
 
   // Settle. At least one substep: llvmpipe compiles each kernel at its first dispatch.
@@ -202,10 +250,7 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
                  result.steps, result.wallSeconds, result.cundallNumber());
   }
   // After the timed span, so that drawing never shares the machine with the substeps measured.
-  const float r = config.cylinderRadius * config.particleDiameter;
-  const scenes::SceneBounds pileBounds{{-r, -config.particleDiameter, -r},
-                                       {r, result.layout.columnTop, r}};
-  result.renders = measureRender(world, pileBounds, options.render);
+  result.renders = measureRender(world, pile.bounds(), options.render);
   if (options.progress && !result.renders.empty()) {
     std::fprintf(stderr, "%s rendered %dx%d at %zu quality presets\n", tag().c_str(),
                  options.render.width, options.render.height, result.renders.size());

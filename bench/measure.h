@@ -1,11 +1,14 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <sandphys/sandphys.h>
 
+#include "bench_pile.h"
+#include "box_pile.h"
 #include "dense_pile.h"
 #include "render_measure.h"
 
@@ -23,8 +26,12 @@ struct SizePlan {
 
 /// Options shared by every size.
 struct MeasureOptions {
-  /// Pile geometry; `granules` is taken from the SizePlan.
+  /// Which pile is measured: `pile` (cylinder) or `box`.
+  BenchScene scene = BenchScene::Cylinder;
+  /// Cylinder pile geometry; `granules` is taken from the SizePlan.
   DensePileConfig pile{};
+  /// Box pile; `granules` is taken from the SizePlan.
+  BoxPileConfig box{};
   /// Wall-time cap of the settling, s; 0 = none. Settling stops at whichever comes first.
   double settleBudgetSeconds = 0.0;
   /// Wall-time cap of the measurement, s; 0 = none (checked between chunks).
@@ -65,11 +72,14 @@ struct KernelStep {
 struct SizeResult {
   SizePlan plan{};
   std::uint32_t granules = 0;
-  std::uint32_t particles = 0;  ///< granule particles + rough floor particles
-  std::uint32_t floorParticles = 0;
+  std::uint32_t particles = 0;         ///< granule particles + rough floor particles
+  std::uint32_t floorParticles = 0;    ///< 0 in the box, whose floor is a flat face
   std::uint32_t particleCapacity = 0;  ///< the World's WorldSettings::maxParticles
-  DensePileLayout layout{};
-  float timeStep = 0.0f;      ///< s
+  PileLayout layout{};
+  float timeStep = 0.0f;  ///< s
+  /// Hertz contact time t_n at the speed guard (ContactModel::contactTime), s: the World
+  /// refuses a time step above t_n / kMinStepsPerContact.
+  float contactTime = 0.0f;
   double setupSeconds = 0.0;  ///< World creation (kernel compilation) and build, wall s
   std::uint64_t gpuMemoryBytes = 0;
 
@@ -98,7 +108,28 @@ struct SizeResult {
   double wallMillisecondsPerStep() const;
   double cpuMillisecondsPerStep() const;
   double kernelMillisecondsPerStep() const;  ///< sum over kernels
+  /// Particle-steps per wall second: every particle the World steps (the floor's included).
+  double particleStepsPerSecond() const;
+  /// Contacts (World stats at the end of the timed substeps) per particle.
+  double contactsPerParticle() const;
+  /// Wall time per substep over the contacts at the end of the timed substeps, µs; 0 without
+  /// contacts.
+  double microsecondsPerParticleContact() const;
+  /// GL compute dispatches per substep, summed over kernels (from the kernel profiler); 0
+  /// without kernel times.
+  double dispatchesPerStep() const;
+  /// Builds of the neighbour grid per 1000 substeps: 1000 times the dispatches of its scatter
+  /// pass (grid_scatter) per substep, as the kernel profiler counted them; -1 without kernel
+  /// times. The library has no Verlet list: this is what stands for its rebuilds.
+  double gridBuildsPer1000Steps() const;
 };
+
+/// The pile `options` selects (the cylinder's DensePile or the BoxPile), of `granules` granules.
+/// Throws InvalidArgument as their constructors do.
+std::unique_ptr<BenchPile> makePile(const MeasureOptions& options, std::uint32_t granules);
+
+/// The particle diameter of the scene `options` selects, m.
+float particleDiameter(const MeasureOptions& options);
 
 /// Builds the pile of `plan.granules` granules in a fresh World on `gpu`, settles it and measures
 /// it. Throws sandphys::Error from World setup.

@@ -81,6 +81,16 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
                                      : 0.0}};
   }
   const double granules = size.granules;
+  // Without kernel times there is nothing to count dispatches with: null, not a guess.
+  const bool profiled = !size.kernels.empty();
+  nlohmann::json layout = {{"spacing_d", size.layout.spacing / d},
+                           {"columns", size.layout.columns},
+                           {"full_layers", size.layout.fullLayers},
+                           {"top_layer_granules", size.layout.topLayerGranules},
+                           {"column_top_d", size.layout.columnTop / d},
+                           {"wall_height_d", size.layout.wallHeight},
+                           {"wall_raised", size.layout.wallRaised}};
+  if (size.layout.boxSide > 0.0f) layout["box_side_d"] = size.layout.boxSide;
   return {
       {"granules", size.granules},
       {"particles", size.particles},
@@ -89,11 +99,22 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
       {"contacts", size.measured.contacts},
       {"contacts_per_granule", size.measured.contactsPerGranule},
       {"cundall_number", size.cundallNumber()},
+      {"granule_steps_per_second", size.cundallNumber()},
+      {"particle_steps_per_second", size.particleStepsPerSecond()},
+      {"contacts_per_particle", size.contactsPerParticle()},
+      {"microseconds_per_particle_contact",
+       size.measured.contacts > 0 ? nlohmann::json(size.microsecondsPerParticleContact())
+                                  : nlohmann::json(nullptr)},
+      {"dispatches_per_substep",
+       profiled ? nlohmann::json(size.dispatchesPerStep()) : nlohmann::json(nullptr)},
+      {"neighbour_grid_builds_per_1000_substeps",
+       profiled ? nlohmann::json(size.gridBuildsPer1000Steps()) : nlohmann::json(nullptr)},
       {"microseconds_per_granule_step", size.microsecondsPerGranuleStep()},
       {"simulated_seconds_per_wall_second", size.simulatedPerWallSecond()},
       {"gpu_memory_bytes", size.gpuMemoryBytes},
       {"gpu_memory_bytes_per_granule", granules > 0 ? size.gpuMemoryBytes / granules : 0.0},
       {"time_step_s", shortest(size.timeStep)},
+      {"contact_time_s", shortest(size.contactTime)},
       {"steps", size.steps},
       {"steps_planned", size.plan.steps},
       {"budget_hit", size.budgetHit},
@@ -111,14 +132,7 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
       {"contact_slot_overflows", size.contactSlotOverflows},
       {"velocity_clamps", size.velocityClamps},
       {"setup_seconds", size.setupSeconds},
-      {"layout",
-       {{"spacing_d", size.layout.spacing / d},
-        {"columns", size.layout.columns},
-        {"full_layers", size.layout.fullLayers},
-        {"top_layer_granules", size.layout.topLayerGranules},
-        {"column_top_d", size.layout.columnTop / d},
-        {"wall_height_d", size.layout.wallHeight},
-        {"wall_raised", size.layout.wallRaised}}},
+      {"layout", layout},
       {"settle",
        {{"steps", size.settleSteps},
         {"steps_planned", size.plan.settleSteps},
@@ -138,27 +152,60 @@ nlohmann::json reportJson(const BenchOptions& options, const BenchReport& report
   const MeasureOptions& measure = options.measure;
   nlohmann::json sizes = nlohmann::json::array();
   for (const SizeResult& size : report.sizes) {
-    sizes.push_back(sizeJson(size, measure.pile.particleDiameter));
+    sizes.push_back(sizeJson(size, particleDiameter(measure)));
   }
+  nlohmann::json scene;
+  if (measure.scene == BenchScene::Box) {
+    const BoxPileConfig& box = measure.box;
+    scene = {{"benchmark", "box-pile"},
+             {"description",
+              "standard box pile: tetrahedral granules in a closed square box of flat "
+              "walls with friction, side 36 d * sqrt(N/4096) so that the settled pile is about "
+              "15 d high; settled from a loose random lattice before timing"},
+             {"options",
+              {{"scene", benchSceneName(measure.scene)},
+               {"contact_law", scenes::contactLawName(box.contactLaw)},
+               {"particle_diameter_m", shortest(box.particleDiameter)},
+               {"box_side_at_4096_d", shortest(box.sideAt4096)},
+               {"density_kg_per_m3", shortest(box.material.density)},
+               {"youngs_modulus_pa", shortest(box.material.youngsModulus)},
+               {"poisson_ratio", shortest(box.material.poissonRatio)},
+               {"restitution", shortest(box.material.restitution)},
+               {"friction", shortest(box.material.friction)},
+               {"wall_friction", shortest(box.wallMaterial.friction)},
+               {"wall_restitution", shortest(box.wallMaterial.restitution)},
+               {"time_step_s", shortest(box.timeStep)},
+               {"spacing_d", shortest(box.spacing)},
+               {"jitter", shortest(box.jitter)},
+               {"seed", box.seed}}}};
+  } else {
+    scene = {{"benchmark", "cylinder-pile"},
+             {"description",
+              "settled cylinder pile of Longmore et al. 2013: smooth wall of radius 50 d, rough "
+              "particle floor; built as a dense lattice from the floor up and settled before "
+              "timing"},
+             {"options",
+              {{"scene", benchSceneName(measure.scene)},
+               {"contact_law", scenes::contactLawName(measure.pile.contactLaw)},
+               {"packing", packingName(measure.pile.packing)},
+               {"particle_diameter_m", shortest(measure.pile.particleDiameter)},
+               {"cylinder_radius_d", shortest(measure.pile.cylinderRadius)},
+               {"cylinder_height_d", shortest(measure.pile.cylinderHeight)},
+               {"spacing_d", shortest(measure.pile.spacing)},
+               {"jitter", shortest(measure.pile.jitter)},
+               {"seed", measure.pile.seed}}}};
+  }
+  nlohmann::json& common = scene["options"];
+  common["chunk"] = measure.chunk;
+  common["budget_seconds"] = measure.budgetSeconds;
+  common["settle_budget_seconds"] = measure.settleBudgetSeconds;
+  common["kernel_times"] = measure.kernelTimes;
   return {
-      {"benchmark", "cylinder-pile"},
-      {"description",
-       "settled cylinder pile of Longmore et al. 2013: smooth wall of radius 50 d, rough "
-       "particle floor; built as a dense lattice from the floor up and settled before timing"},
+      {"benchmark", scene["benchmark"]},
+      {"description", scene["description"]},
       {"gpu", report.gpu},
       {"hardware_threads", report.hardwareThreads},
-      {"options",
-       {{"packing", packingName(measure.pile.packing)},
-        {"particle_diameter_m", shortest(measure.pile.particleDiameter)},
-        {"cylinder_radius_d", shortest(measure.pile.cylinderRadius)},
-        {"cylinder_height_d", shortest(measure.pile.cylinderHeight)},
-        {"spacing_d", shortest(measure.pile.spacing)},
-        {"jitter", shortest(measure.pile.jitter)},
-        {"seed", measure.pile.seed},
-        {"chunk", measure.chunk},
-        {"budget_seconds", measure.budgetSeconds},
-        {"settle_budget_seconds", measure.settleBudgetSeconds},
-        {"kernel_times", measure.kernelTimes}}},
+      {"options", common},
       {"sizes", sizes},
   };
 }
@@ -171,13 +218,29 @@ void writeJson(const std::string& path, const nlohmann::json& json) {
 
 void printReport(std::FILE* out, const BenchOptions& options, const BenchReport& report) {
   const MeasureOptions& measure = options.measure;
-  const double d = measure.pile.particleDiameter;
-  std::fprintf(out,
-               "sandphys-bench: settled cylinder pile (wall radius %g d, rough particle floor, "
-               "smooth wall), d = %g m, %s packing\nGPU: %s (%u hardware threads)\n\n",
-               double(measure.pile.cylinderRadius), d,
-               std::string(packingName(measure.pile.packing)).c_str(), report.gpu.c_str(),
-               report.hardwareThreads);
+  const bool box = measure.scene == BenchScene::Box;
+  const double d = particleDiameter(measure);
+  const std::string law(scenes::contactLawName(measure.pile.contactLaw));
+  if (box) {
+    const BoxPileConfig& c = measure.box;
+    std::fprintf(out,
+                 "sandphys-bench: settled box pile (square box of flat walls with friction, side "
+                 "%g d * sqrt(N/4096), from a loose random lattice), d = %g m, %g kg/m^3, E = %g "
+                 "Pa, nu = %g, e = %g, mu = %g (grains), walls and floor mu = %g, e = %g, dt = %g "
+                 "s, %s\nGPU: %s (%u hardware threads)\n\n",
+                 double(c.sideAt4096), d, double(c.material.density),
+                 double(c.material.youngsModulus), double(c.material.poissonRatio),
+                 double(c.material.restitution), double(c.material.friction),
+                 double(c.wallMaterial.friction), double(c.wallMaterial.restitution),
+                 double(c.timeStep), law.c_str(), report.gpu.c_str(), report.hardwareThreads);
+  } else {
+    std::fprintf(out,
+                 "sandphys-bench: settled cylinder pile (wall radius %g d, rough particle floor, "
+                 "smooth wall), d = %g m, %s packing, %s\nGPU: %s (%u hardware threads)\n\n",
+                 double(measure.pile.cylinderRadius), d,
+                 std::string(packingName(measure.pile.packing)).c_str(), law.c_str(),
+                 report.gpu.c_str(), report.hardwareThreads);
+  }
 
   std::fprintf(out, "%9s %10s %10s %9s %11s %12s %12s %9s %9s %9s\n", "granules", "particles",
                "capacity", "contacts", "Cundall", "us/gran-step", "sim s/wall s", "ms/step",
@@ -194,6 +257,36 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
                "threads, which on llvmpipe run the kernels; with the CPU utilisation in the notes "
                "it shows how much of a shared machine the run got)\n");
 
+  std::fprintf(out, "\nPer particle, contact and dispatch:\n");
+  std::fprintf(out, "%9s %10s %13s %13s %10s %12s %11s %14s %9s %12s\n", "granules", "particles",
+               "granule-st/s", "particle-st/s", "contacts/p", "us/p-contact", "dispatches",
+               "grid builds/1k", "B/gran", "sim s/wall s");
+  for (const SizeResult& s : report.sizes) {
+    char perContact[24] = "n/a";  // no contacts, nothing to share the time among
+    if (s.measured.contacts > 0) {
+      std::snprintf(perContact, sizeof perContact, "%.4g", s.microsecondsPerParticleContact());
+    }
+    char dispatches[24] = "n/a";
+    char builds[24] = "n/a";
+    if (!s.kernels.empty()) {
+      std::snprintf(dispatches, sizeof dispatches, "%.1f", s.dispatchesPerStep());
+      std::snprintf(builds, sizeof builds, "%.0f", s.gridBuildsPer1000Steps());
+    }
+    std::fprintf(out, "%9u %10u %13.4g %13.4g %10.2f %12s %11s %14s %9.0f %12.4g\n", s.granules,
+                 s.particles, s.cundallNumber(), s.particleStepsPerSecond(),
+                 s.contactsPerParticle(), perContact, dispatches, builds,
+                 double(s.gpuMemoryBytes) / s.granules, s.simulatedPerWallSecond());
+  }
+  std::fprintf(out,
+               "(granule-st/s: granule-steps per wall second, the Cundall number; particle-st/s: "
+               "particle-steps per wall second%s; contacts/p: contacts (particle pairs and "
+               "collider contacts, World stats at the end of timing) per particle; us/p-contact: "
+               "wall time per substep / contacts; dispatches: GL compute dispatches per substep, "
+               "all kernels; grid builds/1k: neighbour-grid builds (grid_scatter dispatches) per "
+               "1000 substeps, which stand for list rebuilds: the library has no Verlet list and "
+               "rebuilds the grid every substep; n/a: no contacts, or --no-kernel-times)\n",
+               box ? "" : ", the rough floor's included");
+
   std::fprintf(out, "\nHow settled (at the start of timing -> at its end):\n");
   std::fprintf(out, "%9s %14s %20s %18s %16s %10s %14s\n", "granules", "settle steps",
                "KE/granule J", "contacts/granule", "pile top d", "overlap d", "timed steps");
@@ -207,8 +300,8 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
     char contacts[48];
     std::snprintf(contacts, sizeof contacts, "%.2f->%.2f", s.settled.contactsPerGranule,
                   s.measured.contactsPerGranule);
-    char top[48];
-    std::snprintf(top, sizeof top, "%.0f->%.0f->%.0f", s.layout.columnTop / d, s.settled.pileTop,
+    char top[64];
+    std::snprintf(top, sizeof top, "%.1f->%.1f->%.1f", s.layout.columnTop / d, s.settled.pileTop,
                   s.measured.pileTop);
     char timed[32];
     std::snprintf(timed, sizeof timed, "%u%s", s.steps, s.budgetHit ? " (budget)" : "");
@@ -267,6 +360,22 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
 
   std::fprintf(out, "\nNotes:\n");
   for (const SizeResult& s : report.sizes) {
+    if (box) {
+      std::fprintf(out,
+                   "  %u granules: dt %.3g s = t_n / %.1f (the World refuses dt above t_n / "
+                   "%g); box %.1f d x %.1f d x %.0f d high; %u columns x %u layers%s; CPU "
+                   "utilisation %.2f cores; load average %.2f -> %.2f; setup %.1f s, settle %.1f "
+                   "s wall%s\n",
+                   s.granules, double(s.timeStep),
+                   s.timeStep > 0.0f ? double(s.contactTime / s.timeStep) : 0.0,
+                   double(kMinStepsPerContact), double(s.layout.boxSide), double(s.layout.boxSide),
+                   double(s.layout.wallHeight), s.layout.columns, s.layout.fullLayers,
+                   s.layout.topLayerGranules > 0 ? " + partial layer" : "",
+                   s.wallSeconds > 0.0 ? s.cpuSeconds / s.wallSeconds : 0.0, s.loadBefore,
+                   s.loadAfter, s.setupSeconds, s.settleWallSeconds,
+                   s.settleBudgetHit ? " (settle budget hit)" : "");
+      continue;
+    }
     std::fprintf(
         out,
         "  %u granules: dt %.3g s; %u columns x %u layers%s; wall %.0f d%s; CPU "
