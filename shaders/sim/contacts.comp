@@ -5,6 +5,12 @@
 // slots). Gather, not scatter: no float atomics, and the neighbour order is fixed by
 // grid_sort.comp, so the sum is bit-identical run to run.
 //
+// The loop over the neighbouring cells only finds the partners (closer than a diameter, of another
+// body, not both immovable) and lists them in order; the contacts are then evaluated from that
+// list, PARTNER_BATCH at a time. In SIMD lanes that scan different cells, the law's arithmetic
+// then runs once per partner rather than once per candidate any lane has in contact, which was
+// most of the kernel's time; the order of the sum, and so every bit, is the grid's as before.
+//
 // The law is chosen when the kernel is compiled: PAPER_LAW selects the paper's (eq. 9, 10;
 // contactForce in common/contact_law.glsl), otherwise Hertz-Mindlin with history (hertzMindlin,
 // and common/contact_slots.glsl). Compiled a second time with CONTACT_LIST defined for
@@ -18,6 +24,10 @@
 #include "common/contact_slots.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
+
+// Partners listed before their contacts are evaluated (see above); a particle with more is
+// evaluated in several batches, in the same order.
+#define PARTNER_BATCH 16
 
 CELL_START_TEXTURE
 CELL_PARTICLES_TEXTURE
@@ -216,6 +226,59 @@ void pairContact(Particle self, uint s) {
 }
 #endif
 
+#ifdef PAPER_LAW
+// The contact of the current particle with the particle in bucket-ordered slot `s` (closer than
+// a diameter, of another body, not both immovable), as the paper has it.
+void pairContact(Particle self, uint s) {
+  vec4 other = texelFetch(sortedPositionTexture, int(s));
+  vec4 otherVelocity = texelFetch(sortedVelocityTexture, int(s));
+  vec3 d = self.position.xyz - other.xyz;
+  float diameter = particleGeom.y;
+  float radius = particleGeom.x;
+  float invMassSum = max(self.velocity.w, 0.0) + max(otherVelocity.w, 0.0);
+  float dist2 = dot(d, d);
+  float dist = sqrt(dist2);
+  vec3 n = d / dist;
+  float xi = diameter - dist;
+  largestOverlap = max(largestOverlap, xi);
+  uint otherId = texelFetch(cellParticlesTexture, int(s)).x;
+  uint otherBody = floatBitsToUint(other.w);
+#ifdef CONTACT_LIST
+  // Each pair once, from the side that keeps its history (static particles keep none).
+  bool listed = self.velocity.w >= 0.0 && (otherVelocity.w < 0.0 || self.id < otherId);
+#endif
+  float appliedXi = xi;
+  if (appliedXi > particleGeom.w) {
+    appliedXi = particleGeom.w;  // penetration guard (paper: d/10)
+    ++guards;
+  }
+  ContactResult r = contactForce(appliedXi, n, self.velocity.xyz - otherVelocity.xyz,
+                                 grainContact.x, grainContact.y, invMassSum,
+                                 grainContact.z, grainContact.w);
+  vec3 spring = vec3(0.0);
+#ifndef CONTACT_LIST
+  force += r.force;
+#endif
+#ifdef CONTACT_LIST
+  if (listed) {
+    record(self.id, otherId, self.body, otherBody, 0xffffffffu,
+           self.position.xyz - n * (radius - 0.5 * xi), n, xi, r.normalForce,
+           r.tangentialForce, spring);
+  }
+#else
+  ++pairContacts;
+#endif
+}
+#endif
+
+// Partners found by the cell loop and not yet evaluated: bucket-ordered slots.
+uint partners[PARTNER_BATCH];
+
+// Evaluates the first `count` partners in the order they were found.
+void evaluatePartners(Particle self, uint count) {
+  for (uint k = 0u; k < count; ++k) pairContact(self, partners[k]);
+}
+
 // One contact of the current particle with the surface `hit` of collider `c` (its face `face`).
 void colliderContact(Particle self, Collider c, vec4 hit, uint face, float radius) {
   float xi = hit.w;
@@ -278,66 +341,43 @@ void main() {
   float radius = particleGeom.x;
   float diameter = particleGeom.y;
   ivec3 cell = cellOf(self.position.xyz);
-
-  for (int dz = -1; dz <= 1; ++dz) {
-    for (int dy = -1; dy <= 1; ++dy) {
-      uint centre = bucketOf(cell + ivec3(0, dy, dz));
-      uint first = (centre - 1u) & counts.z;
-      uint last = (centre + 1u) & counts.z;
-      // The three x-neighbours are consecutive buckets unless the row wraps around the table.
-      bool contiguous = first < last;
-      for (uint part = 0u; part < (contiguous ? 1u : 3u); ++part) {
-        uint bucketBegin = contiguous ? first : ((centre + part - 1u) & counts.z);
-        uint bucketEnd = contiguous ? last : bucketBegin;
-        uint begin = texelFetch(cellStartTexture, int(bucketBegin)).x;
-        uint end = texelFetch(cellStartTexture, int(bucketEnd + 1u)).x;
-        for (uint s = begin; s < end; ++s) {
-          vec4 other = texelFetch(sortedPositionTexture, int(s));
-          if (floatBitsToUint(other.w) == self.body) continue;  // own body, and self
-          vec3 d = self.position.xyz - other.xyz;
-          float dist2 = dot(d, d);
-          if (dist2 >= diameter * diameter || dist2 == 0.0) continue;
-          vec4 otherVelocity = texelFetch(sortedVelocityTexture, int(s));
-          float invMassSum = max(self.velocity.w, 0.0) + max(otherVelocity.w, 0.0);
-          if (invMassSum == 0.0) continue;  // two immovable bodies
-#ifdef PAPER_LAW
-          float dist = sqrt(dist2);
-          vec3 n = d / dist;
-          float xi = diameter - dist;
-          largestOverlap = max(largestOverlap, xi);
-          uint otherId = texelFetch(cellParticlesTexture, int(s)).x;
-          uint otherBody = floatBitsToUint(other.w);
-#ifdef CONTACT_LIST
-          // Each pair once, from the side that keeps its history (static particles keep none).
-          bool listed = self.velocity.w >= 0.0 && (otherVelocity.w < 0.0 || self.id < otherId);
-#endif
-          float appliedXi = xi;
-          if (appliedXi > particleGeom.w) {
-            appliedXi = particleGeom.w;  // penetration guard (paper: d/10)
-            ++guards;
+  // Partners are listed PARTNER_BATCH at a time: a particle with more scans the cells again
+  // for the next batch, so that every partner is evaluated once and in the grid's order.
+  for (uint skip = 0u;; skip += uint(PARTNER_BATCH)) {
+    uint seen = 0u;   // partners met in this scan
+    uint found = 0u;  // of them, listed for this batch
+    for (int dz = -1; dz <= 1; ++dz) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        uint centre = bucketOf(cell + ivec3(0, dy, dz));
+        uint first = (centre - 1u) & counts.z;
+        uint last = (centre + 1u) & counts.z;
+        // The three x-neighbours are consecutive buckets unless the row wraps around the table.
+        bool contiguous = first < last;
+        for (uint part = 0u; part < (contiguous ? 1u : 3u); ++part) {
+          uint bucketBegin = contiguous ? first : ((centre + part - 1u) & counts.z);
+          uint bucketEnd = contiguous ? last : bucketBegin;
+          uint begin = texelFetch(cellStartTexture, int(bucketBegin)).x;
+          uint end = texelFetch(cellStartTexture, int(bucketEnd + 1u)).x;
+          for (uint s = begin; s < end; ++s) {
+            vec4 other = texelFetch(sortedPositionTexture, int(s));
+            if (floatBitsToUint(other.w) == self.body) continue;  // own body, and self
+            vec3 d = self.position.xyz - other.xyz;
+            float dist2 = dot(d, d);
+            if (dist2 >= diameter * diameter || dist2 == 0.0) continue;
+            vec4 otherVelocity = texelFetch(sortedVelocityTexture, int(s));
+            float invMassSum = max(self.velocity.w, 0.0) + max(otherVelocity.w, 0.0);
+            if (invMassSum == 0.0) continue;  // two immovable bodies
+            if (seen >= skip && found < uint(PARTNER_BATCH)) {
+              partners[found] = s;
+              ++found;
+            }
+            ++seen;
           }
-          ContactResult r = contactForce(appliedXi, n, self.velocity.xyz - otherVelocity.xyz,
-                                         grainContact.x, grainContact.y, invMassSum,
-                                         grainContact.z, grainContact.w);
-          vec3 spring = vec3(0.0);
-#ifndef CONTACT_LIST
-          force += r.force;
-#endif
-#ifdef CONTACT_LIST
-          if (listed) {
-            record(self.id, otherId, self.body, otherBody, 0xffffffffu,
-                   self.position.xyz - n * (radius - 0.5 * xi), n, xi, r.normalForce,
-                   r.tangentialForce, spring);
-          }
-#else
-          ++pairContacts;
-#endif
-#else
-          pairContact(self, s);
-#endif
         }
       }
     }
+    evaluatePartners(self, found);
+    if (seen <= skip + uint(PARTNER_BATCH)) break;
   }
 
   // Each collider type in its own loop (uniform control flow; see colliders.glsl). Every
