@@ -21,6 +21,15 @@ from report_tables import (EXPONENT_TOLERANCE, MIN_LAW_R2, MIN_STEADY_R2, compre
                            rows_flow_outlet, rows_repose)
 
 
+def cost_text(r):
+    """A run's largest overlap and substeps per frame in a sentence (empty in results written
+    before sandphys-validation recorded them)."""
+    if r.get('max_overlap_d') is None:
+        return ""
+    return (f" Largest overlap {fmt(r['max_overlap_d'], 2)} d, "
+            f"{fmt(r.get('substeps_per_frame'), 3)} substeps per frame.")
+
+
 def cost(r):
     """Two table cells of a run: its largest overlap (d) and substeps per frame (n/a in results
     written before sandphys-validation recorded them)."""
@@ -251,7 +260,8 @@ def main():
             f"{s['granules_per_column']} granules onto a rough floor. The profile is the highest "
             "granule centre in each strip one granule wide along the axis through both columns; "
             "a dune with two crests has a saddle at least 1 d below the lower crest between them. "
-            f"Settled after {s['simulated_seconds']:.2f} s simulated ({s['wall_seconds']:.0f} s wall).",
+            f"Settled after {s['simulated_seconds']:.2f} s simulated ({s['wall_seconds']:.0f} s wall)."
+            + cost_text(s),
             "",
             "![dune profile](dunes.png)",
         ]))
@@ -305,7 +315,7 @@ def main():
             f"height there; {100 * rough['max_strain']:.2f}% at the peak, "
             f"{100 * rough['residual_strain']:.2f}% when the stress was back at zero "
             f"({rough['recovered_fraction']:.0%} recovered). Run: {rough['simulated_seconds']:.2f} s "
-            f"simulated, {rough['wall_seconds']:.0f} s wall.",
+            f"simulated, {rough['wall_seconds']:.0f} s wall." + cost_text(rough),
             "",
             "![stress-strain](stress_strain.png)",
         ]))
