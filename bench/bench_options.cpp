@@ -168,6 +168,11 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
                  "capacity costs; 0: what the pile needs")
       ->check(CLI::Range(0u, 1u << 28))
       ->capture_default_str();
+  app.add_option("--list-skin", measure.listSkin,
+                 "skin of the neighbour lists, particle diameters (0: derived from the speed "
+                 "guard, WorldSettings::listSkin); it changes the cost, not the result")
+      ->check(CLI::Range(0.0f, 1.0f))
+      ->capture_default_str();
   CLI::Option* packingOption = app.add_option(
       "--packing", packing,
       "cylinder: initial pile: 'crystal' (aligned granules whose particles form an FCC packing "

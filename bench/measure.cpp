@@ -101,12 +101,8 @@ double SizeResult::dispatchesPerStep() const {
   return sum;
 }
 
-double SizeResult::gridBuildsPer1000Steps() const {
-  if (kernels.empty()) return -1.0;
-  for (const KernelStep& kernel : kernels) {
-    if (kernel.name == "grid_scatter") return 1000.0 * kernel.dispatchesPerStep;
-  }
-  return 0.0;
+double SizeResult::listBuildsPer1000Steps() const {
+  return steps > 0 ? 1000.0 * double(listBuilds) / steps : 0.0;
 }
 
 std::unique_ptr<BenchPile> makePile(const MeasureOptions& options, std::uint32_t granules) {
@@ -150,6 +146,7 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
     settings.maxParticles = options.reserveParticles;
     settings.maxBodies = std::max(settings.maxBodies, options.reserveParticles / 4u);
   }
+  settings.listSkin = options.listSkin * d;
   World world(gpu, settings);
   pile.build(world);
   result.setupSeconds = secondsSince(setupStart);
@@ -159,6 +156,7 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   result.particleCapacity = world.particleCapacity();
   result.timeStep = world.timeStep();
   result.contactTime = world.contactModel().contactTime;
+  result.listSkin = world.contactModel().listSkin;
   result.gpuMemoryBytes = world.gpuMemoryBytes();
   result.built = readPileState(world, pile, world.readStats());
 
@@ -239,6 +237,8 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   result.penetrationClamps = endStats.penetrationClamps - settledStats.penetrationClamps;
   result.contactSlotOverflows = endStats.contactSlotOverflows - settledStats.contactSlotOverflows;
   result.velocityClamps = endStats.velocityClamps - settledStats.velocityClamps;
+  result.listBuilds = endStats.listBuilds - settledStats.listBuilds;
+  result.listOverflows = endStats.neighbourListOverflows - settledStats.neighbourListOverflows;
   result.measured = readPileState(world, pile, endStats);
   for (KernelStep& kernel : kernels) {
     kernel.millisecondsPerStep /= result.steps;

@@ -47,6 +47,8 @@ struct MeasureOptions {
   /// Particles (and a quarter as many bodies) the World reserves; 0 or fewer than the pile
   /// needs: exactly what it needs. What a game reserving room for more costs.
   std::uint32_t reserveParticles = 0;
+  /// Skin of the neighbour lists in particle diameters (WorldSettings::listSkin); 0: derived.
+  float listSkin = 0.0f;
 };
 
 /// How settled the pile is at one moment (one readStats and one readBodies, both sync points).
@@ -80,6 +82,8 @@ struct SizeResult {
   /// Hertz contact time t_n at the speed guard (ContactModel::contactTime), s: the World
   /// refuses a time step above t_n / kMinStepsPerContact.
   float contactTime = 0.0f;
+  /// Skin of the neighbour lists (ContactModel::listSkin), m.
+  float listSkin = 0.0f;
   double setupSeconds = 0.0;  ///< World creation (kernel compilation) and build, wall s
   std::uint64_t gpuMemoryBytes = 0;
 
@@ -97,6 +101,8 @@ struct SizeResult {
   std::uint64_t penetrationClamps = 0;     ///< during the measurement (ContactLaw::PaperViscous)
   std::uint64_t contactSlotOverflows = 0;  ///< during the measurement (HertzMindlin)
   std::uint64_t velocityClamps = 0;        ///< during the measurement
+  std::uint64_t listBuilds = 0;            ///< neighbour-list builds during the measurement
+  std::uint64_t listOverflows = 0;         ///< particles over a list's capacity at those builds
   std::vector<KernelStep> kernels;         ///< empty without kernel times
   std::vector<RenderTiming> renders;       ///< one per quality preset; empty without --render
   double loadBefore = -1.0;  ///< 1-minute load average before the size ran (-1: unknown)
@@ -115,13 +121,11 @@ struct SizeResult {
   /// Wall time per substep over the contacts at the end of the timed substeps, µs; 0 without
   /// contacts.
   double microsecondsPerParticleContact() const;
-  /// GL compute dispatches per substep, summed over kernels (from the kernel profiler); 0
-  /// without kernel times.
+  /// GL compute dispatches per substep, summed over kernels (from the kernel profiler), the
+  /// list build's indirect ones included whether or not a build was due; 0 without kernel times.
   double dispatchesPerStep() const;
-  /// Builds of the neighbour grid per 1000 substeps: 1000 times the dispatches of its scatter
-  /// pass (grid_scatter) per substep, as the kernel profiler counted them; -1 without kernel
-  /// times. The library has no Verlet list: this is what stands for its rebuilds.
-  double gridBuildsPer1000Steps() const;
+  /// Builds of the neighbour lists per 1000 measured substeps (WorldStats::listBuilds).
+  double listBuildsPer1000Steps() const;
 };
 
 /// The pile `options` selects (the cylinder's DensePile or the BoxPile), of `granules` granules.

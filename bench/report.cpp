@@ -107,8 +107,9 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
                                   : nlohmann::json(nullptr)},
       {"dispatches_per_substep",
        profiled ? nlohmann::json(size.dispatchesPerStep()) : nlohmann::json(nullptr)},
-      {"neighbour_grid_builds_per_1000_substeps",
-       profiled ? nlohmann::json(size.gridBuildsPer1000Steps()) : nlohmann::json(nullptr)},
+      {"list_builds_per_1000_substeps", size.listBuildsPer1000Steps()},
+      {"list_overflows", size.listOverflows},
+      {"list_skin_d", size.listSkin / d},
       {"microseconds_per_granule_step", size.microsecondsPerGranuleStep()},
       {"simulated_seconds_per_wall_second", size.simulatedPerWallSecond()},
       {"gpu_memory_bytes", size.gpuMemoryBytes},
@@ -260,18 +261,17 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
   std::fprintf(out, "\nPer particle, contact and dispatch:\n");
   std::fprintf(out, "%9s %10s %13s %13s %10s %12s %11s %14s %9s %12s\n", "granules", "particles",
                "granule-st/s", "particle-st/s", "contacts/p", "us/p-contact", "dispatches",
-               "grid builds/1k", "B/gran", "sim s/wall s");
+               "list builds/1k", "B/gran", "sim s/wall s");
   for (const SizeResult& s : report.sizes) {
     char perContact[24] = "n/a";  // no contacts, nothing to share the time among
     if (s.measured.contacts > 0) {
       std::snprintf(perContact, sizeof perContact, "%.4g", s.microsecondsPerParticleContact());
     }
     char dispatches[24] = "n/a";
-    char builds[24] = "n/a";
-    if (!s.kernels.empty()) {
+    if (!s.kernels.empty())
       std::snprintf(dispatches, sizeof dispatches, "%.1f", s.dispatchesPerStep());
-      std::snprintf(builds, sizeof builds, "%.0f", s.gridBuildsPer1000Steps());
-    }
+    char builds[24];
+    std::snprintf(builds, sizeof builds, "%.1f", s.listBuildsPer1000Steps());
     std::fprintf(out, "%9u %10u %13.4g %13.4g %10.2f %12s %11s %14s %9.0f %12.4g\n", s.granules,
                  s.particles, s.cundallNumber(), s.particleStepsPerSecond(),
                  s.contactsPerParticle(), perContact, dispatches, builds,
@@ -282,9 +282,9 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
                "particle-steps per wall second%s; contacts/p: contacts (particle pairs and "
                "collider contacts, World stats at the end of timing) per particle; us/p-contact: "
                "wall time per substep / contacts; dispatches: GL compute dispatches per substep, "
-               "all kernels; grid builds/1k: neighbour-grid builds (grid_scatter dispatches) per "
-               "1000 substeps, which stand for list rebuilds: the library has no Verlet list and "
-               "rebuilds the grid every substep; n/a: no contacts, or --no-kernel-times)\n",
+               "all kernels, the list build's indirect ones included (zero groups when no build "
+               "is due); list builds/1k: neighbour-list builds per 1000 substeps "
+               "(WorldStats::listBuilds); n/a: no contacts, or --no-kernel-times)\n",
                box ? "" : ", the rough floor's included");
 
   std::fprintf(out, "\nHow settled (at the start of timing -> at its end):\n");
@@ -386,6 +386,14 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
         s.layout.wallRaised ? " (raised from the paper's 100 d to hold the column)" : "",
         s.wallSeconds > 0.0 ? s.cpuSeconds / s.wallSeconds : 0.0, s.loadBefore, s.loadAfter,
         s.setupSeconds, s.settleWallSeconds, s.settleBudgetHit ? " (settle budget hit)" : "");
+  }
+  for (const SizeResult& s : report.sizes) {
+    std::fprintf(out,
+                 "  %u granules: neighbour-list skin %.3g d; %llu list builds and %llu particles "
+                 "over a list's capacity at them in the %u timed substeps\n",
+                 s.granules, double(s.listSkin / particleDiameter(measure)),
+                 static_cast<unsigned long long>(s.listBuilds),
+                 static_cast<unsigned long long>(s.listOverflows), s.steps);
   }
   if (!measure.kernelTimes) {
     std::fprintf(out, "  kernel timer queries off (--no-kernel-times)\n");

@@ -1,10 +1,9 @@
 #version 450
-// Pass 1. Bodies -> particles (paper eq. 7, 8): world position and velocity of every particle
-// from its body's pose, velocity and spin, and the particle's hash bucket, counted with an integer
-// atomic (exact, order independent).
+// Particles of bodies the CPU has just set (added, moved by World::setBodyState, restored,
+// copied by World::reserve): their state from the body's pose (paper eq. 7, 8). Not a pass of
+// every substep: the integration passes write the particles of the bodies they move.
 #include "common/layout.glsl"
 #include "common/quaternion.glsl"
-#include "common/spatial_hash.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 
@@ -15,28 +14,29 @@ BODY_ANGULAR_VELOCITY_TEXTURE
 BODY_INFO_TEXTURE
 PARTICLE_LOCAL_TEXTURE
 PARTICLE_BODY_TEXTURE
+LIST_ORIGIN_TEXTURE
 PARTICLE_POSITION(writeonly)
 PARTICLE_VELOCITY(writeonly)
-PARTICLE_CELL(writeonly)
-CELL_COUNT(coherent)
+COUNTERS(coherent)
+#ifndef PAPER_LAW
+PARTICLE_SPIN(writeonly)
+#endif
 
-#include "common/particle_offset.glsl"
+#include "common/particle_state.glsl"
+
+// The first particle and how many.
+layout(location = 0) uniform uvec2 range;
 
 void main() {
-  uint i = threadIndex();
-  if (i >= counts.x) return;
-  int body = int(texelFetch(particleBodyTexture, int(i)).x);
-  if ((texelFetch(bodyInfoTexture, body).z & BODY_ALIVE) == 0u) {
-    particleCell[i] = INVALID_CELL;
-    return;
-  }
-  vec3 offset = particleOffset(body, int(i));
-  vec3 position = texelFetch(bodyPositionTexture, body).xyz + offset;
-  vec3 velocity = texelFetch(bodyVelocityTexture, body).xyz +
-                  cross(texelFetch(bodyAngularVelocityTexture, body).xyz, offset);
-  particlePosition[i] = vec4(position, 0.0);
-  particleVelocity[i] = vec4(velocity, 0.0);
-  uint bucket = bucketOf(cellOf(position));
-  particleCell[i] = bucket;
-  atomicAdd(cellCount[bucket], 1u);
+  uint t = threadIndex();
+  if (t >= range.y) return;
+  uint i = range.x + t;
+  uint body = texelFetch(particleBodyTexture, int(i)).x;
+  // A dead body's particles leave the lists at the next build, which every change of the bodies
+  // asks for; their state is never read.
+  if ((texelFetch(bodyInfoTexture, int(body)).z & BODY_ALIVE) == 0u) return;
+  storeParticle(i, texelFetch(particleLocalTexture, int(i)), body, texelFetch(bodyPositionTexture, int(body)).xyz,
+                texelFetch(bodyOrientationTexture, int(body)),
+                texelFetch(bodyVelocityTexture, int(body)).xyz,
+                texelFetch(bodyAngularVelocityTexture, int(body)).xyz);
 }

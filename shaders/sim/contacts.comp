@@ -1,21 +1,21 @@
 #version 450
-// Pass 5. Contacts: one thread per particle, in bucket order, gathers over the 27 neighbouring
-// cells (as 9 runs of 3 consecutive buckets) and the implicit colliders and writes its total
-// force (and, under ContactLaw::HertzMindlin, the torque about its centre and its contact
-// slots). Gather, not scatter: no float atomics, and the neighbour order is fixed by
-// grid_sort.comp, so the sum is bit-identical run to run.
+// Pass 2. Contacts: one thread per particle evaluates its contacts with the partners of its
+// neighbour list (common/neighbour_list.glsl: ascending partner id, built when some particle has
+// moved more than half the skin) and with the implicit colliders, and writes its total force
+// (and, under ContactLaw::HertzMindlin, the torque about its centre and its contact slots).
+// Gather, not scatter: no float atomics, and the partners are summed in id order whenever the
+// lists were built, so the sum is bit-identical run to run and whatever the skin.
 //
-// The loop over the neighbouring cells only finds the partners (closer than a diameter, of another
-// body, not both immovable) and lists them in order; the contacts are then evaluated from that
-// list, PARTNER_BATCH at a time. In SIMD lanes that scan different cells, the law's arithmetic
-// then runs once per partner rather than once per candidate any lane has in contact, which was
-// most of the kernel's time; the order of the sum, and so every bit, is the grid's as before.
+// The loop over the list only finds the partners in contact (closer than a diameter) and lists
+// them in order; the law is then evaluated from that list, PARTNER_BATCH at a time. In SIMD lanes
+// whose lists differ, the law's arithmetic then runs once per contact rather than once per
+// candidate any lane has in contact.
 //
 // The law is chosen when the kernel is compiled: PAPER_LAW selects the paper's (eq. 9, 10;
 // contactForce in common/contact_law.glsl), otherwise Hertz-Mindlin with history (hertzMindlin,
 // and common/contact_slots.glsl). Compiled a second time with CONTACT_LIST defined for
-// World::readContacts: the same loop then appends every contact (each particle pair once, from
-// the side that keeps its history) to a list instead of writing forces and slots.
+// World::readContacts: the same contacts, the ones the next substep applies, are appended to a
+// list (each particle pair once, from the side that keeps its history) and nothing is written.
 #include "common/layout.glsl"
 #include "common/quaternion.glsl"
 #include "common/spatial_hash.glsl"
@@ -25,17 +25,20 @@
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 
-// Partners listed before their contacts are evaluated (see above); a particle with more is
-// evaluated in several batches, in the same order.
+// Partners listed before their contacts are evaluated (see above).
 #define PARTNER_BATCH 16
+// No partner found (nextPartnerAfter).
+#define NO_PARTNER 0xffffffffu
 
+NEIGHBOUR_LIST_TEXTURE
+LIST_ORIGIN_TEXTURE
 CELL_START_TEXTURE
 CELL_PARTICLES_TEXTURE
-SORTED_POSITION_TEXTURE
-SORTED_VELOCITY_TEXTURE
+PARTICLE_POSITION_TEXTURE
+PARTICLE_VELOCITY_TEXTURE
 COLLIDERS(readonly)
 #ifndef PAPER_LAW
-SORTED_SPIN_TEXTURE
+PARTICLE_SPIN_TEXTURE
 CONTACT_PAIRS_TEXTURE
 #endif
 #ifdef CONTACT_LIST
@@ -55,6 +58,7 @@ CONTACT_SLOTS_1(coherent)
 CONTACT_SLOTS_2(coherent)
 #endif
 #endif
+#include "common/neighbour_list.glsl"
 
 // The particle this thread gathers for.
 struct Particle {
@@ -134,16 +138,6 @@ void storeSlot(uint particle, uint k, vec4 slot) {
   }
 }
 
-// Writes the contact into the next free slot, in the order the contacts were found.
-void keepSlot(uint particle, uint key, vec3 spring) {
-  if (slotsUsed < uint(CONTACT_SLOTS)) {
-    storeSlot(particle, slotsUsed, vec4(spring, uintBitsToFloat(key)));
-    ++slotsUsed;
-  } else {
-    ++guards;  // counted (stats, viewer); the contact still acts, with a fresh spring
-  }
-}
-
 // Frees the slots of contacts that ended.
 void clearUnusedSlots(uint particle) {
   for (uint k = 0u; k < uint(CONTACT_SLOTS); ++k) {
@@ -153,6 +147,19 @@ void clearUnusedSlots(uint particle) {
   }
 }
 #endif
+
+// Writes the contact into the next free slot, in the order the contacts were found (listing, it
+// only counts the slot, as the substep will take it).
+void keepSlot(uint particle, uint key, vec3 spring) {
+  if (slotsUsed < uint(CONTACT_SLOTS)) {
+#ifndef CONTACT_LIST
+    storeSlot(particle, slotsUsed, vec4(spring, uintBitsToFloat(key)));
+#endif
+    ++slotsUsed;
+  } else {
+    ++guards;  // counted (stats, viewer); the contact still acts, with a fresh spring
+  }
+}
 
 // Velocity of a body's material at `point`, from one of its particles: the particle's velocity
 // plus the body's spin about the particle's centre. `precise`, so that both sides of a pair
@@ -164,7 +171,7 @@ vec3 surfaceVelocity(vec3 particleVelocity, vec3 spin, vec3 centre, vec3 point) 
 }
 
 // Applies one contact of the current particle: gets its spring from the previous substep,
-// advances it (or, listing, takes it as stored) and adds force and torque at `point`. A new
+// advances it, keeps it in a slot and adds force and torque at `point`. A new
 // contact is undamped for its first substep: the number n of contacts that joined the two
 // bodies is counted after this substep, and taking n = 1 meanwhile would damp a body that meets
 // a surface with many particles at once n times too hard (its overlap, about v dt, makes the
@@ -174,41 +181,34 @@ MindlinResult mindlinContact(Particle self, uint key, float xi, vec3 n, vec3 poi
                              float friction) {
   uint pairs;
   vec3 spring = previousSpring(key, pairs);
-#ifdef CONTACT_LIST
-  const bool advance = false;  // the stored spring is already this substep's
-#else
-  const bool advance = true;
   if (pairs == 0u && slotsUsed < uint(CONTACT_SLOTS)) dampingFactor = 0.0;
-#endif
   MindlinResult r = hertzMindlin(xi, n, vRel, kn, kt0, dampingFactor,
-                                 float(max(pairs, 1u)) * invMass, friction, gravityDt.w, spring,
-                                 advance);
+                                 float(max(pairs, 1u)) * invMass, friction, gravityDt.w, spring);
+  keepSlot(self.id, key, r.spring);
 #ifndef CONTACT_LIST
   force += r.force;
   torque += cross(point - self.position.xyz, r.force);
-  keepSlot(self.id, key, r.spring);
 #endif
   return r;
 }
 #endif
 
 #ifndef PAPER_LAW
-// The contact of the current particle with the particle in bucket-ordered slot `s` (closer than
-// a diameter, of another body, not both immovable).
-void pairContact(Particle self, uint s) {
-  vec4 other = texelFetch(sortedPositionTexture, int(s));
-  vec4 otherVelocity = texelFetch(sortedVelocityTexture, int(s));
+// The contact of the current particle with particle `otherId` (closer than a diameter, of
+// another body, not both immovable).
+void pairContact(Particle self, uint otherId) {
+  vec4 other = texelFetch(particlePositionTexture, int(otherId));
+  vec4 otherVelocity = texelFetch(particleVelocityTexture, int(otherId));
   vec3 d = self.position.xyz - other.xyz;
   float dist = sqrt(dot(d, d));
   vec3 n = d / dist;
   float xi = particleGeom.y - dist;
   largestOverlap = max(largestOverlap, xi);
-  vec4 otherSpin = texelFetch(sortedSpinTexture, int(s));
-  uint otherId = floatBitsToUint(otherSpin.w);
+  vec3 otherSpin = texelFetch(particleSpinTexture, int(otherId)).xyz;
   // The contact point is the middle of the overlap: the same bits from both sides.
   precise vec3 point = 0.5 * (self.position.xyz + other.xyz);
   precise vec3 vRel = surfaceVelocity(self.velocity.xyz, self.spin, self.position.xyz, point) -
-                      surfaceVelocity(otherVelocity.xyz, otherSpin.xyz, other.xyz, point);
+                      surfaceVelocity(otherVelocity.xyz, otherSpin, other.xyz, point);
   float invMassSum = max(self.velocity.w, 0.0) + max(otherVelocity.w, 0.0);
   MindlinResult r = mindlinContact(self, particleSlotKey(otherId), xi, n, point, vRel,
                                    grainContact.x, shearContact.x, grainContact.y, invMassSum,
@@ -227,11 +227,11 @@ void pairContact(Particle self, uint s) {
 #endif
 
 #ifdef PAPER_LAW
-// The contact of the current particle with the particle in bucket-ordered slot `s` (closer than
-// a diameter, of another body, not both immovable), as the paper has it.
-void pairContact(Particle self, uint s) {
-  vec4 other = texelFetch(sortedPositionTexture, int(s));
-  vec4 otherVelocity = texelFetch(sortedVelocityTexture, int(s));
+// The contact of the current particle with particle `otherId` (closer than a diameter, of
+// another body, not both immovable), as the paper has it.
+void pairContact(Particle self, uint otherId) {
+  vec4 other = texelFetch(particlePositionTexture, int(otherId));
+  vec4 otherVelocity = texelFetch(particleVelocityTexture, int(otherId));
   vec3 d = self.position.xyz - other.xyz;
   float diameter = particleGeom.y;
   float radius = particleGeom.x;
@@ -241,7 +241,6 @@ void pairContact(Particle self, uint s) {
   vec3 n = d / dist;
   float xi = diameter - dist;
   largestOverlap = max(largestOverlap, xi);
-  uint otherId = texelFetch(cellParticlesTexture, int(s)).x;
   uint otherBody = floatBitsToUint(other.w);
 #ifdef CONTACT_LIST
   // Each pair once, from the side that keeps its history (static particles keep none).
@@ -271,12 +270,46 @@ void pairContact(Particle self, uint s) {
 }
 #endif
 
-// Partners found by the cell loop and not yet evaluated: bucket-ordered slots.
+// Partners in contact found and not yet evaluated: particle ids, ascending.
 uint partners[PARTNER_BATCH];
 
-// Evaluates the first `count` partners in the order they were found.
+// Evaluates the first `count` partners found, in order.
 void evaluatePartners(Particle self, uint count) {
   for (uint k = 0u; k < count; ++k) pairContact(self, partners[k]);
+}
+
+// Particle `id` touches the current particle (closer than a diameter; the lists hold only
+// particles of other bodies, not both immovable).
+bool touches(Particle self, uint id) {
+  vec3 d = self.position.xyz - texelFetch(particlePositionTexture, int(id)).xyz;
+  float dist2 = dot(d, d);
+  return dist2 < particleGeom.y * particleGeom.y && dist2 != 0.0;
+}
+
+// The partner with the smallest id above `after` that touches the current particle, found in the
+// grid of the last build (cells of d + skin: whatever touches now stood within d + skin then),
+// or NO_PARTNER. Only for particles with more partners than their list holds.
+uint nextPartnerAfter(Particle self, uint after) {
+  uint best = NO_PARTNER;
+  ivec3 cell = cellOf(texelFetch(listOriginTexture, int(self.id)).xyz);
+  for (int row = 0; row < 9; ++row) {
+    uint parts = rowParts(cell, row);
+    for (uint part = 0u; part < parts; ++part) {
+      uvec2 slots = rowSlots(cell, row, part, parts);
+      for (uint s = slots.x; s < slots.y; ++s) {
+        uint id = texelFetch(cellParticlesTexture, int(s)).x;
+        if (id <= after || id >= best) continue;
+        vec4 other = texelFetch(particlePositionTexture, int(id));
+        float otherInverseMass = texelFetch(particleVelocityTexture, int(id)).w;
+        if (floatBitsToUint(other.w) == self.body ||
+            max(self.velocity.w, 0.0) + max(otherInverseMass, 0.0) == 0.0) {
+          continue;
+        }
+        if (touches(self, id)) best = id;
+      }
+    }
+  }
+  return best;
 }
 
 // One contact of the current particle with the surface `hit` of collider `c` (its face `face`).
@@ -318,66 +351,56 @@ void colliderContact(Particle self, Collider c, vec4 hit, uint face, float radiu
 
 void main() {
   uint i = threadIndex();
-  if (i >= texelFetch(cellStartTexture, int(counts2.y)).x) return;
+  if (i >= counts.x) return;
   Particle self;
-  self.position = texelFetch(sortedPositionTexture, int(i));
-  self.velocity = texelFetch(sortedVelocityTexture, int(i));
+  self.position = texelFetch(particlePositionTexture, int(i));
+  self.velocity = texelFetch(particleVelocityTexture, int(i));
   self.body = floatBitsToUint(self.position.w);
-  self.id = texelFetch(cellParticlesTexture, int(i)).x;
-#ifndef CONTACT_LIST
+  self.id = i;
+  uint listed = floatBitsToUint(texelFetch(listOriginTexture, int(i)).w);
   // Static particles (rough floors) never move: nobody needs their force. Their neighbours still
-  // see them, since the gather of a sand particle reads the floor particle, not its result.
-  if (self.velocity.w < 0.0) {
-    particleForce[self.id] = vec4(0.0);
+  // see them, since they are in the neighbours' lists. Particles of dead bodies touch nothing.
+  if (self.velocity.w < 0.0 || listed == LIST_DEAD) {
+#ifndef CONTACT_LIST
+    particleForce[i] = vec4(0.0);
+    if (listed == LIST_DEAD) particleStats[i] = uvec4(0u, particleStats[i].yz, 0u);
+#endif
     return;
   }
-#endif
 #ifndef PAPER_LAW
-  self.spin = texelFetch(sortedSpinTexture, int(i)).xyz;
+  self.spin = texelFetch(particleSpinTexture, int(i)).xyz;
   loadSlots(self.id);
 #else
   self.spin = vec3(0.0);
 #endif
   float radius = particleGeom.x;
-  float diameter = particleGeom.y;
-  ivec3 cell = cellOf(self.position.xyz);
-  // Partners are listed PARTNER_BATCH at a time: a particle with more scans the cells again
-  // for the next batch, so that every partner is evaluated once and in the grid's order.
-  for (uint skip = 0u;; skip += uint(PARTNER_BATCH)) {
-    uint seen = 0u;   // partners met in this scan
-    uint found = 0u;  // of them, listed for this batch
-    for (int dz = -1; dz <= 1; ++dz) {
-      for (int dy = -1; dy <= 1; ++dy) {
-        uint centre = bucketOf(cell + ivec3(0, dy, dz));
-        uint first = (centre - 1u) & counts.z;
-        uint last = (centre + 1u) & counts.z;
-        // The three x-neighbours are consecutive buckets unless the row wraps around the table.
-        bool contiguous = first < last;
-        for (uint part = 0u; part < (contiguous ? 1u : 3u); ++part) {
-          uint bucketBegin = contiguous ? first : ((centre + part - 1u) & counts.z);
-          uint bucketEnd = contiguous ? last : bucketBegin;
-          uint begin = texelFetch(cellStartTexture, int(bucketBegin)).x;
-          uint end = texelFetch(cellStartTexture, int(bucketEnd + 1u)).x;
-          for (uint s = begin; s < end; ++s) {
-            vec4 other = texelFetch(sortedPositionTexture, int(s));
-            if (floatBitsToUint(other.w) == self.body) continue;  // own body, and self
-            vec3 d = self.position.xyz - other.xyz;
-            float dist2 = dot(d, d);
-            if (dist2 >= diameter * diameter || dist2 == 0.0) continue;
-            vec4 otherVelocity = texelFetch(sortedVelocityTexture, int(s));
-            float invMassSum = max(self.velocity.w, 0.0) + max(otherVelocity.w, 0.0);
-            if (invMassSum == 0.0) continue;  // two immovable bodies
-            if (seen >= skip && found < uint(PARTNER_BATCH)) {
-              partners[found] = s;
-              ++found;
-            }
-            ++seen;
-          }
-        }
+  // The partners in contact, in id order: the list's, then those beyond its capacity (from the
+  // grid), PARTNER_BATCH at a time.
+  uint inList = min(listed, uint(NEIGHBOUR_LIST_CAPACITY));
+  bool beyond = listed > uint(NEIGHBOUR_LIST_CAPACITY);
+  uint k = 0u;
+  uint last = 0u;  // the last candidate looked at
+  for (;;) {
+    uint found = 0u;
+    while (found < uint(PARTNER_BATCH) && k < inList) {
+      last = texelFetch(neighbourListTexture, listEntry(i, k)).x;
+      ++k;
+      if (touches(self, last)) {
+        partners[found] = last;
+        ++found;
+      }
+    }
+    while (found < uint(PARTNER_BATCH) && k == inList && beyond) {
+      last = nextPartnerAfter(self, last);
+      if (last == NO_PARTNER) {
+        beyond = false;
+      } else {
+        partners[found] = last;
+        ++found;
       }
     }
     evaluatePartners(self, found);
-    if (seen <= skip + uint(PARTNER_BATCH)) break;
+    if (k == inList && !beyond) break;
   }
 
   // Each collider type in its own loop (uniform control flow; see colliders.glsl). Every

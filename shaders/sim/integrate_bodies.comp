@@ -1,10 +1,11 @@
 #version 450
-// Pass 6. Granules: one thread per body sums its particles' forces and torques (paper eq. 2, 3):
+// Pass 3. Granules: one thread per body sums its particles' forces and torques (paper eq. 2, 3):
 // r x F about the centre for each particle's force, plus, under ContactLaw::HertzMindlin, the
 // torque of friction at the contact points; in particle order (fixed, so deterministic). Then it
-// integrates (common/rigid_motion.glsl) and, under HertzMindlin, counts the contacts its
-// particles' slots hold per partner (common/contact_pairs.glsl). Bodies flagged BODY_LARGE (every
-// body that is not a granule) are left to pass 6b.
+// integrates (common/rigid_motion.glsl), under HertzMindlin counts the contacts its particles'
+// slots hold per partner (common/contact_pairs.glsl), and writes its particles' state for the
+// next substep (common/particle_state.glsl). Bodies flagged BODY_LARGE (every body that is not a
+// granule) are left to pass 3b.
 #include "common/layout.glsl"
 #include "common/quaternion.glsl"
 #include "common/contact_slots.glsl"
@@ -17,11 +18,15 @@ BODY_VELOCITY(coherent)
 BODY_ANGULAR_VELOCITY(coherent)
 BODY_INERTIA(readonly)
 BODY_INFO(coherent)
-PARTICLE_POSITION_TEXTURE
+PARTICLE_LOCAL_TEXTURE
 PARTICLE_FORCE_TEXTURE
+LIST_ORIGIN_TEXTURE
+PARTICLE_POSITION(writeonly)
+PARTICLE_VELOCITY(writeonly)
 SINKS(readonly)
 COUNTERS(coherent)
 #ifndef PAPER_LAW
+PARTICLE_SPIN(writeonly)
 PARTICLE_TORQUE_TEXTURE
 PARTICLE_BODY_TEXTURE
 CONTACT_SLOTS_0_TEXTURE
@@ -32,6 +37,7 @@ CONTACT_PAIRS(writeonly)
 #endif
 
 #include "common/rigid_motion.glsl"
+#include "common/particle_state.glsl"
 
 // The particles of a granule (tetrahedronTemplate).
 #define GRANULE_PARTICLES 4u
@@ -73,21 +79,27 @@ void main() {
   if ((info.z & BODY_LARGE) != 0u) return;
   uint motion = (info.z & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT;
   if (motion == MOTION_STATIC) return;
-  vec3 centre = bodyPosition[b].xyz;
+  // A granule's particles: its offsets turned by the orientation the contacts saw.
+  vec4 q = bodyOrientation[b];
+  vec4 local[GRANULE_PARTICLES];
   vec3 force = vec3(0.0);
   vec3 torque = vec3(0.0);
-  if (motion == MOTION_DYNAMIC) {
-    for (uint k = info.x; k < info.x + info.y; ++k) {
-      vec3 f = texelFetch(particleForceTexture, int(k)).xyz;
-      force += f;
-      torque += cross(texelFetch(particlePositionTexture, int(k)).xyz - centre, f);
+  for (uint k = 0u; k < GRANULE_PARTICLES; ++k) {
+    local[k] = texelFetch(particleLocalTexture, int(info.x + k));
+    vec3 f = texelFetch(particleForceTexture, int(info.x + k)).xyz;
+    force += f;
+    torque += cross(quatRotate(q, local[k].xyz), f);
 #ifndef PAPER_LAW
-      torque += texelFetch(particleTorqueTexture, int(k)).xyz;
+    torque += texelFetch(particleTorqueTexture, int(info.x + k)).xyz;
 #endif
-    }
   }
-  integrateBody(b, info, force, torque);
+  BodyMotion moved = integrateBody(b, info, force, torque);
 #ifndef PAPER_LAW
   countPairs(info.x);
 #endif
+  if (!moved.alive) return;
+  for (uint k = 0u; k < GRANULE_PARTICLES; ++k) {
+    storeParticle(info.x + k, local[k], b, moved.position, moved.orientation, moved.velocity,
+                  moved.spin);
+  }
 }

@@ -1,10 +1,11 @@
 #version 450
-// Pass 6b. Every body that is not a granule (mesh-sampled bodies, bodies coupled to Bullet, a
+// Pass 3b. Every body that is not a granule (mesh-sampled bodies, bodies coupled to Bullet, a
 // viewer's pusher), whatever its particle count: one workgroup per body. Each thread sums a
 // strided share of the particles' forces and torques r x F in particle order, then a tree in
 // shared memory adds the shares in a fixed order, so the sum is the same on every run. Thread 0
 // adds the result to the body's read-back sums (World::takeBodyForces) and integrates the body
-// (common/rigid_motion.glsl). Kinematic bodies are summed too: their sand force is what a bridge
+// (common/rigid_motion.glsl); then the group writes the particles' state for the next substep
+// (common/particle_state.glsl). Kinematic bodies are summed too: their sand force is what a bridge
 // hands back to the engine that moves them. Under ContactLaw::HertzMindlin the torques include
 // friction at the contact points, and the group counts its slots per partner in a table in
 // shared memory (common/contact_pairs.glsl): integer atomics, so the counts are exact and the
@@ -21,13 +22,17 @@ BODY_VELOCITY(coherent)
 BODY_ANGULAR_VELOCITY(coherent)
 BODY_INERTIA(readonly)
 BODY_INFO(coherent)
-PARTICLE_POSITION(readonly)
+PARTICLE_LOCAL_TEXTURE
 PARTICLE_FORCE(readonly)
+LIST_ORIGIN_TEXTURE
+PARTICLE_POSITION(writeonly)
+PARTICLE_VELOCITY(writeonly)
 SINKS(readonly)
 COUNTERS(coherent)
 LARGE_BODIES(readonly)
 LARGE_BODY_FORCES(coherent)
 #ifndef PAPER_LAW
+PARTICLE_SPIN(writeonly)
 PARTICLE_TORQUE(readonly)
 PARTICLE_BODY_TEXTURE
 CONTACT_SLOTS_0_TEXTURE
@@ -38,9 +43,15 @@ CONTACT_PAIRS(writeonly)
 #endif
 
 #include "common/rigid_motion.glsl"
+#include "common/particle_state.glsl"
 
 shared vec3 shareForce[WORKGROUP_SIZE];
 shared vec3 shareTorque[WORKGROUP_SIZE];
+// The body after thread 0 moved it (w of the position: alive).
+shared vec4 movedPosition;
+shared vec4 movedOrientation;
+shared vec3 movedVelocity;
+shared vec3 movedSpin;
 
 #ifndef PAPER_LAW
 // Open addressing, partner -> number of the body's slots naming it. A body with more distinct
@@ -124,13 +135,13 @@ void main() {
   if ((info.z & BODY_ALIVE) == 0u || motion == MOTION_STATIC) return;
 
   uint t = gl_LocalInvocationID.x;
-  vec3 centre = bodyPosition[b].xyz;
+  vec4 q = bodyOrientation[b];
   vec3 force = vec3(0.0);
   vec3 torque = vec3(0.0);
   for (uint k = info.x + t; k < info.x + info.y; k += WORKGROUP_SIZE) {
     vec3 f = particleForce[k].xyz;
     force += f;
-    torque += cross(particlePosition[k].xyz - centre, f);
+    torque += cross(quatRotate(q, texelFetch(particleLocalTexture, int(k)).xyz), f);
 #ifndef PAPER_LAW
     torque += particleTorque[k].xyz;
 #endif
@@ -150,10 +161,22 @@ void main() {
 #ifndef PAPER_LAW
   countPairs(info.x, info.y, t);
 #endif
-  if (t != 0u) return;
-  force = shareForce[0];
-  torque = shareTorque[0];
-  largeBodyForces[2u * entry] += vec4(force, 1.0);
-  largeBodyForces[2u * entry + 1u] += vec4(torque, 0.0);
-  integrateBody(b, info, force, torque);
+  if (t == 0u) {
+    force = shareForce[0];
+    torque = shareTorque[0];
+    largeBodyForces[2u * entry] += vec4(force, 1.0);
+    largeBodyForces[2u * entry + 1u] += vec4(torque, 0.0);
+    BodyMotion moved = integrateBody(b, info, force, torque);
+    movedPosition = vec4(moved.position, moved.alive ? 1.0 : 0.0);
+    movedOrientation = moved.orientation;
+    movedVelocity = moved.velocity;
+    movedSpin = moved.spin;
+  }
+  memoryBarrierShared();
+  barrier();
+  if (movedPosition.w == 0.0) return;
+  for (uint k = info.x + t; k < info.x + info.y; k += WORKGROUP_SIZE) {
+    storeParticle(k, texelFetch(particleLocalTexture, int(k)), b, movedPosition.xyz,
+                  movedOrientation, movedVelocity, movedSpin);
+  }
 }

@@ -16,6 +16,11 @@ CONTACT_LIST_BUFFER(readonly)
 layout(std430, binding = 40) readonly buffer SlotsProbe { vec4 slotsProbe[CONTACT_SLOTS]; };
 layout(std430, binding = 41) readonly buffer SlotGroupProbe { vec4 slotGroupProbe[CONTACT_SLOTS_PER_GROUP]; };
 layout(std430, binding = 42) readonly buffer SlotGroupsProbe { vec4 slotGroupsProbe[CONTACT_SLOT_GROUPS]; };
+// And the neighbour lists' constants: capacity, the counters' layout and the build's passes.
+layout(std430, binding = 43) readonly buffer ListCapacityProbe { uint listCapacityProbe[NEIGHBOUR_LIST_CAPACITY]; };
+layout(std430, binding = 44) readonly buffer ListDispatchProbe { uint listDispatchProbe[COUNTER_LIST_DISPATCH]; };
+layout(std430, binding = 45) readonly buffer ListPassesProbe { uvec4 listPassesProbe[LIST_BUILD_PASSES]; };
+layout(std430, binding = 46) readonly buffer ListPassProbe { uvec4 listPassProbe[PASS_LIST_BUILD + 1u]; };
 
 void main() {
   vec4 sum = gravityDt + particleGeom + grainContact + wallContact + shearContact +
@@ -23,6 +28,8 @@ void main() {
   sum += colliders[0].a + colliders[0].b + colliders[0].c + colliders[0].material;
   sum += colliders[0].velocity + colliders[0].spin;
   sum += slotsProbe[0] + slotGroupProbe[0] + slotGroupsProbe[0];
+  sum += vec4(listPassesProbe[0]) + listGeom + vec4(listLayout);
+  sum.y += float(listCapacityProbe[0] + listDispatchProbe[0] + listPassProbe[0].x);
   sum += sinks[0].lo + sinks[0].hi;
   sum += vec4(statsPartials[0].counts) + statsPartials[0].sums;
   sum += contactList[0] + vec4(float(contactListCount + contactListCapacity + pad0 + pad1));

@@ -1,9 +1,10 @@
 #version 450
 // Emitted granules whose place is taken (a grain thrown back up under the emitter): one thread
 // per particle of the granules an emitter has just added, before the substep that first moves
-// them. Each gathers over its 27 neighbouring cells in the grid of the previous substep (its
-// positions moved by one substep since: far less than a diameter) and, when it overlaps a
-// particle of another body, the granule is not born: it is marked dead and counted. The emitter
+// them. Each gathers over its 27 neighbouring cells in the grid of the last list build (cells of
+// d + skin: a particle within d of it now stood within d + skin/2 then, in one of those cells)
+// and, when it overlaps a particle of another body at its present position, the granule is not
+// born: it is marked dead and counted. The emitter
 // cannot see the sand, and a granule born inside another one would lock into it (no force cap
 // pushes it out gently). Integer atomics only: the result does not depend on thread order.
 #include "common/layout.glsl"
@@ -13,7 +14,8 @@
 layout(local_size_x = WORKGROUP_SIZE) in;
 
 CELL_START_TEXTURE
-SORTED_POSITION_TEXTURE
+CELL_PARTICLES_TEXTURE
+PARTICLE_POSITION_TEXTURE
 BODY_POSITION_TEXTURE
 BODY_ORIENTATION_TEXTURE
 PARTICLE_LOCAL_TEXTURE
@@ -21,6 +23,7 @@ PARTICLE_BODY_TEXTURE
 BODY_INFO(coherent)
 COUNTERS(coherent)
 #include "common/particle_offset.glsl"
+#include "common/neighbour_list.glsl"
 
 // The first new particle and how many there are.
 layout(location = 0) uniform uvec2 spawned;
@@ -35,17 +38,14 @@ void main() {
   float diameter = particleGeom.y;
   ivec3 cell = cellOf(position);
   bool taken = false;
-  for (int dz = -1; dz <= 1; ++dz) {
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dx = -1; dx <= 1; ++dx) {
-        uint bucket = bucketOf(cell + ivec3(dx, dy, dz));
-        uint begin = texelFetch(cellStartTexture, int(bucket)).x;
-        uint end = texelFetch(cellStartTexture, int(bucket + 1u)).x;
-        for (uint s = begin; s < end; ++s) {
-          vec4 other = texelFetch(sortedPositionTexture, int(s));
-          vec3 d = position - other.xyz;
-          if (floatBitsToUint(other.w) != body && dot(d, d) < diameter * diameter) taken = true;
-        }
+  for (int row = 0; row < 9; ++row) {
+    uint parts = rowParts(cell, row);
+    for (uint part = 0u; part < parts; ++part) {
+      uvec2 slots = rowSlots(cell, row, part, parts);
+      for (uint s = slots.x; s < slots.y; ++s) {
+        vec4 other = texelFetch(particlePositionTexture, int(texelFetch(cellParticlesTexture, int(s)).x));
+        vec3 d = position - other.xyz;
+        if (floatBitsToUint(other.w) != body && dot(d, d) < diameter * diameter) taken = true;
       }
     }
   }

@@ -63,6 +63,9 @@ TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
             GLint(offsetof(SimParams, colliderEnds)));
   EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "shearContact"),
             GLint(offsetof(SimParams, shearContact)));
+  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "listGeom"), GLint(offsetof(SimParams, listGeom)));
+  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "listLayout"),
+            GLint(offsetof(SimParams, listLayout)));
   EXPECT_EQ(blockSize(program, GL_UNIFORM_BLOCK, "SimParams"), GLint(sizeof(SimParams)));
 
   EXPECT_EQ(stride(program, "colliders[0].a"), GLint(sizeof(GpuCollider)));
@@ -88,6 +91,15 @@ TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
             GLint(16 * kContactSlotsPerGroup));
   EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "SlotGroupsProbe"),
             GLint(16 * kContactSlotGroups));
+  // The neighbour lists' constants.
+  EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "ListCapacityProbe"),
+            GLint(4 * kNeighbourListCapacity));
+  EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "ListDispatchProbe"),
+            GLint(4 * kCounterListDispatch));
+  EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "ListPassesProbe"),
+            GLint(16 * kListBuildPasses));
+  EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "ListPassProbe"),
+            GLint(16 * (kPassListBuild + 1)));
   glDeleteProgram(program);
 }
 

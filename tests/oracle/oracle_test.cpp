@@ -329,9 +329,9 @@ RoundOff mindlinRoundOff(const OracleContact& c, double overlapError, double pos
 // --- One substep ------------------------------------------------------------------------------
 
 // The particle state the GPU's last substep computed its forces from (World::readParticles
-// returns the positions and velocities of the start of that substep together with its forces),
-// with what the kernel took from the bodies: the spins of before that substep (the oracle built
-// then, `before`) and the inverse masses as uploaded.
+// read before that substep: the state it starts from), with what the kernel took from the
+// bodies: the spins of before that substep (the oracle built then, `before`) and the inverse
+// masses as uploaded.
 std::vector<OracleParticle> gpuParticles(const std::vector<ParticleState>& gpu,
                                          const CpuOracle& before) {
   std::vector<OracleParticle> particles;
@@ -533,14 +533,19 @@ struct SubstepComparison {
   ForceComparison forces;
   BodyPassComparison bodies;
   HistoryComparison history;
+  std::vector<ContactRecord> contacts;  // World::readContacts before the substep: its contacts
 };
 
 SubstepComparison compareOneSubstep(World& world, CpuOracle& oracle) {
   const CpuOracle before = oracle;
-  world.substep(1);
-  const std::vector<ParticleState> gpu = world.readParticles();
-  const std::vector<OracleParticle> particles = gpuParticles(gpu, before);
+  // The state the substep starts from and the contacts it will apply, then its forces.
+  std::vector<ParticleState> gpu = world.readParticles();
   SubstepComparison result;
+  result.contacts = world.readContacts();
+  world.substep(1);
+  const std::vector<ParticleState> after = world.readParticles();
+  for (std::size_t i = 0; i < gpu.size(); ++i) gpu[i].force = after[i].force;
+  const std::vector<OracleParticle> particles = gpuParticles(gpu, before);
   result.forces = compareForces(world, before, gpu, particles);
   oracle.step(particles);
   result.bodies = compareBodyPass(world, before, oracle, particles, before.contactPass(particles),
@@ -605,7 +610,7 @@ TEST(OracleForces, PileForcesMatchTheOracleAtOneSubstep) {
 
   // The GPU finds the same contacts: its list (each pair once) against the oracle's O(n²) search.
   std::size_t gpuPairs = 0, gpuColliders = 0;
-  for (const ContactRecord& c : scene.world().readContacts()) {
+  for (const ContactRecord& c : r.contacts) {
     ++(c.particleB == ContactRecord::kNone ? gpuColliders : gpuPairs);
   }
   EXPECT_EQ(gpuPairs, r.forces.contactEnds / 2);

@@ -141,8 +141,9 @@ TEST(ContactList, ListsEachParticlePairOnceWithOppositeForces) {
   const float d = s.particleDiameter;
   w.addSphere({-0.45f * d, 0, 0});
   w.addSphere({0.45f * d, 0, 0});
-  w->substep(1);
+  // The contacts the first substep applies, then the forces it applied.
   auto contacts = w->readContacts();
+  w->substep(1);
   ASSERT_EQ(contacts.size(), 1u);
   const ContactRecord& c = contacts[0];
   EXPECT_EQ(c.particleA, 0u);

@@ -34,6 +34,8 @@ struct ContactModel {
   float peakOverlapFixedParticle = 0.0f;
   float timeStep = 0.0f;     ///< resolved substep, s
   float contactTime = 0.0f;  ///< t_n at maxSpeed for a grain-grain impact, s
+  /// Skin of the neighbour lists, m (WorldSettings::listSkin, or the rule stated there).
+  float listSkin = 0.0f;
 
   /// Builds and validates the model; throws InvalidArgument naming the field, value and limit.
   static ContactModel fromSettings(const WorldSettings& settings);

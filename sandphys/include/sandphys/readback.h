@@ -18,7 +18,9 @@ struct BodyState {
   bool granule = true;      ///< a sand granule (not a floor or sampled body)
 };
 
-/// One particle as read back from the GPU (World::readParticles, a sync point).
+/// One particle as read back from the GPU (World::readParticles, a sync point). Position and
+/// velocity are the state the next substep starts from (its body's, now); the force is the one
+/// the last substep computed, from the state before it.
 struct ParticleState {
   std::uint32_t body = 0;  ///< owning body slot
   Vec3 position{};         ///< m
@@ -26,8 +28,11 @@ struct ParticleState {
   Vec3 force{};            ///< contact + collider force of the last substep, N (no gravity)
 };
 
-/// One contact as read back from the GPU (World::readContacts, a sync point). Particle-particle
-/// contacts appear once (particleA < particleB); collider contacts have particleB = kNone.
+/// One contact as read back from the GPU (World::readContacts, a sync point): the contacts the
+/// next substep applies, at the state it starts from (ParticleState), with the tangential springs
+/// advanced as it advances them. Particle-particle contacts appear once (from the side that keeps
+/// history: particleA < particleB, or the movable one against a static particle); collider
+/// contacts have particleB = kNone.
 struct ContactRecord {
   static constexpr std::uint32_t kNone = 0xffffffffu;
   std::uint32_t particleA = 0;
@@ -40,7 +45,7 @@ struct ContactRecord {
   float normalForce = 0.0f;        ///< F_n on A, N (>= 0)
   Vec3 tangentialForce{};          ///< F_s on A, N
   float overlap = 0.0f;            ///< ξ, m
-  /// ContactLaw::HertzMindlin: A's tangential spring displacement δ after the substep, m (in
+  /// ContactLaw::HertzMindlin: A's tangential spring displacement δ after that substep, m (in
   /// the tangent plane; its length times k_t is the stick force). Zero under PaperViscous.
   Vec3 tangentialDisplacement{};
 };
@@ -69,9 +74,16 @@ struct WorldStats {
   /// under an emitter); they never move nor touch anything.
   std::uint32_t granulesNotBorn = 0;
   std::uint32_t contacts = 0;  ///< particle-particle pairs + collider contacts, last substep
-  /// Buckets of the neighbour grid's hash table that the last substep scanned: a power of two of
-  /// at least 4096 that follows the particles in use, not the capacity reserved.
+  /// Buckets of the neighbour grid's hash table that a list build scans: a power of two of at
+  /// least 4096 that follows the particles in use, not the capacity reserved.
   std::uint32_t gridBuckets = 0;
+  /// Builds of the neighbour lists so far (total): on the GPU's decision, when a particle has
+  /// moved half the skin (WorldSettings::listSkin), a granule died or bodies were added.
+  std::uint64_t listBuilds = 0;
+  /// Particles that had more partners within d + skin than a neighbour list holds at a build
+  /// (total over builds). Their further partners are found in the grid each substep: exact, only
+  /// slower.
+  std::uint64_t neighbourListOverflows = 0;
   double kineticEnergy = 0.0;  ///< translational + rotational of dynamic bodies, J
   double maxOverlap = 0.0;     ///< largest overlap since the last readStats, m
   /// ContactLaw::PaperViscous: contacts whose overlap exceeded d/10 and was capped (total).

@@ -54,7 +54,7 @@ struct SurfaceMaterial {
 
 /// Everything a World needs at creation. Plain aggregate: designated initialisers work on it.
 struct WorldSettings {
-  /// Diameter d of every particle in m; > 0. Also the grid cell size.
+  /// Diameter d of every particle in m; > 0. The neighbour grid's cells are d + listSkin.
   float particleDiameter = 0.02f;
   /// Gravitational acceleration in m/s².
   Vec3 gravity{0.0f, -9.81f, 0.0f};
@@ -71,6 +71,12 @@ struct WorldSettings {
   /// impact speed at which the contact duration t_n that sets the time step, and the peak
   /// overlap that HertzMindlin checks, are evaluated. 4 m/s is a fall of 0.8 m.
   float maxSpeed = 4.0f;
+  /// Skin of the neighbour lists in m: a particle lists the particles closer than d + skin, and
+  /// the lists are built again once some particle has moved half the skin. 0 derives it
+  /// (ContactModel::listSkin: room for kListSkinSubsteps substeps at maxSpeed, within
+  /// [kMinListSkin, kMaxListSkin] · d); otherwise in (0, d]. It changes the cost only: contacts
+  /// are summed in partner order whenever the lists were built, so no bit of the result.
+  float listSkin = 0.0f;
   /// Substeps one call of World::step may run; > 0. Time beyond it is dropped and reported.
   std::uint32_t maxSubstepsPerFrame = 512;
   /// Capacity of bodies (granules, sampled bodies, rough floors); fixed at creation, grown only
@@ -89,5 +95,12 @@ struct WorldSettings {
 
 /// Fewest substeps per contact duration t_n a World accepts; fewer is refused as unstable.
 inline constexpr float kMinStepsPerContact = 8.0f;
+
+/// The derived skin of the neighbour lists (WorldSettings::listSkin = 0): 2 · kListSkinSubsteps ·
+/// maxSpeed · timeStep, so that a particle at the speed guard keeps its list that many substeps,
+/// clamped to [kMinListSkin, kMaxListSkin] particle diameters.
+inline constexpr float kListSkinSubsteps = 10.0f;
+inline constexpr float kMinListSkin = 0.05f;
+inline constexpr float kMaxListSkin = 0.5f;
 
 }  // namespace sandphys

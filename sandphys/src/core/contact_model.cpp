@@ -1,5 +1,6 @@
 #include "sandphys/contact_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -155,6 +156,10 @@ ContactModel ContactModel::fromSettings(const WorldSettings& s) {
           "must be >= " + detail::formatValue(kMinStepsPerContact) +
               " (substeps per contact time t_n)");
   requireNonNegative("WorldSettings.timeStep", s.timeStep, "(s)");
+  require(std::isfinite(s.listSkin) && s.listSkin >= 0.0f && s.listSkin <= s.particleDiameter,
+          "WorldSettings.listSkin", s.listSkin,
+          "must be in [0, particleDiameter = " + detail::formatValue(s.particleDiameter) +
+              "] m (0: derived from maxSpeed)");
   require(s.contactLaw == ContactLaw::HertzMindlin || s.contactLaw == ContactLaw::PaperViscous,
           "WorldSettings.contactLaw", double(unsigned(s.contactLaw)),
           "must be ContactLaw::HertzMindlin (0) or ContactLaw::PaperViscous (1)");
@@ -215,6 +220,12 @@ ContactModel ContactModel::fromSettings(const WorldSettings& s) {
     m.timeStep = s.timeStep;
   } else {
     m.timeStep = static_cast<float>(m.contactTime / s.stepsPerContact);
+  }
+  if (s.listSkin > 0.0f) {
+    m.listSkin = s.listSkin;
+  } else {
+    const double travel = 2.0 * kListSkinSubsteps * s.maxSpeed * m.timeStep;
+    m.listSkin = static_cast<float>(std::clamp(travel, kMinListSkin * d, kMaxListSkin * d));
   }
   m.tangentialDamping = s.material.tangentialDamping > 0.0f
                             ? s.material.tangentialDamping

@@ -27,8 +27,8 @@ enum Binding : unsigned {
   kCellCount = 12,
   kCellStart = 13,
   kCellParticles = 14,
-  kSortedPosition = 15,
-  kSortedVelocity = 16,
+  kNeighbourList = 15,
+  kListOrigin = 16,
   kParticleCell = 17,
   kScanBlockSums = 18,
   kColliders = 19,
@@ -40,7 +40,7 @@ enum Binding : unsigned {
   kLargeBodyForces = 25,
   kStateHashPartials = 26,
   kParticleTorque = 27,
-  kSortedSpin = 28,
+  kParticleSpin = 28,
   kContactSlots0 = 29,  // kContactSlotGroups buffers in a row
   kContactPairs = 32,
   kBindingCount = 33,
@@ -51,8 +51,8 @@ enum Binding : unsigned {
 /// texel fetch is one vector gather; on GPUs it is the cached read path. A kernel reads through a
 /// view only what earlier dispatches wrote.
 enum TextureUnit : unsigned {
-  kSortedPositionTexture = 0,
-  kSortedVelocityTexture = 1,
+  kNeighbourListTexture = 0,
+  kListOriginTexture = 1,
   kCellStartTexture = 2,
   kBodyPositionTexture = 3,
   kBodyOrientationTexture = 4,
@@ -67,7 +67,7 @@ enum TextureUnit : unsigned {
   kCellParticlesTexture = 13,
   kCellCountTexture = 14,
   kParticleTorqueTexture = 15,
-  kSortedSpinTexture = 16,
+  kParticleSpinTexture = 16,
   kContactSlots0Texture = 17,  // kContactSlotGroups views in a row
   kContactPairsTexture = 20,
   kTextureCount = 21,
@@ -77,9 +77,32 @@ inline constexpr unsigned kSimParamsBinding = 0;
 inline constexpr unsigned kWorkgroupSize = 64;
 inline constexpr unsigned kScanBlock = 1024;      // elements per scan workgroup (256 x 4)
 inline constexpr unsigned kStatsWorkgroups = 32;  // fixed: the reduction order never changes
+// counters[] (layout.glsl, COUNTER_*): rare events, the neighbour lists' control and, from
+// kCounterListDispatch on, the indirect commands of the list build's passes.
 inline constexpr std::uint32_t kCounterKilled = 0;
 inline constexpr std::uint32_t kCounterSpawnTaken = 1;
-inline constexpr std::uint32_t kCounterCount = 4;
+inline constexpr std::uint32_t kCounterListRequested = 2;
+inline constexpr std::uint32_t kCounterListBuilds = 3;
+inline constexpr std::uint32_t kCounterListOverflows = 4;
+inline constexpr std::uint32_t kCounterListDispatch = 8;
+/// The passes of a list build, each dispatched from its own indirect command (list_check.comp).
+enum ListBuildPass : std::uint32_t {
+  kPassGridCount,
+  kPassScanBlocks,
+  kPassScanBlockSums,
+  kPassScanAdd,
+  kPassGridScatter,
+  kPassGridSort,
+  kPassListBuild,
+  kListBuildPasses,
+};
+inline constexpr std::uint32_t kCounterCount = kCounterListDispatch + 4 * kListBuildPasses;
+/// Byte offset of a pass's indirect command in the counters buffer.
+inline constexpr std::uint32_t listDispatchOffset(ListBuildPass pass) {
+  return 4 * (kCounterListDispatch + 4 * pass);
+}
+/// Neighbour-list entries per particle (layout.glsl, NEIGHBOUR_LIST_CAPACITY).
+inline constexpr std::uint32_t kNeighbourListCapacity = 16;
 
 // bodyInfo.z flags
 inline constexpr std::uint32_t kBodyAlive = 1u;
@@ -153,13 +176,15 @@ struct SimParams {
   GpuUVec4 counts2;
   GpuUVec4 colliderEnds;
   GpuVec4 shearContact;
+  GpuVec4 listGeom;
+  GpuUVec4 listLayout;
 };
 
 static_assert(sizeof(GpuCollider) == 96);
 static_assert(sizeof(GpuSink) == 32);
 static_assert(sizeof(GpuContactRecord) == 80);
 static_assert(sizeof(GpuStatsPartial) == 32);
-static_assert(sizeof(SimParams) == 128);
+static_assert(sizeof(SimParams) == 160);
 static_assert(offsetof(SimParams, counts) == 64);
 
 }  // namespace sandphys::detail

@@ -241,6 +241,9 @@ std::uint32_t World::Impl::addBodies(const ParticleTemplate& shape,
     particleEnds.push_back(std::uint32_t(firstParticle + (i + 1) * perBody));
   boundingRadii.resize(bodyCount, shape.boundingRadius);
   uploadBodyStates(firstBody, descs, shape);
+  // New particles: their state before the next contacts, and lists that hold them.
+  markParticlesDirty(firstParticle, particleCount);
+  listsStale = true;
   if (isGranule) granulesSpawned += std::uint32_t(n);
   paramsDirty = true;
   return firstBody;
@@ -520,6 +523,9 @@ void World::setBodyState(BodyId id, const BodyDesc& state) {
   massOnly.mass = w.bodyMasses[id.index];
   massOnly.boundingRadius = w.boundingRadii[id.index];
   w.uploadBodyStates(id.index, {d}, massOnly);
+  // Its particles follow before the next contacts (and ask for a list build if they jumped).
+  const std::uint32_t first = id.index == 0 ? 0u : w.particleEnd(id.index - 1);
+  w.markParticlesDirty(first, w.particleEnd(id.index));
 }
 
 void World::restoreSnapshot(const WorldSnapshot& snapshot) {
@@ -570,6 +576,8 @@ void World::restoreSnapshot(const WorldSnapshot& snapshot) {
   w.steps = snapshot.steps;
   w.simTime = snapshot.simulatedTime;
   w.gridValid = false;
+  w.markParticlesDirty(0, w.particleCount);
+  w.listsStale = true;
   w.accumulator = snapshot.unsteppedTime;
 }
 
@@ -584,7 +592,9 @@ void World::reserve(std::uint32_t maxBodies, std::uint32_t maxParticles) {
   w.buffers.allocate(w.bodyCapacity, w.particleCapacity, w.tableCapacity, w.settings.maxColliders,
                      w.bodyCount, w.particleCount, w.keepsHistory());
   w.paramsDirty = true;
-  w.gridValid = false;  // a grown table is a new, empty buffer
+  // A grown table is a new, empty buffer; the lists' layout follows the capacity.
+  w.gridValid = false;
+  w.listsStale = true;
 }
 
 StepReport World::step(float frameDt) {

@@ -12,9 +12,12 @@ namespace {
 
 // Element size of each binding and whether it is sized by bodies, particles or the hash table.
 // History: by particles when the contact law keeps contact state (HertzMindlin), else unused.
+// Lists: a particle's neighbour list (kNeighbourListCapacity entries), rebuilt from the
+// particles, so nothing is kept when it grows.
 enum class SizedBy {
   Bodies,
   Particles,
+  Lists,
   History,
   Table,
   TablePlusOne,
@@ -44,8 +47,8 @@ constexpr BufferSpec kSpecs[kBindingCount] = {
     {"cellCount", 4, SizedBy::Table},
     {"cellStart", 4, SizedBy::TablePlusOne},
     {"cellParticles", 4, SizedBy::Particles},
-    {"sortedPosition", 16, SizedBy::Particles},
-    {"sortedVelocity", 16, SizedBy::Particles},
+    {"neighbourList", 4 * kNeighbourListCapacity, SizedBy::Lists},
+    {"listOrigin", 16, SizedBy::Particles},
     {"particleCell", 4, SizedBy::Particles},
     {"scanBlockSums", 4, SizedBy::ScanBlocks},
     {"colliders", sizeof(GpuCollider), SizedBy::Colliders},
@@ -57,7 +60,7 @@ constexpr BufferSpec kSpecs[kBindingCount] = {
     {"largeBodyForces", 32 * kMaxLargeBodies, SizedBy::Fixed},
     {"stateHashPartials", 8 * kStatsWorkgroups, SizedBy::Fixed},
     {"particleTorque", 16, SizedBy::History},
-    {"sortedSpin", 16, SizedBy::History},
+    {"particleSpin", 16, SizedBy::History},
     {"contactSlots0", 16 * kContactSlotsPerGroup, SizedBy::History},
     {"contactSlots1", 16 * kContactSlotsPerGroup, SizedBy::History},
     {"contactSlots2", 16 * kContactSlotsPerGroup, SizedBy::History},
@@ -73,8 +76,8 @@ struct TextureView {
   GLenum format;  // the element type the buffer's GLSL declaration gives it
 };
 constexpr TextureView kTextureViews[] = {
-    {kSortedPositionTexture, kSortedPosition, GL_RGBA32F},
-    {kSortedVelocityTexture, kSortedVelocity, GL_RGBA32F},
+    {kNeighbourListTexture, kNeighbourList, GL_R32UI},
+    {kListOriginTexture, kListOrigin, GL_RGBA32F},
     {kCellStartTexture, kCellStart, GL_R32UI},
     {kBodyPositionTexture, kBodyPosition, GL_RGBA32F},
     {kBodyOrientationTexture, kBodyOrientation, GL_RGBA32F},
@@ -89,7 +92,7 @@ constexpr TextureView kTextureViews[] = {
     {kCellParticlesTexture, kCellParticles, GL_R32UI},
     {kCellCountTexture, kCellCount, GL_R32UI},
     {kParticleTorqueTexture, kParticleTorque, GL_RGBA32F},
-    {kSortedSpinTexture, kSortedSpin, GL_RGBA32F},
+    {kParticleSpinTexture, kParticleSpin, GL_RGBA32F},
     {TextureUnit(kContactSlots0Texture + 0), Binding(kContactSlots0 + 0), GL_RGBA32F},
     {TextureUnit(kContactSlots0Texture + 1), Binding(kContactSlots0 + 1), GL_RGBA32F},
     {TextureUnit(kContactSlots0Texture + 2), Binding(kContactSlots0 + 2), GL_RGBA32F},
@@ -150,6 +153,9 @@ void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::
         count = particles;
         keep = particlesInUse;
         break;
+      case SizedBy::Lists:
+        count = particles;
+        break;
       case SizedBy::History:
         count = history ? particles : 1;
         keep = history ? particlesInUse : 0;
@@ -178,8 +184,8 @@ void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::
       buffer = gl::Buffer(bytes, spec.name);
     } else if (bytes > buffer.size()) {
       if (spec.sizedBy == SizedBy::Table || spec.sizedBy == SizedBy::TablePlusOne ||
-          spec.sizedBy == SizedBy::ScanBlocks) {
-        buffer = gl::Buffer(bytes, spec.name);  // rebuilt every substep: nothing to keep
+          spec.sizedBy == SizedBy::ScanBlocks || spec.sizedBy == SizedBy::Lists) {
+        buffer = gl::Buffer(bytes, spec.name);  // rebuilt from the particles: nothing to keep
       } else {
         buffer.grow(bytes, keep * spec.elementBytes);
       }
@@ -200,6 +206,8 @@ WorldBuffers::~WorldBuffers() {
 
 void WorldBuffers::bindAll() const {
   for (unsigned b = 0; b < kBindingCount; ++b) storage[b].bindBase(GL_SHADER_STORAGE_BUFFER, b);
+  // The list build's passes take their group counts from the counters (list_check.comp).
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, storage[kCounters].id());
   params.bindBase(GL_UNIFORM_BUFFER, kSimParamsBinding);
   for (GLuint unit = 0; unit < textures.size(); ++unit) glBindTextureUnit(unit, textures[unit]);
 }
@@ -219,12 +227,14 @@ void WorldKernels::compile(ContactLaw law) {
     return library.compileCompute(name, extra);
   };
   bodiesToParticles = compile("sim/bodies_to_particles.comp");
+  listCheck = compile("sim/list_check.comp");
+  gridCount = compile("sim/grid_count.comp");
   scanBlocks = compile("sim/scan_blocks.comp");
   scanBlockSums = compile("sim/scan_block_sums.comp");
   scanAdd = compile("sim/scan_add.comp");
   gridScatter = compile("sim/grid_scatter.comp");
   gridSort = compile("sim/grid_sort.comp");
-  gridCopy = compile("sim/grid_copy.comp");
+  listBuild = compile("sim/list_build.comp");
   contacts = compile("sim/contacts.comp");
   contactList = compile("sim/contacts.comp", {"CONTACT_LIST 1"});
   integrateBodies = compile("sim/integrate_bodies.comp");
@@ -235,9 +245,9 @@ void WorldKernels::compile(ContactLaw law) {
 }
 
 void WorldKernels::release() {
-  for (GLuint p : {bodiesToParticles, scanBlocks, scanBlockSums, scanAdd, gridScatter, gridSort,
-                   gridCopy, contacts, contactList, integrateBodies, integrateLargeBodies,
-                   statsReduce, stateHash, spawnCheck}) {
+  for (GLuint p : {bodiesToParticles, listCheck, gridCount, scanBlocks, scanBlockSums, scanAdd,
+                   gridScatter, gridSort, listBuild, contacts, contactList, integrateBodies,
+                   integrateLargeBodies, statsReduce, stateHash, spawnCheck}) {
     if (p) glDeleteProgram(p);
   }
   *this = {};

@@ -48,9 +48,11 @@ struct WorldKernels {
   GLuint scanBlocks = 0;
   GLuint scanBlockSums = 0;
   GLuint scanAdd = 0;
+  GLuint gridCount = 0;
   GLuint gridScatter = 0;
   GLuint gridSort = 0;
-  GLuint gridCopy = 0;
+  GLuint listCheck = 0;
+  GLuint listBuild = 0;
   GLuint contacts = 0;
   GLuint contactList = 0;
   GLuint integrateBodies = 0;
@@ -66,7 +68,7 @@ struct WorldKernels {
 
 /// Smallest power of two >= 4096 and >= `particles`, with hash multipliers that send the 27
 /// cells around any cell to 27 distinct buckets. A World allocates the table for its capacity
-/// but uses the one for the particles it holds, so that the scans cost what is in use.
+/// but uses the one for the particles it holds, so that the list builds cost what is in use.
 struct HashTable {
   std::uint32_t size = 0;
   std::uint32_t multiplierY = 0;
@@ -107,7 +109,16 @@ struct World::Impl {
   double simTime = 0.0;
   bool warnedDroppedTime = false;
   bool paramsDirty = true;
-  bool gridValid = false;  // the grid buffers hold the last substep's grid (spawn_check.comp)
+  // The grid buffers hold the grid of the last list build, with the table in use
+  // (spawn_check.comp).
+  bool gridValid = false;
+  // The CPU changed what the lists hold (bodies added or restored, the table or the buffers
+  // changed): the next substep builds them.
+  bool listsStale = true;
+  // Particles whose state must be written from their bodies before the next contacts (bodies
+  // added, set or restored by the CPU): [dirtyBegin, dirtyEnd).
+  std::uint32_t dirtyBegin = 0;
+  std::uint32_t dirtyEnd = 0;
 
   detail::WorldBuffers buffers;
   detail::WorldKernels kernels;
@@ -131,13 +142,21 @@ struct World::Impl {
                          const ColliderShape& shape);
   void requireBody(BodyId id) const;
 
+  /// Particles [first, end) take their state from their bodies before the next contacts.
+  void markParticlesDirty(std::uint32_t first, std::uint32_t end);
+
   // GPU work (world_kernels.cpp)
   void uploadParams();
-  /// The table for particleCount, from the start of a substep on (the grid of the last substep,
-  /// which spawn checks read, keeps the table it was built with).
+  /// The table for particleCount, from the start of a substep on (the grid of the last build,
+  /// which spawn checks read, keeps the table it was built with); a new table asks for a build.
   void fitTable();
+  /// What the contacts of a substep need first: the particles the CPU changed, and the neighbour
+  /// lists, built on the GPU's decision (list_check.comp) with indirect dispatches.
+  void prepareContacts();
   void runSubstep();
   void dispatch(GLuint program, const char* name, std::uint32_t threads, std::uint32_t groupSize);
+  /// One pass of the list build, with the group counts list_check.comp wrote.
+  void dispatchListPass(GLuint program, const char* name, detail::ListBuildPass pass);
   void emit(double dt, StepReport* report);
   /// spawn_check.comp over the `count` granules just added from body slot `firstBody`.
   void checkSpawnPlaces(std::uint32_t firstBody, std::uint32_t count);

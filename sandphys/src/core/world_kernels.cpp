@@ -1,6 +1,6 @@
 // The step (docs/architecture.md): the passes of one substep in order, all on the GPU. Nothing
 // here reads GPU memory; the only CPU work is a fixed number of dispatches per substep (plus the
-// upload of granules that emitters add, proportional to those granules).
+// upload of what the CPU changed: granules that emitters add, bodies set from outside).
 #include <algorithm>
 #include <cmath>
 
@@ -13,8 +13,13 @@ using namespace detail;
 void World::Impl::uploadParams() {
   SimParams p{};
   p.gravityDt = {settings.gravity.x, settings.gravity.y, settings.gravity.z, model.timeStep};
-  p.particleGeom = {model.radius, settings.particleDiameter, 1.0f / settings.particleDiameter,
-                    model.maxOverlap};
+  const float skin = model.listSkin;
+  const float reach = settings.particleDiameter + skin;
+  p.particleGeom = {model.radius, settings.particleDiameter, 1.0f / reach, model.maxOverlap};
+  // A build is asked for a hair before a particle has moved half the skin, so that rounding
+  // cannot bring an unlisted pair into contact.
+  p.listGeom = {skin, reach * reach, 0.98f * 0.25f * skin * skin, 0.0f};
+  p.listLayout = {particleCapacity, 0u, 0u, 0u};
   p.grainContact = {model.stiffnessGrain, model.dampingFactorGrain, settings.material.friction,
                     model.tangentialDamping};
   p.wallContact = {model.stiffnessWall, settings.maxSpeed, 0.0f, 0.0f};
@@ -49,7 +54,22 @@ void World::Impl::dispatch(GLuint program, const char* name, std::uint32_t threa
   profiler.begin(name);
   glDispatchCompute(gx, gy, 1);
   profiler.end();
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+                  GL_COMMAND_BARRIER_BIT);
+}
+
+void World::Impl::dispatchListPass(GLuint program, const char* name, ListBuildPass pass) {
+  glUseProgram(program);
+  profiler.begin(name);
+  glDispatchComputeIndirect(GLintptr(listDispatchOffset(pass)));
+  profiler.end();
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void World::Impl::markParticlesDirty(std::uint32_t first, std::uint32_t end) {
+  if (first >= end) return;
+  dirtyBegin = dirtyEnd > dirtyBegin ? std::min(dirtyBegin, first) : first;
+  dirtyEnd = std::max(dirtyEnd, end);
 }
 
 void World::Impl::fitTable() {
@@ -57,35 +77,56 @@ void World::Impl::fitTable() {
   // Buckets past the smaller table hold no count: grid_scatter takes every count back to zero.
   table = HashTable::forParticles(particleCount);
   paramsDirty = true;
+  listsStale = true;
+}
+
+void World::Impl::prepareContacts() {
+  fitTable();
+  if (paramsDirty) uploadParams();
+  // 0. The particles of bodies the CPU set, from their bodies (eq. 7, 8); the integration writes
+  // the others'.
+  if (dirtyEnd > dirtyBegin) {
+    glUseProgram(kernels.bodiesToParticles);
+    glUniform2ui(0, dirtyBegin, dirtyEnd - dirtyBegin);
+    dispatch(kernels.bodiesToParticles, "bodies_to_particles", dirtyEnd - dirtyBegin,
+             kWorkgroupSize);
+    dirtyBegin = dirtyEnd = 0;
+  }
+  // 1. Build the neighbour lists or not: the GPU decides (a particle moved half the skin, a
+  // granule died), or the CPU asks (bodies added or restored, a new table).
+  if (listsStale) {
+    const std::uint32_t requested = 1;
+    buffers[kCounters].upload(4 * kCounterListRequested, 4, &requested);
+    listsStale = false;
+  }
+  dispatch(kernels.listCheck, "list_check", 1, 1);
+  // 2. The build, in passes whose group counts list_check wrote (zero when not due): bucket
+  // counts, their prefix sum (blocks of 1024), scatter into buckets, id order inside each
+  // bucket, then each particle's list.
+  dispatchListPass(kernels.gridCount, "grid_count", kPassGridCount);
+  dispatchListPass(kernels.scanBlocks, "scan_blocks", kPassScanBlocks);
+  dispatchListPass(kernels.scanBlockSums, "scan_block_sums", kPassScanBlockSums);
+  dispatchListPass(kernels.scanAdd, "scan_add", kPassScanAdd);
+  dispatchListPass(kernels.gridScatter, "grid_scatter", kPassGridScatter);
+  dispatchListPass(kernels.gridSort, "grid_sort", kPassGridSort);
+  dispatchListPass(kernels.listBuild, "list_build", kPassListBuild);
+  gridValid = true;
 }
 
 void World::Impl::runSubstep() {
-  fitTable();
-  if (paramsDirty) uploadParams();
-  // 1. Bodies -> particles, bucket counts (eq. 7, 8).
-  dispatch(kernels.bodiesToParticles, "bodies_to_particles", particleCount, kWorkgroupSize);
-  // 2. Prefix sum of the bucket counts (the scan covers the whole table; blocks of 1024).
-  const std::uint32_t blocks = (table.size + kScanBlock - 1) / kScanBlock;
-  dispatch(kernels.scanBlocks, "scan_blocks", blocks * 256u, 256u);
-  dispatch(kernels.scanBlockSums, "scan_block_sums", 1024u, 1024u);
-  dispatch(kernels.scanAdd, "scan_add", blocks * 256u, 256u);
-  // 3. Scatter into buckets; 4. deterministic order inside each bucket, then the bucket-ordered
-  // copies that the contact gather reads.
-  dispatch(kernels.gridScatter, "grid_scatter", particleCount, kWorkgroupSize);
-  dispatch(kernels.gridSort, "grid_sort", table.size, kWorkgroupSize);
-  dispatch(kernels.gridCopy, "grid_copy", particleCount, kWorkgroupSize);
-  // 5. Contact forces (eq. 9, 10) and colliders, gathered per particle.
+  prepareContacts();
+  // 3. Contact forces (eq. 9, 10) from the lists, and colliders, gathered per particle.
   dispatch(kernels.contacts, "contacts", particleCount, kWorkgroupSize);
-  // 6. Body sums (eq. 2, 3) and integration (eq. 4-6), guards, sinks.
+  // 4. Body sums (eq. 2, 3) and integration (eq. 4-6), guards, sinks; the particles of the next
+  // substep.
   dispatch(kernels.integrateBodies, "integrate_bodies", bodyCount, kWorkgroupSize);
-  // 6b. Every other body: a workgroup each (force sums for read-back, then the same integration).
+  // 4b. Every other body: a workgroup each (force sums for read-back, then the same integration).
   if (!largeBodies.empty()) {
     dispatch(kernels.integrateLargeBodies, "integrate_large_bodies",
              std::uint32_t(largeBodies.size()) * kWorkgroupSize, kWorkgroupSize);
   }
   ++steps;
   simTime += model.timeStep;
-  gridValid = true;
 }
 
 void World::Impl::emit(double dt, StepReport* report) {
@@ -109,7 +150,8 @@ void World::Impl::emit(double dt, StepReport* report) {
 }
 
 void World::Impl::checkSpawnPlaces(std::uint32_t firstBody, std::uint32_t count) {
-  // The grid is the last substep's; without one (a new or just restored World) nothing is checked.
+  // The grid is the last list build's; without one (a new or just restored World) nothing is
+  // checked.
   if (count == 0 || !gridValid) return;
   if (paramsDirty) uploadParams();
   buffers.bindAll();
@@ -151,6 +193,8 @@ WorldStats World::Impl::reduceStats() {
   s.granulesKilled = counters[kCounterKilled];
   s.granulesNotBorn = counters[kCounterSpawnTaken];
   s.gridBuckets = table.size;
+  s.listBuilds = counters[kCounterListBuilds];
+  s.neighbourListOverflows = counters[kCounterListOverflows];
   s.contacts = std::uint32_t(pairEnds / 2 + wallContacts);
   s.steps = steps;
   s.simulatedTime = simTime;

@@ -143,7 +143,6 @@ std::vector<ParticleState> World::readParticles() const {
 std::vector<ContactRecord> World::readContacts() const {
   Impl& w = *m_impl;
   w.gpu->makeCurrent();
-  if (w.paramsDirty) w.uploadParams();
   // Each particle has at most ~12 neighbours in a packing (tetrahedral granules a few more) plus
   // a few walls; grow and retry if a pile ever has more.
   std::uint32_t capacity = std::max<std::uint32_t>(1024u, w.particleCount * 8u);
@@ -154,6 +153,8 @@ std::vector<ContactRecord> World::readContacts() const {
     std::uint32_t header[4] = {0u, capacity, 0u, 0u};
     list.upload(0, sizeof header, header);
     w.buffers.bindAll();
+    // What the next substep does first: lists built if due (that changes nothing it computes).
+    w.prepareContacts();
     w.dispatch(w.kernels.contactList, "contact_list", w.particleCount, kWorkgroupSize);
     std::uint32_t count = 0;
     list.download(0, 4, &count);

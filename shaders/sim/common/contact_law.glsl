@@ -42,7 +42,6 @@ ContactResult contactForce(float xi, vec3 n, vec3 vRel, float kn, float dampingF
 // other's at the contact point, so friction sees both spins. Every step is an odd function of
 // (n, vRel, delta), and the two sides of a pair start from the same zero spring: the two sides
 // keep exactly negated springs and forces, bit for bit. invMassSum = n_pairs (1/M_a + 1/M_b).
-// advance = false takes `spring` as this substep's (World::readContacts lists what was applied).
 
 struct MindlinResult {
   vec3 force;
@@ -52,22 +51,19 @@ struct MindlinResult {
 };
 
 MindlinResult hertzMindlin(float xi, vec3 n, vec3 vRel, float kn, float kt0, float dampingFactor,
-                           float invMassSum, float friction, float dt, vec3 spring,
-                           bool advance) {
+                           float invMassSum, float friction, float dt, vec3 spring) {
   float rootXi = sqrt(xi);
   float eta = dampingFactor * sqrt(kn / invMassSum) * sqrt(rootXi);
   float xiDot = -dot(vRel, n);
   float fn = max(kn * xi * rootXi + eta * xiDot, 0.0);
   vec3 vt = vRel + xiDot * n;
 
-  if (advance) {
-    // The spring turns with the contact: drop its normal part, keep its length.
-    float length0 = length(spring);
-    vec3 planar = spring - dot(spring, n) * n;
-    float planarLength = length(planar);
-    spring = planarLength > 0.0 ? planar * (length0 / planarLength) : vec3(0.0);
-    spring += vt * dt;
-  }
+  // The spring turns with the contact: drop its normal part, keep its length.
+  float length0 = length(spring);
+  vec3 planar = spring - dot(spring, n) * n;
+  float planarLength = length(planar);
+  spring = planarLength > 0.0 ? planar * (length0 / planarLength) : vec3(0.0);
+  spring += vt * dt;
 
   float kt = kt0 * rootXi;
   vec3 ft = -kt * spring - eta * vt;

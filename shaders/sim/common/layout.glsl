@@ -35,9 +35,11 @@
 #define PARTICLE_LOCAL(access) layout(std430, binding = 6) access buffer ParticleLocalBuffer { vec4 particleLocal[]; };
 // Owning body of each particle.
 #define PARTICLE_BODY(access) layout(std430, binding = 7) access buffer ParticleBodyBuffer { uint particleBody[]; };
-// xyz: world position (m).
+// The particle state a substep starts from, written where its body moved (the integration
+// passes; bodies_to_particles.comp after the CPU set bodies). xyz: world position (m); w: owning
+// body (uint bits).
 #define PARTICLE_POSITION(access) layout(std430, binding = 8) access buffer ParticlePositionBuffer { vec4 particlePosition[]; };
-// xyz: world velocity (m/s), eq. 8.
+// xyz: world velocity (m/s), eq. 8; w: particle inverse mass as in particleLocal (-1: static).
 #define PARTICLE_VELOCITY(access) layout(std430, binding = 9) access buffer ParticleVelocityBuffer { vec4 particleVelocity[]; };
 // xyz: contact + collider force of the last substep (N).
 #define PARTICLE_FORCE(access) layout(std430, binding = 10) access buffer ParticleForceBuffer { vec4 particleForce[]; };
@@ -51,21 +53,29 @@
 #define CELL_START(access) layout(std430, binding = 13) access buffer CellStartBuffer { uint cellStart[]; };
 // Particle ids in bucket order, ascending id inside each bucket.
 #define CELL_PARTICLES(access) layout(std430, binding = 14) access buffer CellParticlesBuffer { uint cellParticles[]; };
-// Bucket-ordered copies for the contact gather. xyz: position; w: owning body (uint bits).
-#define SORTED_POSITION(access) layout(std430, binding = 15) access buffer SortedPositionBuffer { vec4 sortedPosition[]; };
-// xyz: velocity; w: particle inverse mass as in particleLocal (-1: static).
-#define SORTED_VELOCITY(access) layout(std430, binding = 16) access buffer SortedVelocityBuffer { vec4 sortedVelocity[]; };
-// Hash bucket of each particle, or INVALID_CELL for particles of dead bodies.
+// Neighbour lists (common/neighbour_list.glsl): per particle, the ids of the particles of other
+// bodies that were closer than d + skin at the last build, ascending; entry k of particle i at
+// k * listLayout.x (the particle capacity) + i, so that the threads of a dispatch read one entry
+// together. At most NEIGHBOUR_LIST_CAPACITY entries per particle.
+#define NEIGHBOUR_LIST_CAPACITY 16
+#define NEIGHBOUR_LIST(access) layout(std430, binding = 15) access buffer NeighbourListBuffer { uint neighbourList[]; };
+// Per particle, xyz: its position at the last list build (m); w: how many partners it had then
+// (uint bits; more than NEIGHBOUR_LIST_CAPACITY: the rest are found again in the grid).
+#define LIST_ORIGIN(access) layout(std430, binding = 16) access buffer ListOriginBuffer { vec4 listOrigin[]; };
+// Hash bucket of each particle at the last list build, or INVALID_CELL for particles of dead
+// bodies.
 #define PARTICLE_CELL(access) layout(std430, binding = 17) access buffer ParticleCellBuffer { uint particleCell[]; };
-// Per-workgroup sums of the block scan.
+// Per-workgroup sums of the block scan, whose workgroups take SCAN_BLOCK buckets each
+// (scan_blocks.comp, scan_add.comp: 256 threads of 4).
+#define SCAN_BLOCK 1024u
 #define SCAN_BLOCK_SUMS(access) layout(std430, binding = 18) access buffer ScanBlockSumsBuffer { uint scanBlockSums[]; };
 
 // Read-only views of some of the buffers above as buffer textures (same memory, no copy); the
 // units are TextureUnit in gpu_layout.h. A texel fetch is the fast gather path on GPUs and on
 // llvmpipe, whose SSBO loads at per-invocation offsets run lane by lane. A kernel reads through a
 // view only what earlier dispatches wrote, never a buffer it writes itself.
-#define SORTED_POSITION_TEXTURE layout(binding = 0) uniform samplerBuffer sortedPositionTexture;
-#define SORTED_VELOCITY_TEXTURE layout(binding = 1) uniform samplerBuffer sortedVelocityTexture;
+#define NEIGHBOUR_LIST_TEXTURE layout(binding = 0) uniform usamplerBuffer neighbourListTexture;
+#define LIST_ORIGIN_TEXTURE layout(binding = 1) uniform samplerBuffer listOriginTexture;
 #define CELL_START_TEXTURE layout(binding = 2) uniform usamplerBuffer cellStartTexture;
 #define BODY_POSITION_TEXTURE layout(binding = 3) uniform samplerBuffer bodyPositionTexture;
 #define BODY_ORIENTATION_TEXTURE layout(binding = 4) uniform samplerBuffer bodyOrientationTexture;
@@ -80,7 +90,7 @@
 #define CELL_PARTICLES_TEXTURE layout(binding = 13) uniform usamplerBuffer cellParticlesTexture;
 #define CELL_COUNT_TEXTURE layout(binding = 14) uniform usamplerBuffer cellCountTexture;
 #define PARTICLE_TORQUE_TEXTURE layout(binding = 15) uniform samplerBuffer particleTorqueTexture;
-#define SORTED_SPIN_TEXTURE layout(binding = 16) uniform samplerBuffer sortedSpinTexture;
+#define PARTICLE_SPIN_TEXTURE layout(binding = 16) uniform samplerBuffer particleSpinTexture;
 #define CONTACT_SLOTS_0_TEXTURE layout(binding = 17) uniform samplerBuffer contactSlots0Texture;
 #define CONTACT_SLOTS_1_TEXTURE layout(binding = 18) uniform samplerBuffer contactSlots1Texture;
 #define CONTACT_SLOTS_2_TEXTURE layout(binding = 19) uniform samplerBuffer contactSlots2Texture;
@@ -108,6 +118,25 @@ struct SinkBox {
 #define COUNTER_KILLED 0
 // Emitted granules not born because their place was taken (spawn_check.comp).
 #define COUNTER_SPAWN_TAKEN 1
+// Non-zero when the neighbour lists must be built before the next contacts: a particle moved
+// more than half the skin since the last build, a granule died, or the CPU asked
+// (list_check.comp reads and clears it).
+#define COUNTER_LIST_REQUESTED 2
+// Neighbour list builds so far.
+#define COUNTER_LIST_BUILDS 3
+// Particles that had more partners than NEIGHBOUR_LIST_CAPACITY at a build (total).
+#define COUNTER_LIST_OVERFLOWS 4
+// From this uint on: the indirect dispatch commands of the list build, one per pass below (4
+// uints each: groups x, y, z and padding), zero groups when no build is due.
+#define COUNTER_LIST_DISPATCH 8
+#define PASS_GRID_COUNT 0u
+#define PASS_SCAN_BLOCKS 1u
+#define PASS_SCAN_BLOCK_SUMS 2u
+#define PASS_SCAN_ADD 3u
+#define PASS_GRID_SCATTER 4u
+#define PASS_GRID_SORT 5u
+#define PASS_LIST_BUILD 6u
+#define LIST_BUILD_PASSES 7
 #define COUNTERS(access) layout(std430, binding = 21) access buffer CounterBuffer { uint counters[]; };
 // Partial sums of the statistics reduction, one per workgroup (see stats_reduce.comp).
 struct StatsPartial {
@@ -129,9 +158,9 @@ struct StatsPartial {
 // xyz: torque of the last substep's contact forces about the particle's centre (N m): friction
 // acting at the contact point (ContactLaw::HertzMindlin; zero under PAPER_LAW).
 #define PARTICLE_TORQUE(access) layout(std430, binding = 27) access buffer ParticleTorqueBuffer { vec4 particleTorque[]; };
-// Bucket-ordered copy for the contact gather (HertzMindlin). xyz: angular velocity of the owning
-// body (rad/s); w: particle id (uint bits).
-#define SORTED_SPIN(access) layout(std430, binding = 28) access buffer SortedSpinBuffer { vec4 sortedSpin[]; };
+// Per particle (HertzMindlin), written with particlePosition: xyz: angular velocity of the
+// owning body (rad/s), so that a contact reads its partner's spin in one fetch.
+#define PARTICLE_SPIN(access) layout(std430, binding = 28) access buffer ParticleSpinBuffer { vec4 particleSpin[]; };
 // The contacts of ContactLaw::HertzMindlin that persist across substeps (common/contact_slots.glsl):
 // CONTACT_SLOTS slots per particle, CONTACT_SLOTS_PER_GROUP of them in each of the group buffers
 // (one buffer would outgrow the 128 MiB a storage block may hold). Slot k of particle i is entry
@@ -152,13 +181,15 @@ struct StatsPartial {
 // Constant for the whole step; set by World when settings or counts change.
 layout(std140, binding = 0) uniform SimParams {
   vec4 gravityDt;      // xyz: gravity (m/s^2); w: time step (s)
-  vec4 particleGeom;   // x: radius (m); y: diameter = cell size (m); z: 1 / cell size; w: max overlap (m)
+  vec4 particleGeom;   // x: radius (m); y: diameter (m); z: 1 / cell size (d + skin); w: max overlap (m)
   vec4 grainContact;   // x: k_n grain-grain; y: c(e) grain-grain; z: friction; w: tangential damping
   vec4 wallContact;    // x: k_n grain-wall; y: max speed (m/s); z, w: unused
   uvec4 counts;        // x: particles; y: bodies; z: hash table mask; w: colliders
   uvec4 counts2;       // x: sinks; y: hash table size; z, w: hash multipliers for y and z
   uvec4 colliderEnds;  // colliders are sorted by type: planes end at x, boxes at y, walls of revolution at z
   vec4 shearContact;   // x: k_t0 grain-grain; y: k_t0 grain-wall (N/m^3/2; k_t = k_t0 sqrt(xi)); z, w: unused
+  vec4 listGeom;       // x: skin (m); y: (d + skin)^2; z: (skin / 2)^2 (m^2); w: unused
+  uvec4 listLayout;    // x: stride of a neighbour-list entry (the particle capacity); y, z, w: unused
 };
 
 // Linear thread index of a dispatch that World may fold into two dimensions. A macro, because

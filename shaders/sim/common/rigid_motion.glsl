@@ -6,10 +6,20 @@
 // BODY_POSITION, BODY_ORIENTATION, BODY_VELOCITY, BODY_ANGULAR_VELOCITY, BODY_INFO (coherent),
 // BODY_INERTIA, SINKS (readonly) and COUNTERS, and includes quaternion.glsl.
 
+// A body's state after its substep, for the particles that follow it.
+struct BodyMotion {
+  vec3 position;
+  vec4 orientation;
+  vec3 velocity;
+  vec3 spin;
+  bool alive;
+};
+
 // Advances body `b` (alive, not static) by one substep under the sum of its particles' contact
 // forces `force` and their torque about its centre of mass `torque`; kinematic bodies keep their
-// velocities and only move.
-void integrateBody(uint b, uvec4 info, vec3 force, vec3 torque) {
+// velocities and only move. A granule that a sink takes asks for a list build (its particles
+// leave the lists).
+BodyMotion integrateBody(uint b, uvec4 info, vec3 force, vec3 torque) {
   uint motion = (info.z & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT;
   float dt = gravityDt.w;
   vec4 position = bodyPosition[b];
@@ -51,6 +61,7 @@ void integrateBody(uint b, uvec4 info, vec3 force, vec3 torque) {
           all(lessThanEqual(position.xyz, sinks[k].hi.xyz))) {
         info.z &= ~BODY_ALIVE;
         atomicAdd(counters[COUNTER_KILLED], 1u);
+        counters[COUNTER_LIST_REQUESTED] = 1u;
         v = vec3(0.0);
         omega = vec3(0.0);
         break;
@@ -63,4 +74,5 @@ void integrateBody(uint b, uvec4 info, vec3 force, vec3 torque) {
   bodyVelocity[b] = vec4(v, 0.0);
   bodyAngularVelocity[b] = vec4(omega, spin.w);
   bodyInfo[b] = info;
+  return BodyMotion(position.xyz, q, v, omega, (info.z & BODY_ALIVE) != 0u);
 }

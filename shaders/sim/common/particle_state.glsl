@@ -1,0 +1,24 @@
+// The state a substep's contacts start from, particle by particle (paper eq. 7, 8): written where
+// the body's pose is at hand (after its integration, or by bodies_to_particles.comp when the CPU
+// set it), so that the next contacts read one fetch per partner. Every writer uses this function,
+// `precise`, so that a particle's state is the same bits whichever pass wrote it. The includer
+// declares PARTICLE_LOCAL_TEXTURE, LIST_ORIGIN_TEXTURE, PARTICLE_POSITION, PARTICLE_VELOCITY,
+// COUNTERS and, under HertzMindlin, PARTICLE_SPIN (and includes quaternion.glsl).
+
+// Particle `k` of body `body` (`local`: its particleLocal entry) at the body's centre `centre`,
+// orientation `q`, velocity `v` and spin `omega`. Asks for a list build when the particle has
+// moved more than half the skin since the last one: two particles that were not listed, farther
+// apart than d + skin, cannot touch before.
+void storeParticle(uint k, vec4 local, uint body, vec3 centre, vec4 q, vec3 v, vec3 omega) {
+  precise vec3 offset = quatRotate(q, local.xyz);
+  precise vec3 position = centre + offset;
+  precise vec3 velocity = v + cross(omega, offset);
+  particlePosition[k] = vec4(position, uintBitsToFloat(body));
+  particleVelocity[k] = vec4(velocity, local.w);
+#ifndef PAPER_LAW
+  particleSpin[k] = vec4(omega, 0.0);
+#endif
+  vec3 moved = position - texelFetch(listOriginTexture, int(k)).xyz;
+  // The same value from every writer: no atomic needed.
+  if (dot(moved, moved) > listGeom.z) counters[COUNTER_LIST_REQUESTED] = 1u;
+}

@@ -1,0 +1,66 @@
+#version 450
+// List build, last pass: one thread per particle gathers over the 27 cells (of d + skin) around
+// it in the grid just built and lists the particles of other bodies closer than d + skin that it
+// could touch (not two immovable ones), ascending by id: the NEIGHBOUR_LIST_CAPACITY smallest,
+// and how many there were (a particle with more finds the rest in the grid, contacts.comp). It
+// records where it stands, from which the integration measures how far it moves. Static particles
+// (rough floors) get no list: nobody needs their force; they are listed by the others.
+#include "common/layout.glsl"
+#include "common/spatial_hash.glsl"
+
+layout(local_size_x = WORKGROUP_SIZE) in;
+
+CELL_START_TEXTURE
+CELL_PARTICLES_TEXTURE
+PARTICLE_POSITION_TEXTURE
+PARTICLE_VELOCITY_TEXTURE
+BODY_INFO_TEXTURE
+NEIGHBOUR_LIST(writeonly)
+LIST_ORIGIN(writeonly)
+COUNTERS(coherent)
+#include "common/neighbour_list.glsl"
+
+void main() {
+  uint i = threadIndex();
+  if (i >= counts.x) return;
+  vec4 self = texelFetch(particlePositionTexture, int(i));
+  float selfInverseMass = texelFetch(particleVelocityTexture, int(i)).w;
+  uint body = floatBitsToUint(self.w);
+  bool alive = (texelFetch(bodyInfoTexture, int(body)).z & BODY_ALIVE) != 0u;
+  uint ids[NEIGHBOUR_LIST_CAPACITY];
+  uint count = 0u;
+  if (alive && selfInverseMass >= 0.0) {
+    ivec3 cell = cellOf(self.xyz);
+    for (int row = 0; row < 9; ++row) {
+      uint parts = rowParts(cell, row);
+      for (uint part = 0u; part < parts; ++part) {
+        uvec2 slots = rowSlots(cell, row, part, parts);
+        for (uint s = slots.x; s < slots.y; ++s) {
+          uint id = texelFetch(cellParticlesTexture, int(s)).x;
+          vec4 other = texelFetch(particlePositionTexture, int(id));
+          if (floatBitsToUint(other.w) == body) continue;
+          vec3 d = self.xyz - other.xyz;
+          if (dot(d, d) >= listGeom.y) continue;
+          float otherInverseMass = texelFetch(particleVelocityTexture, int(id)).w;
+          if (max(selfInverseMass, 0.0) + max(otherInverseMass, 0.0) == 0.0) continue;
+          // Keep the smallest ids, in order.
+          if (count < uint(NEIGHBOUR_LIST_CAPACITY) ||
+              id < ids[NEIGHBOUR_LIST_CAPACITY - 1]) {
+            uint k = min(count, uint(NEIGHBOUR_LIST_CAPACITY) - 1u);
+            while (k > 0u && ids[k - 1u] > id) {
+              ids[k] = ids[k - 1u];
+              --k;
+            }
+            ids[k] = id;
+          }
+          ++count;
+        }
+      }
+    }
+  }
+  for (uint k = 0u; k < min(count, uint(NEIGHBOUR_LIST_CAPACITY)); ++k) {
+    neighbourList[listEntry(i, k)] = ids[k];
+  }
+  listOrigin[i] = vec4(self.xyz, uintBitsToFloat(alive ? count : LIST_DEAD));
+  if (count > uint(NEIGHBOUR_LIST_CAPACITY)) atomicAdd(counters[COUNTER_LIST_OVERFLOWS], 1u);
+}
