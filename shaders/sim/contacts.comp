@@ -25,8 +25,9 @@
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 
-// Partners listed before their contacts are evaluated (see above).
+// Partners and collider surfaces found before their contacts are evaluated (see above).
 #define PARTNER_BATCH 16
+#define COLLIDER_BATCH 4
 // No partner found (nextPartnerAfter).
 #define NO_PARTNER 0xffffffffu
 
@@ -312,6 +313,19 @@ uint nextPartnerAfter(Particle self, uint after) {
   return best;
 }
 
+// Surfaces in contact found by the collider loops and not yet evaluated: the hit (normal,
+// overlap), the collider's index and its face.
+vec4 hits[COLLIDER_BATCH];
+uint hitColliders[COLLIDER_BATCH];
+uint hitFaces[COLLIDER_BATCH];
+
+void keepHit(inout uint found, vec4 hit, uint collider, uint face) {
+  hits[found] = hit;
+  hitColliders[found] = collider;
+  hitFaces[found] = face;
+  ++found;
+}
+
 // One contact of the current particle with the surface `hit` of collider `c` (its face `face`).
 void colliderContact(Particle self, Collider c, vec4 hit, uint face, float radius) {
   float xi = hit.w;
@@ -405,25 +419,44 @@ void main() {
 
   // Each collider type in its own loop (uniform control flow; see colliders.glsl). Every
   // particle runs the loops and only movable ones take the contacts: loads inside a divergent
-  // branch run lane by lane on llvmpipe.
+  // branch run lane by lane on llvmpipe. The loops only find the surfaces in contact; the law
+  // is evaluated after them, COLLIDER_BATCH at a time, from one place in the code (a particle
+  // touching more surfaces runs the loops again for the next batch).
   bool movable = self.velocity.w > 0.0;
-  for (uint k = 0u; k < colliderEnds.x; ++k) {
-    Collider c = colliders[k];
-    vec4 hit = planeHit(c, self.position.xyz, radius);
-    if (movable && hit.w > 0.0) colliderContact(self, c, hit, 0u, radius);
-  }
-  for (uint k = colliderEnds.x; k < colliderEnds.y; ++k) {
-    Collider c = colliders[k];
-    vec3 local = boxLocal(c, self.position.xyz);
-    for (int axis = 0; axis < BOX_AXES; ++axis) {
-      vec4 hit = boxHit(c, local, radius, axis);
-      if (movable && hit.w > 0.0) colliderContact(self, c, hit, boxFace(c, local, axis), radius);
+  for (uint skip = 0u;; skip += uint(COLLIDER_BATCH)) {
+    uint seen = 0u;   // surfaces in contact met in this pass
+    uint found = 0u;  // of them, kept for this batch
+    for (uint k = 0u; k < colliderEnds.x; ++k) {
+      vec4 hit = planeHit(colliders[k], self.position.xyz, radius);
+      if (movable && hit.w > 0.0) {
+        if (seen >= skip && found < uint(COLLIDER_BATCH)) keepHit(found, hit, k, 0u);
+        ++seen;
+      }
     }
-  }
-  for (uint k = colliderEnds.y; k < colliderEnds.z; ++k) {
-    Collider c = colliders[k];
-    vec4 hit = revolutionHit(c, self.position.xyz, radius);
-    if (movable && hit.w > 0.0) colliderContact(self, c, hit, 0u, radius);
+    for (uint k = colliderEnds.x; k < colliderEnds.y; ++k) {
+      Collider c = colliders[k];
+      vec3 local = boxLocal(c, self.position.xyz);
+      for (int axis = 0; axis < BOX_AXES; ++axis) {
+        vec4 hit = boxHit(c, local, radius, axis);
+        if (movable && hit.w > 0.0) {
+          if (seen >= skip && found < uint(COLLIDER_BATCH)) {
+            keepHit(found, hit, k, boxFace(c, local, axis));
+          }
+          ++seen;
+        }
+      }
+    }
+    for (uint k = colliderEnds.y; k < colliderEnds.z; ++k) {
+      vec4 hit = revolutionHit(colliders[k], self.position.xyz, radius);
+      if (movable && hit.w > 0.0) {
+        if (seen >= skip && found < uint(COLLIDER_BATCH)) keepHit(found, hit, k, 0u);
+        ++seen;
+      }
+    }
+    for (uint h = 0u; h < found; ++h) {
+      colliderContact(self, colliders[hitColliders[h]], hits[h], hitFaces[h], radius);
+    }
+    if (seen <= skip + uint(COLLIDER_BATCH)) break;
   }
 
 #ifndef CONTACT_LIST
