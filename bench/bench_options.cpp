@@ -114,7 +114,7 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
       "dt = 5e-5 s, settled from a loose random lattice; 2000 substeps timed.\n"
       "Per size: granule-steps and particle-steps per wall second (the Cundall number is the "
       "first), contacts per particle, microseconds per particle-contact, dispatches per "
-      "substep, neighbour-grid builds per 1000 substeps, GPU memory per granule, simulated "
+      "substep, neighbour-list builds per 1000 substeps, GPU memory per granule, simulated "
       "seconds per wall second and GPU time per kernel. The pile settles for --settle-steps "
       "substeps before --steps substeps are timed; the output states how settled it is "
       "(kinetic energy, contacts per granule, pile top, largest overlap).",
