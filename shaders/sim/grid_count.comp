@@ -8,6 +8,7 @@
 layout(local_size_x = WORKGROUP_SIZE) in;
 
 PARTICLE_POSITION_TEXTURE
+PARTICLE_BODY_TEXTURE
 BODY_INFO_TEXTURE
 PARTICLE_CELL(writeonly)
 CELL_COUNT(coherent)
@@ -15,13 +16,14 @@ CELL_COUNT(coherent)
 void main() {
   uint i = threadIndex();
   if (i >= counts.x) return;
-  vec4 position = texelFetch(particlePositionTexture, int(i));
-  uint body = floatBitsToUint(position.w);
+  // The owner from particleBody: a granule that was never born (spawn_check.comp) never had
+  // its state written.
+  uint body = texelFetch(particleBodyTexture, int(i)).x;
   if ((texelFetch(bodyInfoTexture, int(body)).z & BODY_ALIVE) == 0u) {
     particleCell[i] = INVALID_CELL;
     return;
   }
-  uint bucket = bucketOf(cellOf(position.xyz));
+  uint bucket = bucketOf(cellOf(texelFetch(particlePositionTexture, int(i)).xyz));
   particleCell[i] = bucket;
   atomicAdd(cellCount[bucket], 1u);
 }

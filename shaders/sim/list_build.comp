@@ -14,6 +14,7 @@ CELL_START_TEXTURE
 CELL_PARTICLES_TEXTURE
 PARTICLE_POSITION_TEXTURE
 PARTICLE_VELOCITY_TEXTURE
+PARTICLE_BODY_TEXTURE
 BODY_INFO_TEXTURE
 NEIGHBOUR_LIST(writeonly)
 LIST_ORIGIN(writeonly)
@@ -25,7 +26,8 @@ void main() {
   if (i >= counts.x) return;
   vec4 self = texelFetch(particlePositionTexture, int(i));
   float selfInverseMass = texelFetch(particleVelocityTexture, int(i)).w;
-  uint body = floatBitsToUint(self.w);
+  // The owner from particleBody, as grid_count.comp: a granule never born has no state.
+  uint body = texelFetch(particleBodyTexture, int(i)).x;
   bool alive = (texelFetch(bodyInfoTexture, int(body)).z & BODY_ALIVE) != 0u;
   uint ids[NEIGHBOUR_LIST_CAPACITY];
   uint count = 0u;

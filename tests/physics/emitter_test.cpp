@@ -32,6 +32,9 @@ TEST(Emitter, LetsNoGranuleBeBornWherePlaceIsTaken) {
   testing::TestWorld w(s);
   w->addBody(tetrahedronTemplate(s.particleDiameter, s.material.density),
              {.position = {0.0f, 0.5f, 0.0f}, .motion = Motion::Static});
+  // A body far from everything, where the never-written state of a granule not born would
+  // stand (zeroed memory: the origin): it must feel nothing.
+  const BodyId sentinel = w.addGranule({0.0f, 0.0f, 0.0f});
   w->substep(1);  // a grid to check the places against
   w->addEmitter(EmitterSettings{.center = {0, 0.5f, 0},
                                 .halfExtentX = 0.1f,
@@ -47,6 +50,11 @@ TEST(Emitter, LetsNoGranuleBeBornWherePlaceIsTaken) {
   EXPECT_EQ(stats.granulesAlive, 40u - stats.granulesNotBorn);
   // Nothing that was born started inside anything.
   EXPECT_LT(stats.maxOverlap, 0.01 * w->settings().particleDiameter);
+  const BodyState still = w->readBody(sentinel);
+  EXPECT_EQ(still.position.x, 0.0f);
+  EXPECT_EQ(still.position.y, 0.0f);
+  EXPECT_EQ(still.position.z, 0.0f);
+  EXPECT_EQ(still.velocity.y, 0.0f);
 }
 
 TEST(Emitter, RefusesARateItsLatticeCannotTake) {
