@@ -19,7 +19,9 @@ void World::Impl::uploadParams() {
   // A build is asked for a hair before a particle has moved half the skin, so that rounding
   // cannot bring an unlisted pair into contact.
   p.listGeom = {skin, reach * reach, 0.98f * 0.25f * skin * skin, 0.0f};
-  p.listLayout = {particleCapacity, 0u, 0u, 0u};
+  // Entries follow the particles in use (every change of their number asks for a build), so
+  // that a World with room to spare lays its lists out as a full one does.
+  p.listLayout = {particleCount, 0u, 0u, 0u};
   p.grainContact = {model.stiffnessGrain, model.dampingFactorGrain, settings.material.friction,
                     model.tangentialDamping};
   p.wallContact = {model.stiffnessWall, settings.maxSpeed, 0.0f, 0.0f};

@@ -55,7 +55,7 @@
 #define CELL_PARTICLES(access) layout(std430, binding = 14) access buffer CellParticlesBuffer { uint cellParticles[]; };
 // Neighbour lists (common/neighbour_list.glsl): per particle, the ids of the particles of other
 // bodies that were closer than d + skin at the last build, ascending; entry k of particle i at
-// k * listLayout.x (the particle capacity) + i, so that the threads of a dispatch read one entry
+// k * listLayout.x (the particles in use) + i, so that the threads of a dispatch read one entry
 // together. At most NEIGHBOUR_LIST_CAPACITY entries per particle.
 #define NEIGHBOUR_LIST_CAPACITY 16
 #define NEIGHBOUR_LIST(access) layout(std430, binding = 15) access buffer NeighbourListBuffer { uint neighbourList[]; };
@@ -189,7 +189,7 @@ layout(std140, binding = 0) uniform SimParams {
   uvec4 colliderEnds;  // colliders are sorted by type: planes end at x, boxes at y, walls of revolution at z
   vec4 shearContact;   // x: k_t0 grain-grain; y: k_t0 grain-wall (N/m^3/2; k_t = k_t0 sqrt(xi)); z, w: unused
   vec4 listGeom;       // x: skin (m); y: (d + skin)^2; z: (skin / 2)^2 (m^2); w: unused
-  uvec4 listLayout;    // x: stride of a neighbour-list entry (the particle capacity); y, z, w: unused
+  uvec4 listLayout;    // x: stride of a neighbour-list entry (the particles in use); y, z, w: unused
 };
 
 // Linear thread index of a dispatch that World may fold into two dimensions. A macro, because
