@@ -100,6 +100,31 @@ TEST(ContactModel, SandTooSoftForItsSpeedGuardIsRefusedWithTheStiffnessThatWould
   EXPECT_NO_THROW((void)ContactModel::fromSettings(s));
 }
 
+// The neighbour lists' skin: as given, or room for kListSkinSubsteps substeps at the speed guard
+// on each side of a pair, within [kMinListSkin, kMaxListSkin] diameters.
+TEST(ContactModel, ListSkinFollowsTheStatedRule) {
+  WorldSettings s;
+  const double d = s.particleDiameter;
+  const ContactModel derived = ContactModel::fromSettings(s);
+  const double travel = 2.0 * kListSkinSubsteps * s.maxSpeed * derived.timeStep;
+  ASSERT_GT(travel, kMinListSkin * d);
+  ASSERT_LT(travel, kMaxListSkin * d);
+  EXPECT_NEAR(derived.listSkin, travel, 1e-6 * travel);
+  s.maxSpeed = 0.01f;  // a crawl: the smallest skin
+  const ContactModel slow = ContactModel::fromSettings(s);
+  ASSERT_LT(2.0 * kListSkinSubsteps * s.maxSpeed * slow.timeStep, kMinListSkin * d);
+  EXPECT_FLOAT_EQ(slow.listSkin, kMinListSkin * s.particleDiameter);
+  s = WorldSettings{};
+  s.stepsPerContact = 8.0f;  // the longest step
+  s.maxSpeed = 40.0f;
+  s.material.youngsModulus = 1e9f;
+  const ContactModel fast = ContactModel::fromSettings(s);
+  ASSERT_GT(2.0 * kListSkinSubsteps * s.maxSpeed * fast.timeStep, kMaxListSkin * d);
+  EXPECT_FLOAT_EQ(fast.listSkin, kMaxListSkin * s.particleDiameter);
+  s.listSkin = 0.3f * s.particleDiameter;
+  EXPECT_FLOAT_EQ(ContactModel::fromSettings(s).listSkin, 0.3f * s.particleDiameter);
+}
+
 // Each bad setting throws InvalidArgument whose message names the field, the value and a limit.
 struct BadSetting {
   const char* field;
@@ -154,7 +179,13 @@ INSTANTIATE_TEST_SUITE_P(
                    ">= 8"},
         BadSetting{"timeStep", [](WorldSettings& s) { s.timeStep = 1e-3f; }, "0.001", "t_n / 8"},
         BadSetting{"contactLaw", [](WorldSettings& s) { s.contactLaw = ContactLaw(7); }, "7",
-                   "PaperViscous"}));
+                   "PaperViscous"},
+        BadSetting{"listSkin", [](WorldSettings& s) { s.listSkin = std::nanf(""); }, "nan",
+                   "[0, particleDiameter = 0.02]"},
+        BadSetting{"listSkin", [](WorldSettings& s) { s.listSkin = -0.001f; }, "-0.001",
+                   "[0, particleDiameter = 0.02]"},
+        BadSetting{"listSkin", [](WorldSettings& s) { s.listSkin = 0.05f; }, "0.05",
+                   "[0, particleDiameter = 0.02]"}));
 
 }  // namespace
 }  // namespace sandphys
