@@ -41,6 +41,7 @@ constexpr FloatField kFloatFields[] = {
     {"time_step", [](WorldSettings& s) -> float& { return s.timeStep; }},
     {"steps_per_contact", [](WorldSettings& s) -> float& { return s.stepsPerContact; }},
     {"max_speed", [](WorldSettings& s) -> float& { return s.maxSpeed; }},
+    {"list_skin", [](WorldSettings& s) -> float& { return s.listSkin; }},
 };
 
 struct CountField {

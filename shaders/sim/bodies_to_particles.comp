@@ -35,7 +35,8 @@ void main() {
   // A dead body's particles leave the lists at the next build, which every change of the bodies
   // asks for; their state is never read.
   if ((texelFetch(bodyInfoTexture, int(body)).z & BODY_ALIVE) == 0u) return;
-  storeParticle(i, texelFetch(particleLocalTexture, int(i)), body, texelFetch(bodyPositionTexture, int(body)).xyz,
+  storeParticle(i, texelFetch(particleLocalTexture, int(i)), body,
+                texelFetch(bodyPositionTexture, int(body)).xyz,
                 texelFetch(bodyOrientationTexture, int(body)),
                 texelFetch(bodyVelocityTexture, int(body)).xyz,
                 texelFetch(bodyAngularVelocityTexture, int(body)).xyz);

@@ -1,5 +1,5 @@
 #version 450
-// Pass 2. Contacts: one thread per particle evaluates its contacts with the partners of its
+// Pass 3. Contacts: one thread per particle evaluates its contacts with the partners of its
 // neighbour list (common/neighbour_list.glsl: ascending partner id, built when some particle has
 // moved more than half the skin) and with the implicit colliders, and writes its total force
 // (and, under ContactLaw::HertzMindlin, the torque about its centre and its contact slots).

@@ -1,7 +1,8 @@
 #version 450
-// Pass 3. Counting-sort scatter: each particle takes a slot in its bucket's range. The slot order
-// inside a bucket depends on thread timing; grid_sort.comp makes it deterministic. Decrementing
-// the count returns every bucket count to zero, so no clear pass is needed next substep.
+// List build, pass 5. Counting-sort scatter: each particle takes a slot in its bucket's range. The
+// slot order inside a bucket depends on thread timing; grid_sort.comp makes it deterministic.
+// Decrementing the count returns every bucket count to zero, so no clear pass is needed next
+// substep.
 #include "common/layout.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;

@@ -1,7 +1,7 @@
 #version 450
-// Pass 4a. One thread per bucket sorts its particle ids ascending (insertion sort: buckets hold a
-// handful of particles; there is no cap). After this pass the bucket order is a pure function of
-// the particle positions: the step is deterministic.
+// List build, pass 6. One thread per bucket sorts its particle ids ascending (insertion sort:
+// buckets hold a handful of particles; there is no cap). After this pass the bucket order is a pure
+// function of the particle positions: the step is deterministic.
 #include "common/layout.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;

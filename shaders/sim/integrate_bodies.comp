@@ -1,11 +1,11 @@
 #version 450
-// Pass 3. Granules: one thread per body sums its particles' forces and torques (paper eq. 2, 3):
+// Pass 4. Granules: one thread per body sums its particles' forces and torques (paper eq. 2, 3):
 // r x F about the centre for each particle's force, plus, under ContactLaw::HertzMindlin, the
 // torque of friction at the contact points; in particle order (fixed, so deterministic). Then it
 // integrates (common/rigid_motion.glsl), under HertzMindlin counts the contacts its particles'
 // slots hold per partner (common/contact_pairs.glsl), and writes its particles' state for the
 // next substep (common/particle_state.glsl). Bodies flagged BODY_LARGE (every body that is not a
-// granule) are left to pass 3b.
+// granule) are left to pass 4b.
 #include "common/layout.glsl"
 #include "common/quaternion.glsl"
 #include "common/contact_slots.glsl"

@@ -1,5 +1,5 @@
 #version 450
-// Pass 3b. Every body that is not a granule (mesh-sampled bodies, bodies coupled to Bullet, a
+// Pass 4b. Every body that is not a granule (mesh-sampled bodies, bodies coupled to Bullet, a
 // viewer's pusher), whatever its particle count: one workgroup per body. Each thread sums a
 // strided share of the particles' forces and torques r x F in particle order, then a tree in
 // shared memory adds the shares in a fixed order, so the sum is the same on every run. Thread 0

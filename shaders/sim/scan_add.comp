@@ -1,5 +1,5 @@
 #version 450
-// Pass 2c. Adds each block's offset to its 1024 exclusive sums.
+// List build, pass 4. Adds each block's offset to its 1024 exclusive sums.
 #include "common/layout.glsl"
 
 #define SCAN_THREADS 256

@@ -1,6 +1,6 @@
 #version 450
-// Pass 2b. Exclusive scan of the per-block totals by one workgroup, in chunks with a running
-// carry; the grand total (particles in the grid) goes to cellStart[tableSize].
+// List build, pass 3. Exclusive scan of the per-block totals by one workgroup, in chunks with a
+// running carry; the grand total (particles in the grid) goes to cellStart[tableSize].
 #include "common/layout.glsl"
 
 #define SCAN_THREADS 1024

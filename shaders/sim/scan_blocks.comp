@@ -1,6 +1,6 @@
 #version 450
-// Pass 2a. Exclusive prefix sum of the bucket counts, 1024 per workgroup (4 per thread, then a
-// work-efficient scan in shared memory); each workgroup's total goes to scanBlockSums.
+// List build, pass 2. Exclusive prefix sum of the bucket counts, 1024 per workgroup (4 per thread,
+// then a work-efficient scan in shared memory); each workgroup's total goes to scanBlockSums.
 #include "common/layout.glsl"
 
 #define SCAN_THREADS 256

@@ -43,7 +43,8 @@ void main() {
     for (uint part = 0u; part < parts; ++part) {
       uvec2 slots = rowSlots(cell, row, part, parts);
       for (uint s = slots.x; s < slots.y; ++s) {
-        vec4 other = texelFetch(particlePositionTexture, int(texelFetch(cellParticlesTexture, int(s)).x));
+        uint id = texelFetch(cellParticlesTexture, int(s)).x;
+        vec4 other = texelFetch(particlePositionTexture, int(id));
         vec3 d = position - other.xyz;
         if (floatBitsToUint(other.w) != body && dot(d, d) < diameter * diameter) taken = true;
       }

@@ -592,7 +592,7 @@ void World::reserve(std::uint32_t maxBodies, std::uint32_t maxParticles) {
   w.buffers.allocate(w.bodyCapacity, w.particleCapacity, w.tableCapacity, w.settings.maxColliders,
                      w.bodyCount, w.particleCount, w.keepsHistory());
   w.paramsDirty = true;
-  // A grown table is a new, empty buffer; the lists' layout follows the capacity.
+  // A grown table, and grown lists, are new, empty buffers.
   w.gridValid = false;
   w.listsStale = true;
 }
