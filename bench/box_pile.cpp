@@ -193,13 +193,8 @@ void BoxPile::build(World& world) const {
 }
 
 float BoxPile::pileTop(std::span<const BodyState> bodies) const {
-  std::vector<float> heights;
-  heights.reserve(bodies.size());
-  for (const BodyState& body : bodies) {
-    if (body.alive && body.granule && contains(body.position)) heights.push_back(body.position.y);
-  }
-  if (heights.empty()) return 0.0f;
-  return scenes::percentile(heights, 0.99) + m_granuleOuterRadius;
+  return scenes::pileSurface(
+      bodies, [this](const Vec3& centre) { return contains(centre); }, m_granuleOuterRadius);
 }
 
 bool BoxPile::contains(const Vec3& centre) const {

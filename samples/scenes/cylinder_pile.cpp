@@ -185,14 +185,9 @@ bool CylinderPile::contains(const Vec3& centre) const {
 }
 
 float CylinderPile::pileTop(std::span<const BodyState> bodies) const {
-  std::vector<float> heights;
-  heights.reserve(bodies.size());
-  for (const BodyState& body : bodies) {
-    if (body.alive && body.granule && contains(body.position)) heights.push_back(body.position.y);
-  }
-  if (heights.empty()) return 0.0f;
   // The outer radius is only known after build(); before it the centre height has to do.
-  return percentile(heights, 0.99) + m_granuleOuterRadius;
+  return pileSurface(
+      bodies, [this](const Vec3& centre) { return contains(centre); }, m_granuleOuterRadius);
 }
 
 std::vector<SceneMetric> CylinderPile::metrics(std::span<const BodyState> bodies) const {

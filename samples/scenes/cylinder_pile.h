@@ -93,9 +93,9 @@ class CylinderPile final : public Scene {
   /// Simulated time (s) each batch took to settle or to reach maxSecondsPerBatch.
   const std::vector<double>& settleTimes() const { return m_settleTimes; }
 
-  /// Height (m) of the top surface of the granules in `bodies` that are alive and inside the
-  /// container: the 99th percentile of their centre heights plus the granule's outer radius, so
-  /// that a few bouncing granules do not lift the next batch. `floorY` when there are none.
+  /// Height (m) of the top surface of the granules in `bodies` that are inside the container
+  /// (pileSurface with the granule's outer radius), so that a few bouncing granules do not lift
+  /// the next batch; 0 when there are none.
   float pileTop(std::span<const BodyState> bodies) const;
 
  private:

@@ -223,4 +223,15 @@ float percentile(std::vector<float>& values, double fraction) {
   return values[rank];
 }
 
+float pileSurface(std::span<const BodyState> bodies, const std::function<bool(const Vec3&)>& inside,
+                  float outerRadius) {
+  std::vector<float> heights;
+  heights.reserve(bodies.size());
+  for (const BodyState& body : bodies) {
+    if (body.alive && body.granule && inside(body.position)) heights.push_back(body.position.y);
+  }
+  if (heights.empty()) return 0.0f;
+  return percentile(heights, 0.99) + outerRadius;
+}
+
 }  // namespace sandphys::scenes

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -221,6 +222,12 @@ inline constexpr float kShiftedLayerHeight = 1.85f;
 /// The value below which `fraction` (in [0, 1]) of `values` lie; `values` must not be empty and
 /// is reordered.
 float percentile(std::vector<float>& values, double fraction);
+
+/// Height (m) of the top surface of the granules in `bodies` that are alive and for whose centre
+/// `inside` holds: the 99th percentile of their centre heights plus `outerRadius`, so that a few
+/// bouncing granules do not count; 0 when there are none.
+float pileSurface(std::span<const BodyState> bodies, const std::function<bool(const Vec3&)>& inside,
+                  float outerRadius);
 
 /// Sets the parameter named `name` of `scene` from text ("12", "0.5", "8,8,4" or "8 8 4").
 /// Throws InvalidArgument naming the parameter, the value and the valid range when the name is

@@ -41,6 +41,9 @@ COLLIDERS(readonly)
 #ifndef PAPER_LAW
 PARTICLE_SPIN_TEXTURE
 CONTACT_PAIRS_TEXTURE
+CONTACT_SLOTS_0_TEXTURE
+CONTACT_SLOTS_1_TEXTURE
+CONTACT_SLOTS_2_TEXTURE
 #endif
 #ifdef CONTACT_LIST
 CONTACT_LIST_BUFFER(coherent)
@@ -99,7 +102,9 @@ vec4 previous[CONTACT_SLOTS];
 uvec4 previousPairs;
 uint slotsUsed = 0u;
 
-// Loads only the slots in use (contactPairs.w): an SSBO load per lane is what a slot costs here.
+// Loads only the slots in use (contactPairs.w), through the buffer textures: a gather, where an
+// SSBO load runs lane by lane on llvmpipe. Only this thread writes these slots, after it read
+// them, so the texture never shows it a slot written in this pass.
 void loadSlots(uint particle) {
   previousPairs = texelFetch(contactPairsTexture, int(particle));
   uint used = min(previousPairs.w, uint(CONTACT_SLOTS));
@@ -107,8 +112,9 @@ void loadSlots(uint particle) {
     uint entry = slotEntry(particle, k);
     previous[k] = vec4(0.0);
     if (k < used) {
-      previous[k] = k < 4u ? contactSlots0[entry]
-                           : (k < 8u ? contactSlots1[entry] : contactSlots2[entry]);
+      previous[k] = k < 4u ? texelFetch(contactSlots0Texture, int(entry))
+                           : (k < 8u ? texelFetch(contactSlots1Texture, int(entry))
+                                     : texelFetch(contactSlots2Texture, int(entry)));
     }
   }
 }

@@ -43,27 +43,56 @@ CONTACT_PAIRS(writeonly)
 #define GRANULE_PARTICLES 4u
 
 #ifndef PAPER_LAW
-// Every slot of the granule against every other, four at a time (all indices constant once
-// unrolled).
+// Adds to each slot of group a the slots of group b that name its partner, and to each slot of
+// b those of a.
+void countBlock(uvec4 a, uvec4 b, inout uvec4 countsA, inout uvec4 countsB) {
+  for (uint c = 0u; c < 4u; ++c) {
+    uvec4 same = uvec4(equal(b, uvec4(a[c])));
+    countsA[c] += same.x + same.y + same.z + same.w;
+    countsB += same;
+  }
+}
+
+// The same within one group.
+void countOwnBlock(uvec4 a, inout uvec4 countsA) {
+  for (uint c = 0u; c < 4u; ++c) {
+    uvec4 same = uvec4(equal(a, uvec4(a[c])));
+    countsA[c] += same.x + same.y + same.z + same.w;
+  }
+}
+
+// Every slot of the granule against every other, a group of four against a group of four. Slots
+// fill from the first on, so a particle's group g > 0 is in use only when its group g - 1 is
+// full; the blocks of groups not in use are skipped (on a CPU a branch no lane takes costs
+// nothing, on a GPU it is a uniform branch for most warps). All indices are constant once
+// unrolled.
 void countPairs(uint first) {
   uvec4 partners[GRANULE_PARTICLES * CONTACT_SLOT_GROUPS];
-  for (uint g = 0u; g < GRANULE_PARTICLES * CONTACT_SLOT_GROUPS; ++g) {
-    partners[g] = slotPartners(first + g / CONTACT_SLOT_GROUPS, g % CONTACT_SLOT_GROUPS);
+  uvec4 counts[GRANULE_PARTICLES * CONTACT_SLOT_GROUPS];
+  bool inUse[GRANULE_PARTICLES * CONTACT_SLOT_GROUPS];
+  for (uint p = 0u; p < GRANULE_PARTICLES; ++p) {
+    for (uint g = 0u; g < CONTACT_SLOT_GROUPS; ++g) {
+      uint i = p * CONTACT_SLOT_GROUPS + g;
+      inUse[i] = g == 0u || slotsInUse(partners[i - 1u]) == 4u;
+      partners[i] = uvec4(PARTNER_NONE);
+      if (inUse[i]) partners[i] = slotPartners(first + p, g);
+      counts[i] = uvec4(0u);
+    }
+  }
+  for (uint i = 0u; i < GRANULE_PARTICLES * CONTACT_SLOT_GROUPS; ++i) {
+    if (inUse[i]) {
+      countOwnBlock(partners[i], counts[i]);
+      for (uint j = 0u; j < GRANULE_PARTICLES * CONTACT_SLOT_GROUPS; ++j) {
+        if (j < i && inUse[j]) countBlock(partners[i], partners[j], counts[i], counts[j]);
+      }
+    }
   }
   for (uint p = 0u; p < GRANULE_PARTICLES; ++p) {
     uvec4 slotCounts = uvec4(0u);
-    for (uint group = 0u; group < CONTACT_SLOT_GROUPS; ++group) {
-      uvec4 mine = partners[p * CONTACT_SLOT_GROUPS + group];
-      slotCounts.w += slotsInUse(mine);
-      uvec4 counts = uvec4(0u);
-      for (uint c = 0u; c < 4u; ++c) {
-        uvec4 same = uvec4(0u);
-        for (uint g = 0u; g < GRANULE_PARTICLES * CONTACT_SLOT_GROUPS; ++g) {
-          same += uvec4(equal(partners[g], uvec4(mine[c])));
-        }
-        counts[c] = same.x + same.y + same.z + same.w;
-      }
-      slotCounts[group] = packPairs(mine, counts);
+    for (uint g = 0u; g < CONTACT_SLOT_GROUPS; ++g) {
+      uint i = p * CONTACT_SLOT_GROUPS + g;
+      slotCounts[g] = packPairs(partners[i], counts[i]);
+      slotCounts.w += slotsInUse(partners[i]);
     }
     contactPairs[first + p] = slotCounts;
   }
