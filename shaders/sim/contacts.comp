@@ -6,10 +6,10 @@
 // Gather, not scatter: no float atomics, and the partners are summed in id order whenever the
 // lists were built, so the sum is bit-identical run to run and whatever the skin.
 //
-// The loop over the list only finds the partners in contact (closer than a diameter) and lists
-// them in order; the law is then evaluated from that list, PARTNER_BATCH at a time. In SIMD lanes
-// whose lists differ, the law's arithmetic then runs once per contact rather than once per
-// candidate any lane has in contact.
+// The loop over the list only marks the entries in contact (closer than a diameter), a bit each;
+// the law is then evaluated for the marked entries in order. In SIMD lanes whose lists differ,
+// the law's arithmetic then runs once per contact rather than once per candidate any lane has in
+// contact, and no array is indexed by a count that differs between lanes.
 //
 // The law is chosen when the kernel is compiled: PAPER_LAW selects the paper's (eq. 9, 10;
 // contactForce in common/contact_law.glsl), otherwise Hertz-Mindlin with history (hertzMindlin,
@@ -26,7 +26,6 @@
 layout(local_size_x = WORKGROUP_SIZE) in;
 
 // Partners and collider surfaces found before their contacts are evaluated (see above).
-#define PARTNER_BATCH 16
 #define COLLIDER_BATCH 4
 // No partner found (nextPartnerAfter).
 #define NO_PARTNER 0xffffffffu
@@ -277,14 +276,6 @@ void pairContact(Particle self, uint otherId) {
 }
 #endif
 
-// Partners in contact found and not yet evaluated: particle ids, ascending.
-uint partners[PARTNER_BATCH];
-
-// Evaluates the first `count` partners found, in order.
-void evaluatePartners(Particle self, uint count) {
-  for (uint k = 0u; k < count; ++k) pairContact(self, partners[k]);
-}
-
 // Particle `id` touches the current particle (closer than a diameter; the lists hold only
 // particles of other bodies, not both immovable).
 bool touches(Particle self, uint id) {
@@ -395,32 +386,27 @@ void main() {
 #endif
   float radius = particleGeom.x;
   // The partners in contact, in id order: the list's, then those beyond its capacity (from the
-  // grid), PARTNER_BATCH at a time.
+  // grid). The list is scanned first for the entries in contact (a bit each); the law is then
+  // evaluated once per contact, from one place in the code.
   uint inList = min(listed, uint(NEIGHBOUR_LIST_CAPACITY));
+  uint inContact = 0u;
+  for (uint k = 0u; k < inList; ++k) {
+    if (touches(self, texelFetch(neighbourListTexture, listEntry(i, k)).x)) inContact |= 1u << k;
+  }
   bool beyond = listed > uint(NEIGHBOUR_LIST_CAPACITY);
-  uint k = 0u;
-  uint last = 0u;  // the last candidate looked at
+  uint last = beyond ? texelFetch(neighbourListTexture, listEntry(i, inList - 1u)).x : 0u;
   for (;;) {
-    uint found = 0u;
-    while (found < uint(PARTNER_BATCH) && k < inList) {
-      last = texelFetch(neighbourListTexture, listEntry(i, k)).x;
-      ++k;
-      if (touches(self, last)) {
-        partners[found] = last;
-        ++found;
-      }
+    uint partner = NO_PARTNER;
+    if (inContact != 0u) {
+      partner = texelFetch(neighbourListTexture, listEntry(i, uint(findLSB(inContact)))).x;
+      inContact &= inContact - 1u;
+    } else if (beyond) {
+      partner = nextPartnerAfter(self, last);
+      last = partner;
+      beyond = partner != NO_PARTNER;
     }
-    while (found < uint(PARTNER_BATCH) && k == inList && beyond) {
-      last = nextPartnerAfter(self, last);
-      if (last == NO_PARTNER) {
-        beyond = false;
-      } else {
-        partners[found] = last;
-        ++found;
-      }
-    }
-    evaluatePartners(self, found);
-    if (k == inList && !beyond) break;
+    if (partner == NO_PARTNER) break;
+    pairContact(self, partner);
   }
 
   // Each collider type in its own loop (uniform control flow; see colliders.glsl). Every
