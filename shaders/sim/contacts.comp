@@ -311,16 +311,34 @@ uint nextPartnerAfter(Particle self, uint after) {
 }
 
 // Surfaces in contact found by the collider loops and not yet evaluated: the hit (normal,
-// overlap), the collider's index and its face.
+// overlap), the collider's index and its face. Written and read at constant indices only: the
+// number found differs between lanes, and llvmpipe writes an array at such an index lane by lane.
 vec4 hits[COLLIDER_BATCH];
 uint hitColliders[COLLIDER_BATCH];
 uint hitFaces[COLLIDER_BATCH];
 
 void keepHit(inout uint found, vec4 hit, uint collider, uint face) {
-  hits[found] = hit;
-  hitColliders[found] = collider;
-  hitFaces[found] = face;
+  for (uint j = 0u; j < uint(COLLIDER_BATCH); ++j) {
+    if (j == found) {
+      hits[j] = hit;
+      hitColliders[j] = collider;
+      hitFaces[j] = face;
+    }
+  }
   ++found;
+}
+
+void takeHit(uint h, out vec4 hit, out uint collider, out uint face) {
+  hit = hits[0];
+  collider = hitColliders[0];
+  face = hitFaces[0];
+  for (uint j = 1u; j < uint(COLLIDER_BATCH); ++j) {
+    if (h == j) {
+      hit = hits[j];
+      collider = hitColliders[j];
+      face = hitFaces[j];
+    }
+  }
 }
 
 // One contact of the current particle with the surface `hit` of collider `c` (its face `face`).
@@ -446,7 +464,10 @@ void main() {
       }
     }
     for (uint h = 0u; h < found; ++h) {
-      colliderContact(self, colliders[hitColliders[h]], hits[h], hitFaces[h], radius);
+      vec4 hit;
+      uint collider, face;
+      takeHit(h, hit, collider, face);
+      colliderContact(self, colliders[collider], hit, face, radius);
     }
     if (seen <= skip + uint(COLLIDER_BATCH)) break;
   }
