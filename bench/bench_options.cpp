@@ -204,7 +204,11 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
   app.add_option("--seed", seed, "lattice packing and box: seed of the jitter and orientations")
       ->capture_default_str();
   app.add_flag("--no-kernel-times", noKernelTimes,
-               "do not record per-kernel GL timer queries (to see their cost)");
+               "do not profile the kernels after the timed substeps");
+  app.add_option("--kernel-steps", measure.kernelSteps,
+                 "substeps profiled with per-kernel GL timer queries after the timed ones (which "
+                 "run without them)")
+      ->capture_default_str();
   app.add_option("--render", renderSize,
                  "also time the renderer's passes (shadow, scene, composite) on each measured "
                  "pile at WIDTH HEIGHT px, once per quality preset (low, medium, high)")
@@ -303,6 +307,7 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
       measure.render.height = renderSize[1];
     }
     if (measure.render.frames == 0) throw UsageError("--render-frames 0: must be >= 1");
+    if (measure.kernelSteps == 0) throw UsageError("--kernel-steps 0: must be >= 1");
     measure.kernelTimes = !noKernelTimes;
     measure.progress = !quiet;
     if (!options.jsonPath.empty()) checkWritable("--json", options.jsonPath);

@@ -54,6 +54,27 @@ double processCpuSeconds() {
   return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
 }
 
+// Per-kernel GPU time per substep over options.kernelSteps further substeps, with the timer
+// queries on (and off again after them); `steps` gets the substeps run.
+std::vector<KernelStep> profileKernels(World& world, const MeasureOptions& options,
+                                       std::uint32_t& steps) {
+  std::vector<KernelStep> kernels;
+  world.setProfileKernels(true);
+  for (steps = 0; steps < options.kernelSteps;) {
+    const std::uint32_t count = std::min(options.chunk, options.kernelSteps - steps);
+    world.substep(count);
+    steps += count;
+    // Timer queries are collected inside substep(); this only copies the totals.
+    accumulateKernels(kernels, world.kernelTimes());
+  }
+  world.setProfileKernels(false);
+  for (KernelStep& kernel : kernels) {
+    kernel.millisecondsPerStep /= steps;
+    kernel.dispatchesPerStep /= steps;
+  }
+  return kernels;
+}
+
 }  // namespace
 
 double SizeResult::cundallNumber() const {
@@ -140,7 +161,7 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
 
   const Clock::time_point setupStart = Clock::now();
   WorldSettings settings = pile.settings();
-  settings.profileKernels = options.kernelTimes;
+  settings.profileKernels = false;  // the timed substeps run without timer queries
   settings.statsEachFrame = false;  // substep() is used; stats are read when needed
   if (options.reserveParticles > settings.maxParticles) {
     settings.maxParticles = options.reserveParticles;
@@ -208,7 +229,6 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   result.settled = readPileState(world, pile, settledStats);
 
   // Measure: whole chunks of substeps, timed from a synchronised start to a synchronised end.
-  std::vector<KernelStep> kernels;
   const Clock::time_point start = Clock::now();
   const double cpuStart = processCpuSeconds();
   lastProgress = start;
@@ -221,8 +241,6 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
     const std::uint32_t count = std::min(options.chunk, plan.steps - result.steps);
     world.substep(count);
     result.steps += count;
-    // Timer queries are collected inside substep(); this only copies the totals.
-    if (options.kernelTimes) accumulateKernels(kernels, world.kernelTimes());
     if (options.progress && secondsSince(lastProgress) >= kProgressInterval) {
       lastProgress = Clock::now();
       std::fprintf(stderr, "%s measuring: %u/%u substeps, %.0f s wall\n", tag().c_str(),
@@ -240,11 +258,7 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   result.listBuilds = endStats.listBuilds - settledStats.listBuilds;
   result.listOverflows = endStats.neighbourListOverflows - settledStats.neighbourListOverflows;
   result.measured = readPileState(world, pile, endStats);
-  for (KernelStep& kernel : kernels) {
-    kernel.millisecondsPerStep /= result.steps;
-    kernel.dispatchesPerStep /= result.steps;
-  }
-  result.kernels = std::move(kernels);
+  if (options.kernelTimes) result.kernels = profileKernels(world, options, result.kernelSteps);
   if (options.progress) {
     std::fprintf(stderr, "%s measured %u substeps in %.1f s: Cundall number %.3g\n", tag().c_str(),
                  result.steps, result.wallSeconds, result.cundallNumber());

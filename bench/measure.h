@@ -38,8 +38,10 @@ struct MeasureOptions {
   double budgetSeconds = 0.0;
   /// Substeps per World::substep call (and per timer-query collection).
   std::uint32_t chunk = 10;
-  /// Record per-kernel GL timer queries while measuring (WorldSettings::profileKernels).
+  /// After the timed substeps, run `kernelSteps` more with per-kernel GL timer queries
+  /// (World::setProfileKernels). The timed substeps run without them, whose cost they would carry.
   bool kernelTimes = true;
+  std::uint32_t kernelSteps = 500;
   /// Progress lines on stderr.
   bool progress = true;
   /// Time the renderer on the measured pile (off unless a size is given).
@@ -104,6 +106,7 @@ struct SizeResult {
   std::uint64_t listBuilds = 0;            ///< neighbour-list builds during the measurement
   std::uint64_t listOverflows = 0;         ///< particles over a list's capacity at those builds
   std::vector<KernelStep> kernels;         ///< empty without kernel times
+  std::uint32_t kernelSteps = 0;           ///< substeps the kernel times are averaged over
   std::vector<RenderTiming> renders;       ///< one per quality preset; empty without --render
   double loadBefore = -1.0;  ///< 1-minute load average before the size ran (-1: unknown)
   double loadAfter = -1.0;

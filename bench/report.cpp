@@ -201,6 +201,7 @@ nlohmann::json reportJson(const BenchOptions& options, const BenchReport& report
   common["budget_seconds"] = measure.budgetSeconds;
   common["settle_budget_seconds"] = measure.settleBudgetSeconds;
   common["kernel_times"] = measure.kernelTimes;
+  common["kernel_steps"] = measure.kernelSteps;
   return {
       {"benchmark", scene["benchmark"]},
       {"description", scene["description"]},
@@ -317,7 +318,10 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
 
   const std::vector<std::string> names = kernelNames(report);
   if (!names.empty()) {
-    std::fprintf(out, "\nGPU time per substep, ms (GL timestamp queries):\n%-20s", "kernel");
+    std::fprintf(out,
+                 "\nGPU time per substep, ms (GL timestamp queries over %u substeps after the "
+                 "timed ones, which ran without them; wall: the timed substeps):\n%-20s",
+                 measure.kernelSteps, "kernel");
     for (const SizeResult& s : report.sizes) std::fprintf(out, " %10u", s.granules);
     std::fprintf(out, "\n");
     for (const std::string& name : names) {

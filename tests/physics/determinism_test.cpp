@@ -2,6 +2,7 @@
 // and driver, across runs and across worlds in one process.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 
@@ -122,6 +123,29 @@ TEST(Determinism, TheListSkinDoesNotChangeTheResult) {
   EXPECT_GT(runs[0].stats.listBuilds, 4 * runs[2].stats.listBuilds);
   EXPECT_LT(runs[2].stats.listBuilds, 300u);
   EXPECT_GT(runs[2].stats.neighbourListOverflows, 0u) << "the grid's share is not exercised";
+}
+
+TEST(Determinism, KernelProfilingChangesNoBit) {
+  // A benchmark times a span without the timer queries and profiles the next: switching them
+  // on and off between steps must not touch the state, and the times follow the switch.
+  testing::TestWorld plain, profiled;
+  buildPile(*plain);
+  buildPile(*profiled);
+  plain->substep(100);
+  profiled->substep(50);
+  profiled->setProfileKernels(true);
+  profiled->substep(30);
+  const std::vector<KernelTime> times = profiled->kernelTimes();
+  const auto contacts = std::find_if(times.begin(), times.end(),
+                                     [](const KernelTime& t) { return t.name == "contacts"; });
+  ASSERT_NE(contacts, times.end());
+  EXPECT_EQ(contacts->dispatches, 30u);
+  EXPECT_GT(contacts->milliseconds, 0.0);
+  profiled->setProfileKernels(false);
+  profiled->substep(20);
+  EXPECT_TRUE(profiled->kernelTimes().empty());
+  EXPECT_TRUE(identical(plain->readBodies(), profiled->readBodies()));
+  EXPECT_EQ(plain->readStateHash(), profiled->readStateHash());
 }
 
 TEST(Determinism, ADifferentSeedGivesADifferentPile) {

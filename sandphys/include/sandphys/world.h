@@ -139,6 +139,9 @@ class World {
   std::vector<BodyForce> takeBodyForces();
   /// Per-kernel GPU times of the last step (empty unless profileKernels). Sync point.
   std::vector<KernelTime> kernelTimes() const;
+  /// Turns WorldSettings::profileKernels on or off from the next step, e.g. to time a span
+  /// without the queries' cost and then profile another. Off, kernelTimes() is empty.
+  void setProfileKernels(bool enabled);
 
   struct Impl;
   /// Internal: for gl_interop.h and the test suite.

@@ -228,4 +228,10 @@ std::vector<KernelTime> World::kernelTimes() const {
   return out;
 }
 
+void World::setProfileKernels(bool enabled) {
+  m_impl->settings.profileKernels = enabled;
+  m_impl->profiler.setEnabled(enabled);
+  if (!enabled) m_impl->profiler.resetTotals();
+}
+
 }  // namespace sandphys
