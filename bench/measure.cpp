@@ -55,12 +55,11 @@ double processCpuSeconds() {
 }
 
 // Per-kernel GPU time per substep over options.kernelSteps further substeps, with the timer
-// queries on (and off again after them); `steps` gets the substeps run.
-std::vector<KernelStep> profileKernels(World& world, const MeasureOptions& options,
-                                       std::uint32_t& steps) {
+// queries on (and off again after them).
+std::vector<KernelStep> profileKernels(World& world, const MeasureOptions& options) {
   std::vector<KernelStep> kernels;
   world.setProfileKernels(true);
-  for (steps = 0; steps < options.kernelSteps;) {
+  for (std::uint32_t steps = 0; steps < options.kernelSteps;) {
     const std::uint32_t count = std::min(options.chunk, options.kernelSteps - steps);
     world.substep(count);
     steps += count;
@@ -69,8 +68,8 @@ std::vector<KernelStep> profileKernels(World& world, const MeasureOptions& optio
   }
   world.setProfileKernels(false);
   for (KernelStep& kernel : kernels) {
-    kernel.millisecondsPerStep /= steps;
-    kernel.dispatchesPerStep /= steps;
+    kernel.millisecondsPerStep /= options.kernelSteps;
+    kernel.dispatchesPerStep /= options.kernelSteps;
   }
   return kernels;
 }
@@ -258,7 +257,7 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   result.listBuilds = endStats.listBuilds - settledStats.listBuilds;
   result.listOverflows = endStats.neighbourListOverflows - settledStats.neighbourListOverflows;
   result.measured = readPileState(world, pile, endStats);
-  if (options.kernelTimes) result.kernels = profileKernels(world, options, result.kernelSteps);
+  if (options.kernelTimes) result.kernels = profileKernels(world, options);
   if (options.progress) {
     std::fprintf(stderr, "%s measured %u substeps in %.1f s: Cundall number %.3g\n", tag().c_str(),
                  result.steps, result.wallSeconds, result.cundallNumber());

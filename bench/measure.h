@@ -41,7 +41,7 @@ struct MeasureOptions {
   /// After the timed substeps, run `kernelSteps` more with per-kernel GL timer queries
   /// (World::setProfileKernels). The timed substeps run without them, whose cost they would carry.
   bool kernelTimes = true;
-  std::uint32_t kernelSteps = 500;
+  std::uint32_t kernelSteps = 500;  ///< substeps the kernel times are averaged over
   /// Progress lines on stderr.
   bool progress = true;
   /// Time the renderer on the measured pile (off unless a size is given).
@@ -106,7 +106,6 @@ struct SizeResult {
   std::uint64_t listBuilds = 0;            ///< neighbour-list builds during the measurement
   std::uint64_t listOverflows = 0;         ///< particles over a list's capacity at those builds
   std::vector<KernelStep> kernels;         ///< empty without kernel times
-  std::uint32_t kernelSteps = 0;           ///< substeps the kernel times are averaged over
   std::vector<RenderTiming> renders;       ///< one per quality preset; empty without --render
   double loadBefore = -1.0;  ///< 1-minute load average before the size ran (-1: unknown)
   double loadAfter = -1.0;

@@ -25,7 +25,7 @@
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 
-// Partners and collider surfaces found before their contacts are evaluated (see above).
+// Collider surfaces found before their contacts are evaluated (see main).
 #define COLLIDER_BATCH 4
 // No partner found (nextPartnerAfter).
 #define NO_PARTNER 0xffffffffu
@@ -328,6 +328,7 @@ void keepHit(inout uint found, vec4 hit, uint collider, uint face) {
   ++found;
 }
 
+// The surface keepHit kept as the h-th.
 void takeHit(uint h, out vec4 hit, out uint collider, out uint face) {
   hit = hits[0];
   collider = hitColliders[0];
