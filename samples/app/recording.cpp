@@ -42,6 +42,11 @@ constexpr FloatField kFloatFields[] = {
     {"steps_per_contact", [](WorldSettings& s) -> float& { return s.stepsPerContact; }},
     {"max_speed", [](WorldSettings& s) -> float& { return s.maxSpeed; }},
     {"list_skin", [](WorldSettings& s) -> float& { return s.listSkin; }},
+    {"sleep_linear_speed", [](WorldSettings& s) -> float& { return s.sleep.linearSpeed; }},
+    {"sleep_angular_speed", [](WorldSettings& s) -> float& { return s.sleep.angularSpeed; }},
+    {"sleep_time", [](WorldSettings& s) -> float& { return s.sleep.time; }},
+    {"sleep_wake_acceleration",
+     [](WorldSettings& s) -> float& { return s.sleep.wakeAcceleration; }},
 };
 
 struct CountField {
@@ -66,6 +71,7 @@ void appendWorldSettingsImpl(WorldSettings settings,
   }
   out.emplace_back(std::string(kWorldPrefix) + "stats_each_frame",
                    settings.statsEachFrame ? "1" : "0");
+  out.emplace_back(std::string(kWorldPrefix) + "sleep", settings.sleep.enabled ? "1" : "0");
   out.emplace_back(std::string(kWorldPrefix) + "contact_law",
                    std::string(scenes::contactLawName(settings.contactLaw)));
 }
@@ -95,6 +101,11 @@ WorldSettings worldSettingsFrom(const Recording& recording, WorldSettings settin
     if (name == "stats_each_frame") {
       if (text != "0" && text != "1") throw refuse();
       settings.statsEachFrame = text == "1";
+      known = true;
+    }
+    if (name == "sleep") {
+      if (text != "0" && text != "1") throw refuse();
+      settings.sleep.enabled = text == "1";
       known = true;
     }
     if (name == "contact_law") {

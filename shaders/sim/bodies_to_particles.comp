@@ -34,10 +34,18 @@ void main() {
   uint body = texelFetch(particleBodyTexture, int(i)).x;
   // A dead body's particles leave the lists at the next build, which every change of the bodies
   // asks for; their state is never read.
-  if ((texelFetch(bodyInfoTexture, int(body)).z & BODY_ALIVE) == 0u) return;
+  uint flags = texelFetch(bodyInfoTexture, int(body)).z;
+  if ((flags & BODY_ALIVE) == 0u) return;
+  vec4 velocity = texelFetch(bodyVelocityTexture, int(body));
+  // Immovable bodies never hold a neighbour awake; the others as their count says (the CPU sets
+  // 0 for a body it places: it wakes what it touches).
+  uint motion = (flags & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT;
+  uint calm = 0u;
+#ifdef SLEEPING
+  calm = motion == MOTION_STATIC ? CALM_UNBOUNDED : floatBitsToUint(velocity.w);
+#endif
   storeParticle(i, texelFetch(particleLocalTexture, int(i)), body,
                 texelFetch(bodyPositionTexture, int(body)).xyz,
-                texelFetch(bodyOrientationTexture, int(body)),
-                texelFetch(bodyVelocityTexture, int(body)).xyz,
-                texelFetch(bodyAngularVelocityTexture, int(body)).xyz);
+                texelFetch(bodyOrientationTexture, int(body)), velocity.xyz,
+                texelFetch(bodyAngularVelocityTexture, int(body)).xyz, calm);
 }

@@ -16,6 +16,12 @@
 // and common/contact_slots.glsl). Compiled a second time with CONTACT_LIST defined for
 // World::readContacts: the same contacts, the ones the next substep applies, are appended to a
 // list (each particle pair once, from the side that keeps its history) and nothing is written.
+//
+// Under SLEEPING (layout.glsl, "Sleep") each particle also finds the smallest calm count among
+// its partners. A sleeping particle first only finds what it touches: when every partner sleeps
+// or is immovable, no collider it touches moves and its contacts are those it fell asleep with,
+// it writes that count and nothing else (its history stays as it was); otherwise it computes its
+// contacts as an awake particle does.
 #include "common/layout.glsl"
 #include "common/quaternion.glsl"
 #include "common/spatial_hash.glsl"
@@ -70,6 +76,7 @@ struct Particle {
   vec3 spin;      // the body's angular velocity (HertzMindlin)
   uint id;
   uint body;
+  uint calm;  // the body's calm count (SLEEPING)
 };
 
 // What it gathers.
@@ -79,6 +86,13 @@ uint pairContacts = 0u;
 uint wallContacts = 0u;
 uint guards = 0u;  // PAPER_LAW: overlaps capped; otherwise contacts that found no free slot
 float largestOverlap = 0.0;
+// SLEEPING: the smallest calm count among the partners; 0 for a moving collider.
+uint neighbourCalm = CALM_UNBOUNDED;
+
+// The collider's surface moves (ColliderMotion).
+bool colliderMoves(Collider c) {
+  return any(notEqual(c.velocity.xyz, vec3(0.0))) || any(notEqual(c.spin.xyz, vec3(0.0)));
+}
 
 #ifdef CONTACT_LIST
 void record(uint a, uint b, uint bodyA, uint bodyB, uint collider, vec3 point, vec3 n, float xi,
@@ -210,11 +224,14 @@ void pairContact(Particle self, uint otherId) {
   vec3 n = d / dist;
   float xi = particleGeom.y - dist;
   largestOverlap = max(largestOverlap, xi);
-  vec3 otherSpin = texelFetch(particleSpinTexture, int(otherId)).xyz;
+  vec4 otherSpin = texelFetch(particleSpinTexture, int(otherId));
+#ifdef SLEEPING
+  neighbourCalm = min(neighbourCalm, floatBitsToUint(otherSpin.w));
+#endif
   // The contact point is the middle of the overlap: the same bits from both sides.
   precise vec3 point = 0.5 * (self.position.xyz + other.xyz);
   precise vec3 vRel = surfaceVelocity(self.velocity.xyz, self.spin, self.position.xyz, point) -
-                      surfaceVelocity(otherVelocity.xyz, otherSpin, other.xyz, point);
+                      surfaceVelocity(otherVelocity.xyz, otherSpin.xyz, other.xyz, point);
   float invMassSum = max(self.velocity.w, 0.0) + max(otherVelocity.w, 0.0);
   MindlinResult r = mindlinContact(self, particleSlotKey(otherId), xi, n, point, vRel,
                                    grainContact.x, shearContact.x, grainContact.y, invMassSum,
@@ -363,6 +380,9 @@ void colliderContact(Particle self, Collider c, vec4 hit, uint face, float radiu
   force += r.force;
 #endif
 #else
+#ifdef SLEEPING
+  if (colliderMoves(c)) neighbourCalm = 0u;
+#endif
   precise vec3 surface = c.velocity.xyz + cross(c.spin.xyz, point);
   precise vec3 vRel =
       surfaceVelocity(self.velocity.xyz, self.spin, self.position.xyz, point) - surface;
@@ -377,6 +397,45 @@ void colliderContact(Particle self, Collider c, vec4 hit, uint face, float radiu
 #else
   ++wallContacts;
 #endif
+}
+
+// Each collider type in its own loop (uniform control flow; see colliders.glsl). Every
+// particle runs the loops and only movable ones take the contacts: loads inside a divergent
+// branch run lane by lane on llvmpipe. The loops only find the surfaces in contact (keepHit: of
+// those, the batch from the `skip`-th on, `found` of them); the law is evaluated after them,
+// COLLIDER_BATCH at a time, from one place in the code (a particle touching more surfaces runs
+// the loops again for the next batch). Returns how many surfaces are in contact.
+uint findHits(Particle self, float radius, bool movable, uint skip, out uint found) {
+  uint seen = 0u;
+  found = 0u;
+  for (uint k = 0u; k < colliderEnds.x; ++k) {
+    vec4 hit = planeHit(colliders[k], self.position.xyz, radius);
+    if (movable && hit.w > 0.0) {
+      if (seen >= skip && found < uint(COLLIDER_BATCH)) keepHit(found, hit, k, 0u);
+      ++seen;
+    }
+  }
+  for (uint k = colliderEnds.x; k < colliderEnds.y; ++k) {
+    Collider c = colliders[k];
+    vec3 local = boxLocal(c, self.position.xyz);
+    for (int axis = 0; axis < BOX_AXES; ++axis) {
+      vec4 hit = boxHit(c, local, radius, axis);
+      if (movable && hit.w > 0.0) {
+        if (seen >= skip && found < uint(COLLIDER_BATCH)) {
+          keepHit(found, hit, k, boxFace(c, local, axis));
+        }
+        ++seen;
+      }
+    }
+  }
+  for (uint k = colliderEnds.y; k < colliderEnds.z; ++k) {
+    vec4 hit = revolutionHit(colliders[k], self.position.xyz, radius);
+    if (movable && hit.w > 0.0) {
+      if (seen >= skip && found < uint(COLLIDER_BATCH)) keepHit(found, hit, k, 0u);
+      ++seen;
+    }
+  }
+  return seen;
 }
 
 void main() {
@@ -398,10 +457,13 @@ void main() {
     return;
   }
 #ifndef PAPER_LAW
-  self.spin = texelFetch(particleSpinTexture, int(i)).xyz;
+  vec4 spin = texelFetch(particleSpinTexture, int(i));
+  self.spin = spin.xyz;
+  self.calm = floatBitsToUint(spin.w);
   loadSlots(self.id);
 #else
   self.spin = vec3(0.0);
+  self.calm = 0u;
 #endif
   float radius = particleGeom.x;
   // The partners in contact, in id order: the list's, then those beyond its capacity (from the
@@ -413,6 +475,31 @@ void main() {
     if (touches(self, texelFetch(neighbourListTexture, listEntry(i, k)).x)) inContact |= 1u << k;
   }
   bool beyond = listed > uint(NEIGHBOUR_LIST_CAPACITY);
+  uint found;
+  uint seen = findHits(self, radius, self.velocity.w > 0.0, 0u, found);
+#if defined(SLEEPING) && !defined(CONTACT_LIST)
+  if (self.calm >= sleepSteps.x) {
+    uint calm = CALM_UNBOUNDED;
+    for (uint bits = inContact; bits != 0u; bits &= bits - 1u) {
+      uint partner = texelFetch(neighbourListTexture, listEntry(i, uint(findLSB(bits)))).x;
+      calm = min(calm, floatBitsToUint(texelFetch(particleSpinTexture, int(partner)).w));
+    }
+    for (uint h = 0u; h < found; ++h) {
+      vec4 hit;
+      uint collider, face;
+      takeHit(h, hit, collider, face);
+      if (colliderMoves(colliders[collider])) calm = 0u;
+    }
+    uint contacts = min(uint(bitCount(inContact)) + seen, uint(CONTACT_SLOTS));
+    if (contacts != min(previousPairs.w, uint(CONTACT_SLOTS))) calm = 0u;
+    // Beyond the list or the first batch of surfaces, the contacts are not all known here.
+    if (!beyond && seen == found && calm >= sleepSteps.x) {
+      particleForce[i].w = uintBitsToFloat(calm);  // the force stays the last computed
+      return;
+    }
+    neighbourCalm = min(neighbourCalm, calm);
+  }
+#endif
   uint last = beyond ? texelFetch(neighbourListTexture, listEntry(i, inList - 1u)).x : 0u;
   for (;;) {
     uint partner = NO_PARTNER;
@@ -428,42 +515,10 @@ void main() {
     pairContact(self, partner);
   }
 
-  // Each collider type in its own loop (uniform control flow; see colliders.glsl). Every
-  // particle runs the loops and only movable ones take the contacts: loads inside a divergent
-  // branch run lane by lane on llvmpipe. The loops only find the surfaces in contact; the law
-  // is evaluated after them, COLLIDER_BATCH at a time, from one place in the code (a particle
-  // touching more surfaces runs the loops again for the next batch).
+  // The surfaces in contact (findHits), the first batch found above.
   bool movable = self.velocity.w > 0.0;
   for (uint skip = 0u;; skip += uint(COLLIDER_BATCH)) {
-    uint seen = 0u;   // surfaces in contact met in this pass
-    uint found = 0u;  // of them, kept for this batch
-    for (uint k = 0u; k < colliderEnds.x; ++k) {
-      vec4 hit = planeHit(colliders[k], self.position.xyz, radius);
-      if (movable && hit.w > 0.0) {
-        if (seen >= skip && found < uint(COLLIDER_BATCH)) keepHit(found, hit, k, 0u);
-        ++seen;
-      }
-    }
-    for (uint k = colliderEnds.x; k < colliderEnds.y; ++k) {
-      Collider c = colliders[k];
-      vec3 local = boxLocal(c, self.position.xyz);
-      for (int axis = 0; axis < BOX_AXES; ++axis) {
-        vec4 hit = boxHit(c, local, radius, axis);
-        if (movable && hit.w > 0.0) {
-          if (seen >= skip && found < uint(COLLIDER_BATCH)) {
-            keepHit(found, hit, k, boxFace(c, local, axis));
-          }
-          ++seen;
-        }
-      }
-    }
-    for (uint k = colliderEnds.y; k < colliderEnds.z; ++k) {
-      vec4 hit = revolutionHit(colliders[k], self.position.xyz, radius);
-      if (movable && hit.w > 0.0) {
-        if (seen >= skip && found < uint(COLLIDER_BATCH)) keepHit(found, hit, k, 0u);
-        ++seen;
-      }
-    }
+    if (skip > 0u) seen = findHits(self, radius, movable, skip, found);
     for (uint h = 0u; h < found; ++h) {
       vec4 hit;
       uint collider, face;
@@ -478,7 +533,11 @@ void main() {
   clearUnusedSlots(self.id);
   particleTorque[self.id] = vec4(torque, 0.0);
 #endif
+#ifdef SLEEPING
+  particleForce[self.id] = vec4(force, uintBitsToFloat(neighbourCalm));
+#else
   particleForce[self.id] = vec4(force, 0.0);
+#endif
   uvec4 stats = particleStats[self.id];
   stats.x = pairContacts;
   stats.y = floatBitsToUint(max(uintBitsToFloat(stats.y), largestOverlap));

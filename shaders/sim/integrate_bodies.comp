@@ -5,7 +5,10 @@
 // integrates (common/rigid_motion.glsl), under HertzMindlin counts the contacts its particles'
 // slots hold per partner (common/contact_pairs.glsl), and writes its particles' state for the
 // next substep (common/particle_state.glsl). Bodies flagged BODY_LARGE (every body that is not a
-// granule) are left to pass 4b.
+// granule) are left to pass 4b. Under SLEEPING (layout.glsl, "Sleep") a sleeping granule that
+// nothing awake touches returns at once; one that something awake touches counts its pairs (its
+// contacts were computed) and wakes if a partner moves, its contacts changed, or the force or
+// torque on it departs from balance by more than the wake acceleration; else it stays put.
 #include "common/layout.glsl"
 #include "common/quaternion.glsl"
 #include "common/contact_slots.glsl"
@@ -108,6 +111,17 @@ void main() {
   if ((info.z & BODY_LARGE) != 0u) return;
   uint motion = (info.z & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT;
   if (motion == MOTION_STATIC) return;
+  uint previousCalm = 0u;
+  uint neighbourCalm = CALM_UNBOUNDED;
+#ifdef SLEEPING
+  previousCalm = floatBitsToUint(bodyVelocity[b].w);
+  for (uint k = 0u; k < GRANULE_PARTICLES; ++k) {
+    neighbourCalm =
+        min(neighbourCalm, floatBitsToUint(texelFetch(particleForceTexture, int(info.x + k)).w));
+  }
+  bool asleep = previousCalm >= sleepSteps.x;
+  if (asleep && neighbourCalm >= sleepSteps.x) return;
+#endif
   // A granule's particles: its offsets turned by the orientation the contacts saw.
   vec4 q = bodyOrientation[b];
   vec4 local[GRANULE_PARTICLES];
@@ -122,13 +136,26 @@ void main() {
     torque += texelFetch(particleTorqueTexture, int(info.x + k)).xyz;
 #endif
   }
-  BodyMotion moved = integrateBody(b, info, force, torque);
 #ifndef PAPER_LAW
   countPairs(info.x);
 #endif
+#ifdef SLEEPING
+  if (asleep) {
+    float mass = bodyInertia[b].w;
+    vec3 unbalanced = force / mass + gravityDt.xyz;
+    float torqueLimit = mass * bodyAngularVelocity[b].w * sleepSpeeds.z;
+    bool wake = neighbourCalm == 0u || dot(unbalanced, unbalanced) > sleepSpeeds.z * sleepSpeeds.z ||
+                dot(torque, torque) > torqueLimit * torqueLimit;
+    if (!wake) return;
+    previousCalm = 0u;
+  }
+#endif
+  uint calmLimit = motion == MOTION_DYNAMIC ? sleepSteps.x : sleepSteps.x - 1u;
+  BodyMotion moved =
+      integrateBody(b, info, force, torque, previousCalm, neighbourCalm, calmLimit);
   if (!moved.alive) return;
   for (uint k = 0u; k < GRANULE_PARTICLES; ++k) {
     storeParticle(info.x + k, local[k], b, moved.position, moved.orientation, moved.velocity,
-                  moved.spin);
+                  moved.spin, moved.calm);
   }
 }

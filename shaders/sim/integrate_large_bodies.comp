@@ -52,6 +52,7 @@ shared vec4 movedPosition;
 shared vec4 movedOrientation;
 shared vec3 movedVelocity;
 shared vec3 movedSpin;
+shared uint movedCalm;
 
 #ifndef PAPER_LAW
 // Open addressing, partner -> number of the body's slots naming it. A body with more distinct
@@ -166,17 +167,20 @@ void main() {
     torque = shareTorque[0];
     largeBodyForces[2u * entry] += vec4(force, 1.0);
     largeBodyForces[2u * entry + 1u] += vec4(torque, 0.0);
-    BodyMotion moved = integrateBody(b, info, force, torque);
+    // Not granules: they never sleep (layout.glsl, "Sleep"), but sand can sleep against them.
+    BodyMotion moved = integrateBody(b, info, force, torque, floatBitsToUint(bodyVelocity[b].w),
+                                     CALM_UNBOUNDED, sleepSteps.x - 1u);
     movedPosition = vec4(moved.position, moved.alive ? 1.0 : 0.0);
     movedOrientation = moved.orientation;
     movedVelocity = moved.velocity;
     movedSpin = moved.spin;
+    movedCalm = moved.calm;
   }
   memoryBarrierShared();
   barrier();
   if (movedPosition.w == 0.0) return;
   for (uint k = info.x + t; k < info.x + info.y; k += WORKGROUP_SIZE) {
     storeParticle(k, texelFetch(particleLocalTexture, int(k)), b, movedPosition.xyz,
-                  movedOrientation, movedVelocity, movedSpin);
+                  movedOrientation, movedVelocity, movedSpin, movedCalm);
   }
 }

@@ -28,10 +28,10 @@ void main() {
   sum += colliders[0].a + colliders[0].b + colliders[0].c + colliders[0].material;
   sum += colliders[0].velocity + colliders[0].spin;
   sum += slotsProbe[0] + slotGroupProbe[0] + slotGroupsProbe[0];
-  sum += vec4(listPassesProbe[0]) + listGeom + vec4(listLayout);
+  sum += vec4(listPassesProbe[0]) + listGeom + vec4(listLayout) + sleepSpeeds + vec4(sleepSteps);
   sum.y += float(listCapacityProbe[0] + listDispatchProbe[0] + listPassProbe[0].x);
   sum += sinks[0].lo + sinks[0].hi;
-  sum += vec4(statsPartials[0].counts) + statsPartials[0].sums;
+  sum += vec4(statsPartials[0].counts) + statsPartials[0].sums + vec4(statsPartials[0].sleep);
   sum += contactList[0] + vec4(float(contactListCount + contactListCapacity + pad0 + pad1));
   sum.x += float(particleBody[0]);
   bodyPosition[0] = sum;

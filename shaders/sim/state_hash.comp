@@ -61,9 +61,11 @@ void main() {
     vec4 q = bodyOrientation[b];
     h = absorb3(h, q);
     h = absorb(h, floatBitsToUint(q.w));
-    h = absorb3(h, bodyVelocity[b]);
+    vec4 v = bodyVelocity[b];
+    h = absorb3(h, v);
     h = absorb3(h, bodyAngularVelocity[b]);
-    h = absorb(h, (bodyInfo[b].z & BODY_ALIVE) != 0u ? 1u : 0u);
+    // The status word (docs/recording.md): alive, and the calm count above it (0 without sleep).
+    h = absorb(h, ((bodyInfo[b].z & BODY_ALIVE) != 0u ? 1u : 0u) | (floatBitsToUint(v.w) << 1));
     sum += h;
   }
 #ifndef PAPER_LAW

@@ -20,12 +20,14 @@ STATS_PARTIALS(writeonly)
 
 shared uvec4 sharedCounts[STATS_THREADS];
 shared vec4 sharedSums[STATS_THREADS];
+shared uint sharedAsleep[STATS_THREADS];
 
 void main() {
   uint local = gl_LocalInvocationID.x;
   uint stride = gl_NumWorkGroups.x * STATS_THREADS;
   uvec4 c = uvec4(0u);
   vec4 s = vec4(0.0);
+  uint asleep = 0u;
   for (uint i = gl_GlobalInvocationID.x; i < counts.x; i += stride) {
     uvec4 p = particleStats[i];
     c.x += p.x;
@@ -38,7 +40,12 @@ void main() {
     uvec4 info = bodyInfo[b];
     c.w += info.w;
     if ((info.z & BODY_ALIVE) == 0u) continue;
-    if ((info.z & BODY_GRANULE) != 0u) s.w += 1.0;
+    if ((info.z & BODY_GRANULE) != 0u) {
+      s.w += 1.0;
+#ifdef SLEEPING
+      if (floatBitsToUint(bodyVelocity[b].w) >= sleepSteps.x) ++asleep;
+#endif
+    }
     if (((info.z & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT) != MOTION_DYNAMIC) continue;
     float mass = bodyInertia[b].w;
     vec3 v = bodyVelocity[b].xyz;
@@ -48,6 +55,7 @@ void main() {
   }
   sharedCounts[local] = c;
   sharedSums[local] = s;
+  sharedAsleep[local] = asleep;
   barrier();
   for (uint width = STATS_THREADS / 2u; width > 0u; width >>= 1u) {
     if (local < width) {
@@ -55,11 +63,13 @@ void main() {
       vec4 a = sharedSums[local];
       vec4 o = sharedSums[local + width];
       sharedSums[local] = vec4(a.xy + o.xy, max(a.z, o.z), a.w + o.w);
+      sharedAsleep[local] += sharedAsleep[local + width];
     }
     barrier();
   }
   if (local == 0u) {
     statsPartials[gl_WorkGroupID.x].counts = sharedCounts[0];
     statsPartials[gl_WorkGroupID.x].sums = sharedSums[0];
+    statsPartials[gl_WorkGroupID.x].sleep = uvec4(sharedAsleep[0], 0u, 0u, 0u);
   }
 }

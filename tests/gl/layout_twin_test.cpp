@@ -66,6 +66,10 @@ TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
   EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "listGeom"), GLint(offsetof(SimParams, listGeom)));
   EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "listLayout"),
             GLint(offsetof(SimParams, listLayout)));
+  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "sleepSpeeds"),
+            GLint(offsetof(SimParams, sleepSpeeds)));
+  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "sleepSteps"),
+            GLint(offsetof(SimParams, sleepSteps)));
   EXPECT_EQ(blockSize(program, GL_UNIFORM_BLOCK, "SimParams"), GLint(sizeof(SimParams)));
 
   EXPECT_EQ(stride(program, "colliders[0].a"), GLint(sizeof(GpuCollider)));
@@ -81,6 +85,8 @@ TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
   EXPECT_EQ(stride(program, "statsPartials[0].counts"), GLint(sizeof(GpuStatsPartial)));
   EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, "statsPartials[0].sums"),
             GLint(offsetof(GpuStatsPartial, sums)));
+  EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, "statsPartials[0].sleep"),
+            GLint(offsetof(GpuStatsPartial, sleep)));
   EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, "contactList[0]"), 16);
   EXPECT_EQ(stride(program, "contactList[0]"), 16);
   EXPECT_EQ(stride(program, "bodyPosition[0]"), 16);

@@ -69,6 +69,8 @@ struct WorldStats {
   std::uint32_t particles = 0;  ///< particle slots in use
   std::uint32_t granulesSpawned = 0;
   std::uint32_t granulesAlive = 0;
+  /// Of them, asleep (WorldSettings::sleep); the others are awake.
+  std::uint32_t granulesAsleep = 0;
   std::uint32_t granulesKilled = 0;  ///< removed by sinks
   /// Emitted granules that were not born because their place was taken (a grain thrown back up
   /// under an emitter); they never move nor touch anything.

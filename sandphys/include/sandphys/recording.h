@@ -22,7 +22,16 @@ struct StoredBody {
   std::array<float, 3> velocity{};         ///< m/s
   std::array<float, 3> angularVelocity{};  ///< rad/s, world frame
   bool alive = true;                       ///< false once a sink removed it
+  /// Calm count (WorldSettings::sleep, docs/architecture.md "sleep"): asleep at
+  /// SleepModel::substeps; always 0 without sleep. Below 2^30.
+  std::uint32_t calm = 0;
 };
+
+/// The one word the state hash and recordings keep of a StoredBody's alive flag and calm count:
+/// bit 0 alive, the calm count above it (so 1 or 0 without sleep).
+inline std::uint32_t statusWord(const StoredBody& b) {
+  return (b.alive ? 1u : 0u) | (b.calm << 1);
+}
 
 /// Contact slots each particle owns under ContactLaw::HertzMindlin (docs/architecture.md,
 /// "contacts"): contacts beyond these get no history and are counted.
@@ -57,7 +66,7 @@ struct WorldSnapshot {
 std::uint64_t stateHash(const WorldSnapshot& snapshot);
 
 /// Where two states first differ: the lowest body slot, then the first field in the order of
-/// StoredBody ("position.x" ... "angularVelocity.z", "alive"); field "body count" when the
+/// StoredBody ("position.x" ... "angularVelocity.z", "alive", "calm"); field "body count" when the
 /// number of slots differs (body is then the smaller count). Then the contact history: the
 /// lowest particle (subject Particle), "contact slot K spring.x" ... "contact slot K key",
 /// "contact pairs W", or "particle count". Also for inputs (below).

@@ -12,6 +12,7 @@
 #include "sandphys/readback.h"
 #include "sandphys/recording.h"
 #include "sandphys/settings.h"
+#include "sandphys/sleep_model.h"
 #include "sandphys/spawn.h"
 #include "sandphys/step_report.h"
 #include "sandphys/world.h"

@@ -52,6 +52,33 @@ struct SurfaceMaterial {
   float restitution = 0.5f;
 };
 
+/// When granules fall asleep and wake (docs/architecture.md, "sleep"). A granule whose speeds
+/// stay below both thresholds for `time` falls asleep if every granule it touches has been calm
+/// as long (counted along the contacts, so that a touching group falls asleep together); asleep,
+/// it is not integrated and its contacts with sleeping or immovable partners are not computed.
+/// It wakes when a touching body moves, when its contacts change, when the force on it departs
+/// from what held it at rest by more than wakeAcceleration (per unit mass), and on World::wake.
+/// Zero fields take the defaults from d and g = |gravity|. ContactLaw::HertzMindlin only.
+struct SleepSettings {
+  /// Off keeps every granule awake, and the step exactly as without sleep.
+  bool enabled = false;
+  /// Linear speed threshold in m/s; >= 0. 0 selects kSleepLinearSpeed · sqrt(g d).
+  float linearSpeed = 0.0f;
+  /// Angular speed threshold in rad/s; >= 0. 0 selects kSleepAngularSpeed · sqrt(g / d).
+  float angularSpeed = 0.0f;
+  /// Time below both thresholds before sleep, in s; >= 0. 0 selects kSleepTime · sqrt(d / g).
+  float time = 0.0f;
+  /// Unbalanced force per unit mass (m/s²) that wakes a sleeping granule touched by an awake
+  /// one; >= 0. 0 selects kSleepWakeAcceleration · g.
+  float wakeAcceleration = 0.0f;
+};
+
+/// The defaults of SleepSettings, in units of sqrt(g d), sqrt(g / d), sqrt(d / g) and g.
+inline constexpr float kSleepLinearSpeed = 0.01f;
+inline constexpr float kSleepAngularSpeed = 0.02f;
+inline constexpr float kSleepTime = 10.0f;
+inline constexpr float kSleepWakeAcceleration = 0.5f;
+
 /// Everything a World needs at creation. Plain aggregate: designated initialisers work on it.
 struct WorldSettings {
   /// Diameter d of every particle in m; > 0. The neighbour grid's cells are d + listSkin.
@@ -91,6 +118,8 @@ struct WorldSettings {
   bool statsEachFrame = true;
   /// Record GL timer queries per kernel (costs a little; read with World::kernelTimes).
   bool profileKernels = false;
+  /// Sleeping sand (off by default).
+  SleepSettings sleep{};
 };
 
 /// Fewest substeps per contact duration t_n a World accepts; fewer is refused as unstable.

@@ -13,6 +13,7 @@
 #include "sandphys/readback.h"
 #include "sandphys/recording.h"
 #include "sandphys/settings.h"
+#include "sandphys/sleep_model.h"
 #include "sandphys/spawn.h"
 #include "sandphys/step_report.h"
 
@@ -51,6 +52,8 @@ class World {
   const WorldSettings& settings() const;
   /// The resolved contact law (stiffness, damping, time step).
   const ContactModel& contactModel() const;
+  /// The resolved sleep settings (thresholds, substeps before sleep).
+  const SleepModel& sleepModel() const;
   /// The fixed substep, s.
   float timeStep() const;
 
@@ -70,8 +73,13 @@ class World {
   /// displacement / seconds, and for a box the rotation angle / seconds about its axis. A
   /// descriptor of another kind than before gets zero motion. Throws InvalidId, InvalidArgument.
   void moveCollider(ColliderId id, const ColliderShape& shape, float seconds);
-  /// A kill volume; removed granules are counted in WorldStats::granulesKilled.
+  /// A kill volume; removed granules are counted in WorldStats::granulesKilled. Wakes the
+  /// granules in it.
   SinkId addSink(const Sink& sink);
+  /// Wakes every sleeping granule whose centre lies in the box [lo, hi] (docs/architecture.md,
+  /// "sleep"); the granules it touches wake too if it then moves. Nothing without sleep. Throws
+  /// InvalidArgument for non-finite or inverted bounds.
+  void wake(Vec3 lo, Vec3 hi);
   /// A static particle floor (see RoughFloor); returns its body.
   BodyId addRoughFloor(const RoughFloor& floor);
   /// Adds one rigid body built from `shape`; throws CapacityExceeded when bodies or particles run

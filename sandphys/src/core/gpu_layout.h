@@ -164,6 +164,7 @@ struct GpuStatsPartial {
   GpuUVec4 counts;  // x: particle-particle contact ends, y: collider contacts,
                     // z: penetration-guard count, w: velocity-guard count
   GpuVec4 sums;     // x: translational KE, y: rotational KE, z: max overlap, w: alive granules
+  GpuUVec4 sleep;   // x: sleeping granules; y, z, w: unused
 };
 
 /// uniform SimParams in layout.glsl (std140).
@@ -178,13 +179,15 @@ struct SimParams {
   GpuVec4 shearContact;
   GpuVec4 listGeom;
   GpuUVec4 listLayout;
+  GpuVec4 sleepSpeeds;
+  GpuUVec4 sleepSteps;
 };
 
 static_assert(sizeof(GpuCollider) == 96);
 static_assert(sizeof(GpuSink) == 32);
 static_assert(sizeof(GpuContactRecord) == 80);
-static_assert(sizeof(GpuStatsPartial) == 32);
-static_assert(sizeof(SimParams) == 160);
+static_assert(sizeof(GpuStatsPartial) == 48);
+static_assert(sizeof(SimParams) == 192);
 static_assert(offsetof(SimParams, counts) == 64);
 
 }  // namespace sandphys::detail

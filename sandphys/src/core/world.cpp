@@ -140,6 +140,7 @@ GpuCollider toGpu(const Funnel& f) {
 
 World::Impl::Impl(const GpuContext& context, const WorldSettings& s) : gpu(&context), settings(s) {
   model = ContactModel::fromSettings(settings);
+  sleep = SleepModel::fromSettings(settings, model.timeStep);
   require(settings.maxSubstepsPerFrame > 0, "WorldSettings.maxSubstepsPerFrame",
           settings.maxSubstepsPerFrame, "must be > 0");
   require(settings.maxBodies > 0, "WorldSettings.maxBodies", settings.maxBodies, "must be > 0");
@@ -157,7 +158,7 @@ World::Impl::Impl(const GpuContext& context, const WorldSettings& s) : gpu(&cont
   granule = tetrahedronTemplate(settings.particleDiameter, settings.material.density);
 
   context.makeCurrent();
-  kernels.compile(settings.contactLaw);
+  kernels.compile(settings.contactLaw, sleep.enabled);
   buffers.allocate(bodyCapacity, particleCapacity, tableCapacity, settings.maxColliders, 0, 0,
                    keepsHistory());
   profiler.setEnabled(settings.profileKernels);
@@ -312,6 +313,9 @@ const WorldSettings& World::settings() const {
 const ContactModel& World::contactModel() const {
   return m_impl->model;
 }
+const SleepModel& World::sleepModel() const {
+  return m_impl->sleep;
+}
 float World::timeStep() const {
   return m_impl->model.timeStep;
 }
@@ -421,7 +425,26 @@ SinkId World::addSink(const Sink& sink) {
   w.buffers[kSinks].upload(w.sinks.size() * sizeof(GpuSink), sizeof(GpuSink), &gpuSink);
   w.sinks.push_back(gpuSink);
   w.paramsDirty = true;
+  // A sleeping granule is not integrated, so a sink would not take it.
+  wake(sink.min, sink.max);
   return SinkId{std::uint32_t(w.sinks.size() - 1)};
+}
+
+void World::wake(Vec3 lo, Vec3 hi) {
+  requireFiniteVec("World::wake lo", lo);
+  requireFiniteVec("World::wake hi", hi);
+  require(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z, "World::wake hi.x/y/z", hi.x,
+          "must be >= lo on every axis");
+  Impl& w = *m_impl;
+  if (!w.sleep.enabled || w.bodyCount == 0) return;
+  w.gpu->makeCurrent();
+  if (w.paramsDirty) w.uploadParams();
+  w.buffers.bindAll();
+  glUseProgram(w.kernels.wakeRegion);
+  glUniform3f(0, lo.x, lo.y, lo.z);
+  glUniform3f(1, hi.x, hi.y, hi.z);
+  w.dispatch(w.kernels.wakeRegion, "wake_region", w.bodyCount, kWorkgroupSize);
+  gl::check("World::wake");
 }
 
 BodyId World::addRoughFloor(const RoughFloor& floor) {
@@ -562,7 +585,9 @@ void World::restoreSnapshot(const WorldSnapshot& snapshot) {
     const StoredBody& b = snapshot.bodies[i];
     position[i] = {b.position[0], b.position[1], b.position[2], position[i].w};
     orientation[i] = {b.orientation[0], b.orientation[1], b.orientation[2], b.orientation[3]};
-    velocity[i] = {b.velocity[0], b.velocity[1], b.velocity[2], velocity[i].w};
+    float calm;
+    std::memcpy(&calm, &b.calm, sizeof calm);
+    velocity[i] = {b.velocity[0], b.velocity[1], b.velocity[2], calm};
     spin[i] = {b.angularVelocity[0], b.angularVelocity[1], b.angularVelocity[2], spin[i].w};
     info[i].z = b.alive ? (info[i].z | kBodyAlive) : (info[i].z & ~kBodyAlive);
   }

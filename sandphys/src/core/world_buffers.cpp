@@ -218,10 +218,11 @@ std::uint64_t WorldBuffers::bytes() const {
   return total;
 }
 
-void WorldKernels::compile(ContactLaw law) {
+void WorldKernels::compile(ContactLaw law, bool sleeping) {
   gl::ShaderLibrary library;
   std::vector<std::string> defines;
   if (law == ContactLaw::PaperViscous) defines.push_back("PAPER_LAW 1");
+  if (sleeping) defines.push_back("SLEEPING 1");
   auto compile = [&](const char* name, std::vector<std::string> extra = {}) {
     extra.insert(extra.end(), defines.begin(), defines.end());
     return library.compileCompute(name, extra);
@@ -242,12 +243,13 @@ void WorldKernels::compile(ContactLaw law) {
   statsReduce = compile("sim/stats_reduce.comp");
   stateHash = compile("sim/state_hash.comp");
   spawnCheck = compile("sim/spawn_check.comp");
+  if (sleeping) wakeRegion = compile("sim/wake_region.comp");
 }
 
 void WorldKernels::release() {
   for (GLuint p : {bodiesToParticles, listCheck, gridCount, scanBlocks, scanBlockSums, scanAdd,
                    gridScatter, gridSort, listBuild, contacts, contactList, integrateBodies,
-                   integrateLargeBodies, statsReduce, stateHash, spawnCheck}) {
+                   integrateLargeBodies, statsReduce, stateHash, spawnCheck, wakeRegion}) {
     if (p) glDeleteProgram(p);
   }
   *this = {};

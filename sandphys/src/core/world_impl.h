@@ -60,9 +60,11 @@ struct WorldKernels {
   GLuint statsReduce = 0;
   GLuint stateHash = 0;
   GLuint spawnCheck = 0;
+  GLuint wakeRegion = 0;  // with sleeping only
 
-  /// Compiles every kernel for `law` (PAPER_LAW defined for ContactLaw::PaperViscous).
-  void compile(ContactLaw law);
+  /// Compiles every kernel for `law` (PAPER_LAW defined for ContactLaw::PaperViscous) and, with
+  /// `sleeping`, for sleeping sand (SLEEPING defined).
+  void compile(ContactLaw law, bool sleeping);
   void release();
 };
 
@@ -83,6 +85,7 @@ struct World::Impl {
   const GpuContext* gpu = nullptr;
   WorldSettings settings;
   ContactModel model;
+  SleepModel sleep;
   ParticleTemplate granule;
 
   std::uint32_t bodyCapacity = 0;

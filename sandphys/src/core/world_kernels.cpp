@@ -39,6 +39,8 @@ void World::Impl::uploadParams() {
   }
   p.colliderEnds = {ends[0], ends[1], ends[2], 0u};
   p.shearContact = {model.shearStiffnessGrain, model.shearStiffnessWall, 0.0f, 0.0f};
+  p.sleepSpeeds = {sleep.linearSpeed, sleep.angularSpeed, sleep.wakeAcceleration, 0.0f};
+  p.sleepSteps = {sleep.substeps, 0u, 0u, 0u};
   buffers[kColliders].upload(0, sorted.size() * sizeof(GpuCollider), sorted.data());
   buffers.params.upload(0, sizeof p, &p);
   paramsDirty = false;
@@ -187,6 +189,7 @@ WorldStats World::Impl::reduceStats() {
     s.kineticEnergy += double(p.sums.x) + double(p.sums.y);
     s.maxOverlap = std::max(s.maxOverlap, double(p.sums.z));
     alive += p.sums.w;
+    s.granulesAsleep += p.sleep.x;
   }
   s.bodies = bodyCount;
   s.particles = particleCount;

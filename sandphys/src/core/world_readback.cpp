@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 
 #include "core/contact_state.h"
 #include "core/world_impl.h"
@@ -92,6 +93,7 @@ WorldSnapshot World::readSnapshot() const {
     b.velocity = {v.x, v.y, v.z};
     b.angularVelocity = {omega.x, omega.y, omega.z};
     b.alive = (stored.info[i].z & kBodyAlive) != 0;
+    std::memcpy(&b.calm, &v.w, sizeof b.calm);
   }
   if (w.keepsHistory()) snapshot.contacts = downloadContacts(w.buffers, w.particleCount);
   return snapshot;

@@ -195,7 +195,9 @@ WorldSnapshot readSnapshot(Reader& in, const std::string& context) {
     for (float& v : b.orientation) v = body.get<float>();
     for (float& v : b.velocity) v = body.get<float>();
     for (float& v : b.angularVelocity) v = body.get<float>();
-    b.alive = body.get<std::uint32_t>() != 0;
+    const auto status = body.get<std::uint32_t>();
+    b.alive = (status & 1u) != 0;
+    b.calm = status >> 1;
   }
   snapshot.contacts.resize(particles);
   for (StoredContacts& c : snapshot.contacts) {
@@ -289,7 +291,7 @@ void RecordingWriter::addSnapshot(const WorldSnapshot& snapshot) {
     for (float v : b.orientation) raw.put(v);
     for (float v : b.velocity) raw.put(v);
     for (float v : b.angularVelocity) raw.put(v);
-    raw.put(std::uint32_t(b.alive ? 1u : 0u));
+    raw.put(statusWord(b));
   }
   for (const StoredContacts& c : snapshot.contacts) {
     for (const auto& slot : c.slots) {

@@ -100,7 +100,7 @@ std::uint64_t stateHash(const WorldSnapshot& snapshot) {
     for (float v : b.orientation) h = absorb(h, v);
     for (float v : b.velocity) h = absorb(h, v);
     for (float v : b.angularVelocity) h = absorb(h, v);
-    h = absorb(h, std::uint32_t(b.alive ? 1u : 0u));
+    h = absorb(h, statusWord(b));
     low += h.x;
     high += h.y;
   }
@@ -126,7 +126,7 @@ std::uint64_t stateHash(const WorldSnapshot& snapshot) {
 std::string StateDifference::describe() const {
   std::string text = std::string(subject == Subject::Particle ? "particle " : "body ") +
                      std::to_string(body) + " " + field + ": recorded ";
-  if (integer || field == "body count" || field == "alive" || field == "body" ||
+  if (integer || field == "body count" || field == "alive" || field == "calm" || field == "body" ||
       field == "motion") {
     return text + std::to_string(static_cast<long long>(recorded)) + ", replayed " +
            std::to_string(static_cast<long long>(replayed));
@@ -147,6 +147,9 @@ std::optional<StateDifference> firstDifference(const WorldSnapshot& recorded,
     }
     if (a.alive != b.alive) {
       return StateDifference{std::uint32_t(i), "alive", double(a.alive), double(b.alive)};
+    }
+    if (a.calm != b.calm) {
+      return StateDifference{std::uint32_t(i), "calm", double(a.calm), double(b.calm)};
     }
   }
   if (recorded.bodies.size() != replayed.bodies.size()) {

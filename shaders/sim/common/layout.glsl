@@ -22,7 +22,7 @@
 #define BODY_POSITION(access) layout(std430, binding = 0) access buffer BodyPositionBuffer { vec4 bodyPosition[]; };
 // Unit quaternion (x, y, z, w) from the body's principal frame to the world.
 #define BODY_ORIENTATION(access) layout(std430, binding = 1) access buffer BodyOrientationBuffer { vec4 bodyOrientation[]; };
-// xyz: linear velocity (m/s).
+// xyz: linear velocity (m/s); w: calm count (uint bits; see "Sleep" below, 0 without SLEEPING).
 #define BODY_VELOCITY(access) layout(std430, binding = 2) access buffer BodyVelocityBuffer { vec4 bodyVelocity[]; };
 // xyz: angular velocity (rad/s, world frame); w: bounding radius (m).
 #define BODY_ANGULAR_VELOCITY(access) layout(std430, binding = 3) access buffer BodyAngularVelocityBuffer { vec4 bodyAngularVelocity[]; };
@@ -41,7 +41,8 @@
 #define PARTICLE_POSITION(access) layout(std430, binding = 8) access buffer ParticlePositionBuffer { vec4 particlePosition[]; };
 // xyz: world velocity (m/s), eq. 8; w: particle inverse mass as in particleLocal (-1: static).
 #define PARTICLE_VELOCITY(access) layout(std430, binding = 9) access buffer ParticleVelocityBuffer { vec4 particleVelocity[]; };
-// xyz: contact + collider force of the last substep (N).
+// xyz: contact + collider force of the last substep (N); w: SLEEPING: the neighbours' calm
+// (uint bits; see "Sleep" below), 0 otherwise.
 #define PARTICLE_FORCE(access) layout(std430, binding = 10) access buffer ParticleForceBuffer { vec4 particleForce[]; };
 // x: particle-particle contacts in the last substep; y: largest overlap since the stats were read
 // (float bits); z: guard count since creation (PAPER_LAW: overlaps capped; otherwise contacts that
@@ -142,6 +143,7 @@ struct SinkBox {
 struct StatsPartial {
   uvec4 counts;  // x: particle-particle contact ends; y: collider contacts; z: penetration guards; w: velocity guards
   vec4 sums;     // x: translational KE (J); y: rotational KE (J); z: max overlap (m); w: alive granules
+  uvec4 sleep;   // x: sleeping granules (SLEEPING); y, z, w: unused
 };
 #define STATS_PARTIALS(access) layout(std430, binding = 22) access buffer StatsPartialsBuffer { StatsPartial statsPartials[]; };
 // Contact list for read-back: 5 vec4 per record (contacts.comp with CONTACT_LIST).
@@ -159,7 +161,8 @@ struct StatsPartial {
 // acting at the contact point (ContactLaw::HertzMindlin; zero under PAPER_LAW).
 #define PARTICLE_TORQUE(access) layout(std430, binding = 27) access buffer ParticleTorqueBuffer { vec4 particleTorque[]; };
 // Per particle (HertzMindlin), written with particlePosition: xyz: angular velocity of the
-// owning body (rad/s), so that a contact reads its partner's spin in one fetch.
+// owning body (rad/s), so that a contact reads its partner's spin in one fetch; w: the owning
+// body's calm count (uint bits; CALM_UNBOUNDED for immovable bodies), 0 without SLEEPING.
 #define PARTICLE_SPIN(access) layout(std430, binding = 28) access buffer ParticleSpinBuffer { vec4 particleSpin[]; };
 // The contacts of ContactLaw::HertzMindlin that persist across substeps (common/contact_slots.glsl):
 // CONTACT_SLOTS slots per particle, CONTACT_SLOTS_PER_GROUP of them in each of the group buffers
@@ -178,6 +181,16 @@ struct StatsPartial {
 // use (at least that many: a particle left without contacts may keep a stale count).
 #define CONTACT_PAIRS(access) layout(std430, binding = 32) access buffer ContactPairsBuffer { uvec4 contactPairs[]; };
 
+// Sleep (SLEEPING, docs/architecture.md "sleep"). A body's calm count is the number of substeps
+// its speeds have been below the thresholds, but at most one more than the smallest count among
+// the bodies it touches: so a body reaches sleepSteps.x, and sleeps, only when every body within
+// k contacts of it has been calm for sleepSteps.x - k substeps, and a touching group falls
+// asleep together. Only dynamic granules sleep; the count of every other movable body stops at
+// sleepSteps.x - 1. The contacts pass leaves in particleForce.w the smallest count among the
+// particle's partners (CALM_UNBOUNDED: none), 0 when a moving collider touches it or, asleep,
+// when its contacts are not those it fell asleep with.
+#define CALM_UNBOUNDED 0xffffffffu
+
 // Constant for the whole step; set by World when settings or counts change.
 layout(std140, binding = 0) uniform SimParams {
   vec4 gravityDt;      // xyz: gravity (m/s^2); w: time step (s)
@@ -190,6 +203,8 @@ layout(std140, binding = 0) uniform SimParams {
   vec4 shearContact;   // x: k_t0 grain-grain; y: k_t0 grain-wall (N/m^3/2; k_t = k_t0 sqrt(xi)); z, w: unused
   vec4 listGeom;       // x: skin (m); y: (d + skin)^2; z: (skin / 2)^2 (m^2); w: unused
   uvec4 listLayout;    // x: stride of a neighbour-list entry (the particles in use); y, z, w: unused
+  vec4 sleepSpeeds;    // SLEEPING: x: linear speed threshold (m/s); y: angular (rad/s); z: wake acceleration (m/s^2); w: unused
+  uvec4 sleepSteps;    // SLEEPING: x: substeps calm before sleep (SleepModel::substeps); y, z, w: unused
 };
 
 // Linear thread index of a dispatch that World may fold into two dimensions. A macro, because

@@ -6,17 +6,19 @@
 // COUNTERS and, under HertzMindlin, PARTICLE_SPIN (and includes quaternion.glsl).
 
 // Particle `k` of body `body` (`local`: its particleLocal entry) at the body's centre `centre`,
-// orientation `q`, velocity `v` and spin `omega`. Asks for a list build when the particle has
+// orientation `q`, velocity `v` and spin `omega`, whose calm count is `calm` (layout.glsl; 0
+// without SLEEPING). Asks for a list build when the particle has
 // moved more than half the skin since the last one: two particles that were not listed, farther
 // apart than d + skin, cannot touch before.
-void storeParticle(uint k, vec4 local, uint body, vec3 centre, vec4 q, vec3 v, vec3 omega) {
+void storeParticle(uint k, vec4 local, uint body, vec3 centre, vec4 q, vec3 v, vec3 omega,
+                   uint calm) {
   precise vec3 offset = quatRotate(q, local.xyz);
   precise vec3 position = centre + offset;
   precise vec3 velocity = v + cross(omega, offset);
   particlePosition[k] = vec4(position, uintBitsToFloat(body));
   particleVelocity[k] = vec4(velocity, local.w);
 #ifndef PAPER_LAW
-  particleSpin[k] = vec4(omega, 0.0);
+  particleSpin[k] = vec4(omega, uintBitsToFloat(calm));
 #endif
   vec3 moved = position - texelFetch(listOriginTexture, int(k)).xyz;
   // The same value from every writer: no atomic needed.

@@ -13,13 +13,17 @@ struct BodyMotion {
   vec3 velocity;
   vec3 spin;
   bool alive;
+  uint calm;  // its calm count (layout.glsl, "Sleep"; 0 without SLEEPING)
 };
 
 // Advances body `b` (alive, not static) by one substep under the sum of its particles' contact
 // forces `force` and their torque about its centre of mass `torque`; kinematic bodies keep their
 // velocities and only move. A granule that a sink takes asks for a list build (its particles
-// leave the lists).
-BodyMotion integrateBody(uint b, uvec4 info, vec3 force, vec3 torque) {
+// leave the lists). Under SLEEPING the calm count follows from the body's count `previousCalm`,
+// the smallest count of the bodies it touches `neighbourCalm` and its limit `calmLimit`; a body
+// that reaches sleepSteps.x stops dead, so that what touches it sees it at rest.
+BodyMotion integrateBody(uint b, uvec4 info, vec3 force, vec3 torque, uint previousCalm,
+                         uint neighbourCalm, uint calmLimit) {
   uint motion = (info.z & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT;
   float dt = gravityDt.w;
   vec4 position = bodyPosition[b];
@@ -55,6 +59,18 @@ BodyMotion integrateBody(uint b, uvec4 info, vec3 force, vec3 torque) {
   q += 0.5 * dt * quatMultiply(vec4(omega, 0.0), q);
   q = normalize(q);
 
+  uint calm = 0u;
+#ifdef SLEEPING
+  if (dot(v, v) < sleepSpeeds.x * sleepSpeeds.x &&
+      dot(omega, omega) < sleepSpeeds.y * sleepSpeeds.y) {
+    calm = min(min(previousCalm, neighbourCalm) + 1u, calmLimit);
+  }
+  if (calm >= sleepSteps.x) {
+    v = vec3(0.0);
+    omega = vec3(0.0);
+  }
+#endif
+
   if ((info.z & BODY_GRANULE) != 0u) {
     for (uint k = 0u; k < counts2.x; ++k) {
       if (all(greaterThanEqual(position.xyz, sinks[k].lo.xyz)) &&
@@ -71,8 +87,8 @@ BodyMotion integrateBody(uint b, uvec4 info, vec3 force, vec3 torque) {
 
   bodyPosition[b] = position;
   bodyOrientation[b] = q;
-  bodyVelocity[b] = vec4(v, 0.0);
+  bodyVelocity[b] = vec4(v, uintBitsToFloat(calm));
   bodyAngularVelocity[b] = vec4(omega, spin.w);
   bodyInfo[b] = info;
-  return BodyMotion(position.xyz, q, v, omega, (info.z & BODY_ALIVE) != 0u);
+  return BodyMotion(position.xyz, q, v, omega, (info.z & BODY_ALIVE) != 0u, calm);
 }

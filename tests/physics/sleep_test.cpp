@@ -1,0 +1,185 @@
+// Sleeping sand (WorldSettings::sleep, docs/architecture.md "sleep"): a settled pile falls
+// asleep within the stated time and then changes no bit while nothing touches it; it wakes
+// where it is touched or asked to; the sleep state is part of the state snapshots and the hash
+// carry.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "support/test_world.h"
+
+namespace sandphys {
+namespace {
+
+WorldSettings sleepySettings() {
+  WorldSettings s = testing::smallSettings();
+  s.sleep.enabled = true;
+  return s;
+}
+
+// 96 granules dropped into a box: settled well within a second of simulated time.
+void buildPile(World& w) {
+  w.addCollider(Plane{});
+  w.addCollider(Box{.center = {0, 0.3f, 0}, .halfExtents = {0.1f, 0.3f, 0.1f}, .inside = true});
+  w.addGranules(GranuleBlock{.center = {0, 0.12f, 0},
+                             .countX = 4,
+                             .countY = 6,
+                             .countZ = 4,
+                             .velocity = {0, -1.5f, 0},
+                             .seed = 11});
+}
+
+constexpr std::uint32_t kGranules = 96;
+
+// Simulates in steps of `chunk` seconds until every granule sleeps or `limit` seconds have run;
+// returns the simulated time at which they all slept (or a negative value).
+double sleepAll(testing::TestWorld& w, double limit, double chunk = 0.05) {
+  for (double t = 0.0; t < limit; t += chunk) {
+    w.simulate(chunk);
+    if (w->readStats().granulesAsleep == kGranules) return w->simulatedTime();
+  }
+  return -1.0;
+}
+
+TEST(Sleep, DefaultsFollowFromDiameterAndGravity) {
+  testing::TestWorld w(sleepySettings());
+  const SleepModel& m = w->sleepModel();
+  const double d = w->settings().particleDiameter;
+  const double g = 9.81;
+  EXPECT_TRUE(m.enabled);
+  EXPECT_NEAR(m.linearSpeed, kSleepLinearSpeed * std::sqrt(g * d), 1e-6);
+  EXPECT_NEAR(m.angularSpeed, kSleepAngularSpeed * std::sqrt(g / d), 1e-5);
+  EXPECT_NEAR(m.time, kSleepTime * std::sqrt(d / g), 1e-6);
+  EXPECT_NEAR(m.wakeAcceleration, kSleepWakeAcceleration * g, 1e-5);
+  EXPECT_EQ(m.substeps, std::uint32_t(std::ceil(double(m.time) / w->timeStep())));
+}
+
+TEST(Sleep, BadSettingsAreRefusedByName) {
+  auto refused = [](WorldSettings s, const char* field) {
+    try {
+      World w(testing::gpu(), s);
+    } catch (const InvalidArgument& e) {
+      return std::string(e.what()).find(field) != std::string::npos;
+    }
+    return false;
+  };
+  WorldSettings s = sleepySettings();
+  s.sleep.linearSpeed = std::nanf("");
+  EXPECT_TRUE(refused(s, "WorldSettings.sleep.linearSpeed"));
+  s = sleepySettings();
+  s.sleep.time = -1.0f;
+  EXPECT_TRUE(refused(s, "WorldSettings.sleep.time"));
+  s = sleepySettings();
+  s.contactLaw = ContactLaw::PaperViscous;
+  EXPECT_TRUE(refused(s, "WorldSettings.contactLaw"));
+  s = sleepySettings();
+  s.gravity = {};
+  EXPECT_TRUE(refused(s, "gravity"));
+}
+
+TEST(Sleep, SettledPileFallsAsleepAndThenChangesNoBit) {
+  testing::TestWorld w(sleepySettings());
+  buildPile(*w);
+  // Settling takes well under 0.6 s here; asleep within the sleep time after that.
+  const double limit = 0.6 + w->sleepModel().time + 0.2;
+  const double asleep = sleepAll(w, limit);
+  std::printf("all %u granules asleep at %.3f s (sleep time %.3f s)\n", kGranules, asleep,
+              double(w->sleepModel().time));
+  ASSERT_GT(asleep, 0.0) << "not all granules asleep within " << limit << " s";
+  EXPECT_GT(w->readStats().contacts, 30u);  // a pile, resting on its contacts
+  const WorldSnapshot before = w->readSnapshot();
+  for (const StoredBody& b : before.bodies) {
+    if (b.calm == 0) continue;  // colliders' bodies, if any
+    EXPECT_EQ(b.calm, w->sleepModel().substeps);
+  }
+  const std::uint64_t hash = w->readStateHash();
+  w.simulate(0.3);
+  EXPECT_EQ(w->readStateHash(), hash);
+  EXPECT_FALSE(firstDifference(before, w->readSnapshot()).has_value());
+  EXPECT_EQ(w->readStats().granulesAsleep, kGranules);
+}
+
+TEST(Sleep, WakeWakesTheRegionAndThePileSleepsAgainWhereItWas) {
+  testing::TestWorld w(sleepySettings());
+  buildPile(*w);
+  ASSERT_GT(sleepAll(w, 2.0), 0.0);
+  const std::vector<BodyState> slept = w->readBodies();
+  // The lower half of the box.
+  w->wake({-1, -1, -1}, {1, 0.04f, 1});
+  const std::uint32_t asleep = w->readStats().granulesAsleep;
+  EXPECT_LT(asleep, kGranules);
+  EXPECT_GT(asleep, 0u);
+  w->wake({-1, -1, -1}, {1, 1, 1});
+  EXPECT_EQ(w->readStats().granulesAsleep, 0u);
+  // Nothing unbalanced them: they fall asleep again after the sleep time, having moved far less
+  // than a hundredth of a diameter.
+  const double woken = w->simulatedTime();
+  const double again = sleepAll(w, 2.0 * w->sleepModel().time, 0.02) - woken;
+  ASSERT_GT(again, 0.0);
+  const std::vector<BodyState> after = w->readBodies();
+  const double d = w->settings().particleDiameter;
+  double worst = 0.0;
+  for (std::size_t i = 0; i < after.size(); ++i) {
+    const Vec3 a = after[i].position, b = slept[i].position;
+    worst = std::max(worst, double(std::hypot(a.x - b.x, a.y - b.y, a.z - b.z)));
+  }
+  std::printf("woken pile asleep again after %.3f s, moved at most %.2e d\n", again, worst / d);
+  EXPECT_LT(worst, 0.01 * d);
+}
+
+TEST(Sleep, AGranuleDroppedOnTheSleepingPileWakesItsNeighboursAndRests) {
+  WorldSettings settings = sleepySettings();
+  std::uint64_t hashes[2] = {};
+  for (std::uint64_t& hash : hashes) {
+    testing::TestWorld w(settings);
+    buildPile(*w);
+    ASSERT_GT(sleepAll(w, 2.0), 0.0);
+    // Set down gently, a diameter clear of the pile's top, near one wall.
+    const float d = w->settings().particleDiameter;
+    float pileTop = 0.0f;
+    for (const BodyState& body : w->readBodies()) pileTop = std::max(pileTop, body.position.y);
+    w.addGranule({0.07f, pileTop + 3.0f * d, 0.07f}, {}, {0, -0.2f, 0});
+    std::uint32_t fewest = kGranules + 1;
+    for (int frame = 0; frame < 30; ++frame) {
+      w.simulate(0.01);
+      fewest = std::min(fewest, w->readStats().granulesAsleep);
+    }
+    // The impact woke some of the pile, not all of it.
+    std::printf("fewest asleep after the drop: %u of %u\n", fewest, kGranules);
+    EXPECT_LT(fewest, kGranules);
+    EXPECT_GT(fewest, 0u);
+    // The dropped granule came to rest on the pile: it did not sink through sleeping sand.
+    w.simulate(1.0);
+    const BodyState dropped = w->readBodies().back();
+    EXPECT_LT(std::hypot(dropped.velocity.x, dropped.velocity.y, dropped.velocity.z),
+              w->sleepModel().linearSpeed * 10.0f);
+    const WorldSnapshot s = w->readSnapshot();
+    float top = -1.0f;
+    for (std::size_t i = 0; i + 1 < s.bodies.size(); ++i) {
+      if (s.bodies[i].alive) top = std::max(top, s.bodies[i].position[1]);
+    }
+    EXPECT_GT(dropped.position.y, top - 2.0f * d);
+    hash = w->readStateHash();
+  }
+  EXPECT_EQ(hashes[0], hashes[1]);  // the same sleep and wake pattern, bit for bit
+}
+
+TEST(Sleep, SnapshotCarriesTheSleepState) {
+  testing::TestWorld a(sleepySettings());
+  buildPile(*a);
+  a.simulate(0.5);
+  const WorldSnapshot middle = a->readSnapshot();
+  testing::TestWorld b(sleepySettings());
+  buildPile(*b);
+  b->restoreSnapshot(middle);
+  EXPECT_FALSE(firstDifference(middle, b->readSnapshot()).has_value());
+  EXPECT_EQ(stateHash(middle), a->readStateHash());
+  a.simulate(1.0);
+  b.simulate(1.0);
+  EXPECT_EQ(a->readStateHash(), b->readStateHash());
+  EXPECT_GT(a->readStats().granulesAsleep, 0u);
+}
+
+}  // namespace
+}  // namespace sandphys
