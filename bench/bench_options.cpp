@@ -173,6 +173,8 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
                  "guard, WorldSettings::listSkin); it changes the cost, not the result")
       ->check(CLI::Range(0.0f, 1.0f))
       ->capture_default_str();
+  app.add_flag("--sleep", measure.sleep,
+               "sleeping sand (WorldSettings::sleep): time the pile once it has fallen asleep");
   CLI::Option* packingOption = app.add_option(
       "--packing", packing,
       "cylinder: initial pile: 'crystal' (aligned granules whose particles form an FCC packing "

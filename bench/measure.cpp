@@ -167,6 +167,7 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
     settings.maxBodies = std::max(settings.maxBodies, options.reserveParticles / 4u);
   }
   settings.listSkin = options.listSkin * d;
+  settings.sleep.enabled = options.sleep;
   World world(gpu, settings);
   pile.build(world);
   result.setupSeconds = secondsSince(setupStart);
@@ -223,7 +224,15 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
                    double(stats.contacts) / result.granules);
     }
   }
+  if (options.sleep) {
+    const auto wait = std::uint32_t(options.sleepWaitFactor * world.sleepModel().substeps);
+    while (result.sleepWaitSteps < wait && world.readStats().granulesAsleep < result.granules) {
+      world.substep(options.chunk);
+      result.sleepWaitSteps += options.chunk;
+    }
+  }
   const WorldStats settledStats = world.readStats();  // also waits for the GPU
+  result.asleepAtStart = settledStats.granulesAsleep;
   result.settleWallSeconds = secondsSince(settleStart);
   result.settled = readPileState(world, pile, settledStats);
 
@@ -247,6 +256,7 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
     }
   }
   const WorldStats endStats = world.readStats();  // the sync that ends the timed span
+  result.asleepAtEnd = endStats.granulesAsleep;
   result.wallSeconds = secondsSince(start);
   result.cpuSeconds = processCpuSeconds() - cpuStart;
   result.loadAfter = loadAverage();

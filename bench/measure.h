@@ -51,6 +51,10 @@ struct MeasureOptions {
   std::uint32_t reserveParticles = 0;
   /// Skin of the neighbour lists in particle diameters (WorldSettings::listSkin); 0: derived.
   float listSkin = 0.0f;
+  /// Sleeping sand (WorldSettings::sleep): after the settling, substeps run until every granule
+  /// sleeps (at most sleepWaitFactor sleep times), then the timed ones.
+  bool sleep = false;
+  double sleepWaitFactor = 4.0;
 };
 
 /// How settled the pile is at one moment (one readStats and one readBodies, both sync points).
@@ -90,6 +94,11 @@ struct SizeResult {
   std::uint64_t gpuMemoryBytes = 0;
 
   std::uint32_t settleSteps = 0;  ///< substeps actually run before measuring
+  /// MeasureOptions::sleep: substeps run after the settling until all slept (or the wait ran
+  /// out), and the sleeping granules at the start and the end of the timed span.
+  std::uint32_t sleepWaitSteps = 0;
+  std::uint32_t asleepAtStart = 0;
+  std::uint32_t asleepAtEnd = 0;
   double settleWallSeconds = 0.0;
   bool settleBudgetHit = false;
   PileState built{};     ///< right after build

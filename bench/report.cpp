@@ -110,6 +110,9 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
       {"list_builds_per_1000_substeps", size.listBuildsPer1000Steps()},
       {"list_overflows", size.listOverflows},
       {"list_skin_d", size.listSkin / d},
+      {"sleep_wait_substeps", size.sleepWaitSteps},
+      {"granules_asleep_at_start", size.asleepAtStart},
+      {"granules_asleep_at_end", size.asleepAtEnd},
       {"microseconds_per_granule_step", size.microsecondsPerGranuleStep()},
       {"simulated_seconds_per_wall_second", size.simulatedPerWallSecond()},
       {"gpu_memory_bytes", size.gpuMemoryBytes},
@@ -398,6 +401,13 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
                  s.granules, double(s.listSkin / particleDiameter(measure)),
                  static_cast<unsigned long long>(s.listBuilds),
                  static_cast<unsigned long long>(s.listOverflows), s.steps);
+  }
+  for (const SizeResult& s : report.sizes) {
+    if (!measure.sleep) break;
+    std::fprintf(out,
+                 "  %u granules, sleeping sand: %u substeps after the settling until all slept; "
+                 "%u asleep at the start of timing, %u at its end\n",
+                 s.granules, s.sleepWaitSteps, s.asleepAtStart, s.asleepAtEnd);
   }
   if (!measure.kernelTimes) {
     std::fprintf(out, "  kernel timer queries off (--no-kernel-times)\n");

@@ -191,6 +191,7 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
   std::string play;
   std::string goldens;
   std::optional<std::string> contactLaw;
+  bool sleep = false;
 
   app.add_option("--scene", options.sceneName, "scene to run (see --list)")->capture_default_str();
   app.add_flag("--list", list, "list the scenes and their parameters, then exit");
@@ -239,6 +240,9 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
                  "published: memoryless viscous friction at particle centres, overlap capped at "
                  "d/10)")
       ->type_name("LAW");
+  app.add_flag("--sleep", sleep,
+               "sleeping sand: granules at rest fall asleep and cost less until touched "
+               "(WorldSettings::sleep)");
   app.add_option("--screenshot", screenshot,
                  "write a PNG of the last frame to this file (headless: rendered offscreen)");
   app.add_option("--size", size,
@@ -381,6 +385,7 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
         }
         options.scene->setContactLaw(*law);
       }
+      options.scene->setSleep(sleep);
       for (const std::string& assignment : assignments) {
         const std::size_t equals = assignment.find('=');
         if (equals == std::string::npos || equals == 0) {

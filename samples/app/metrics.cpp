@@ -67,6 +67,7 @@ nlohmann::json metricsJson(const RunSummary& summary, scenes::Scene& scene) {
   nlohmann::json metrics = {
       {"scene", summary.scene},
       {"granules", stats.granulesAlive},
+      {"granules_asleep", stats.granulesAsleep},
       {"particles", stats.particles},
       {"body_slots", stats.bodies},
       {"frames", summary.frames},

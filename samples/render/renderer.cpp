@@ -42,6 +42,7 @@ constexpr GLuint kBodyOrientationBinding = 1;
 constexpr GLuint kBodyInfoBinding = 2;
 constexpr GLuint kParticleLocalBinding = 3;
 constexpr GLuint kParticleBodyBinding = 4;
+constexpr GLuint kBodyVelocityBinding = 5;
 constexpr GLuint kFrameParamsBinding = 0;
 
 // Timestamps per frame: before the shadow pass, then after each of the three passes.
@@ -397,6 +398,11 @@ void Renderer::Impl::draw(const World& world, const Camera& camera,
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBodyInfoBinding, buffers.bodyInfo);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kParticleLocalBinding, buffers.particleLocal);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kParticleBodyBinding, buffers.particleBody);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBodyVelocityBinding, buffers.bodyVelocity);
+  const GLuint asleepFrom = settings.tintSleeping ? buffers.sleepSubsteps : 0u;
+  for (GLuint program : {pointsScene, particlesScene}) {
+    glProgramUniform1ui(program, glGetUniformLocation(program, "asleepFrom"), asleepFrom);
+  }
   const GLsizei particles = GLsizei(buffers.particleCount);
   // Whether some particle may need a larger square than a point sprite allows, so that the quad
   // draw must follow the points. From the light: every particle has the same size. From the

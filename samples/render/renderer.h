@@ -43,6 +43,8 @@ struct RenderSettings {
   float aoRadius = 1.5f;
   /// Colliders are drawn (a plane as a square of 40 camera distances).
   bool drawColliders = true;
+  /// Sleeping granules (WorldSettings::sleep) are drawn tinted blue-grey.
+  bool tintSleeping = false;
 };
 
 /// GPU time of the last frame whose timer queries were ready, measured with GL_TIMESTAMP

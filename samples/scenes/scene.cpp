@@ -150,6 +150,7 @@ std::optional<ContactLaw> contactLawFromName(std::string_view name) {
 WorldSettings Scene::settings() const {
   WorldSettings settings = worldSettings();
   settings.contactLaw = m_contactLaw;
+  settings.sleep.enabled = m_sleep;
   return settings;
 }
 

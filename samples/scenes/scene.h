@@ -91,13 +91,18 @@ class Scene {
   virtual std::string_view name() const = 0;
 
   /// Settings for the World this scene runs in (worldSettings) under the contact law set with
-  /// setContactLaw.
+  /// setContactLaw, with sleep as setSleep says.
   WorldSettings settings() const;
 
   /// The contact law the scene's World gets (the samples app's --contact-law); HertzMindlin
   /// unless set. Takes effect at the next World built from settings().
   void setContactLaw(ContactLaw law) { m_contactLaw = law; }
   ContactLaw contactLaw() const { return m_contactLaw; }
+
+  /// Sleeping sand (WorldSettings::sleep, the samples app's --sleep) in the scene's World; off
+  /// unless set. Takes effect at the next World built from settings().
+  void setSleep(bool enabled) { m_sleep = enabled; }
+  bool sleep() const { return m_sleep; }
 
   /// The scene's own settings, with capacities sized for everything the scene will ever add
   /// (World::reserve is never needed). Throws InvalidArgument when the parameters ask for more
@@ -156,6 +161,7 @@ class Scene {
 
  private:
   ContactLaw m_contactLaw = ContactLaw::HertzMindlin;
+  bool m_sleep = false;
 };
 
 /// Runs `scene` in `world` (the one its build() filled) frame by frame, Scene::step then

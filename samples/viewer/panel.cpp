@@ -182,7 +182,7 @@ void Panel::drawControls(Session& session) {
       controls.youngsModulus != applied.youngsModulus || controls.friction != applied.friction ||
       controls.restitution != applied.restitution ||
       controls.stepsPerContact != applied.stepsPerContact || controls.frameDt != applied.frameDt ||
-      controls.profileKernels != applied.profileKernels;
+      controls.profileKernels != applied.profileKernels || controls.sleep != applied.sleep;
   if (pending) {
     ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "changed: applied on restart (R)");
   } else {
@@ -202,6 +202,12 @@ void Panel::drawControls(Session& session) {
   if (ImGui::SliderFloat("frame dt, ms", &frameMs, 1.0f, 50.0f, "%.2f")) {
     controls.frameDt = frameMs * 1e-3;
   }
+  ImGui::Checkbox("sleeping sand", &controls.sleep);
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip("granules at rest fall asleep and cost less until something touches them");
+  }
+  ImGui::SameLine();
+  ImGui::Checkbox("tint sleeping", &controls.tintSleeping);
   ImGui::Checkbox("profile kernels", &controls.profileKernels);
   if (ImGui::IsItemHovered()) {
     ImGui::SetTooltip("GL timer queries around every kernel; on llvmpipe they slow the step down");
@@ -220,6 +226,9 @@ void Panel::drawStats(const Session& session, const FrameStats& stats,
   const bool have = stats.report.hasStats;
   ImGui::Text("granules %u  particles %u", have ? s.granulesAlive : world.granulesSpawned(),
               stats.particles);
+  if (world.sleepModel().enabled && have) {
+    ImGui::Text("awake %u  asleep %u", s.granulesAlive - s.granulesAsleep, s.granulesAsleep);
+  }
   ImGui::Text("contacts %u  substeps/frame %u", have ? s.contacts : 0u, stats.report.substeps);
   ImGui::Text("dt %.3g s = %.3f t_n  (t_n %.3g s)", static_cast<double>(model.timeStep),
               static_cast<double>(model.timeStep / model.contactTime),

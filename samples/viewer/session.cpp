@@ -36,7 +36,8 @@ SimulationControls SimulationControls::from(const WorldSettings& settings, doubl
           .restitution = settings.material.restitution,
           .stepsPerContact = settings.stepsPerContact,
           .frameDt = frameDt,
-          .profileKernels = settings.profileKernels};
+          .profileKernels = settings.profileKernels,
+          .sleep = settings.sleep.enabled};
 }
 
 WorldSettings SimulationControls::applyTo(WorldSettings settings) const {
@@ -45,6 +46,7 @@ WorldSettings SimulationControls::applyTo(WorldSettings settings) const {
   settings.material.restitution = restitution;
   settings.stepsPerContact = stepsPerContact;
   settings.profileKernels = profileKernels;
+  settings.sleep.enabled = sleep;
   return settings;
 }
 

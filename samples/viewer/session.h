@@ -30,6 +30,10 @@ struct SimulationControls {
   /// GL timer queries around every kernel (World::kernelTimes). Off by default: on llvmpipe the
   /// queries about double the cost of a substep.
   bool profileKernels = false;
+  /// Sleeping sand (WorldSettings::sleep).
+  bool sleep = false;
+  /// Draw sleeping granules tinted (takes effect at once, not at a restart).
+  bool tintSleeping = true;
 
   /// The values `settings` (a scene's) and `frameDt` give.
   static SimulationControls from(const WorldSettings& settings, double frameDt);

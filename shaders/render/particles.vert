@@ -40,6 +40,8 @@ vec3 granuleAlbedo(uint body) {
 }
 
 uniform float maxPointSize;  // px, GL_POINT_SIZE_RANGE's upper end
+// Granules whose calm count is at least this are asleep and tinted (0: no tint).
+uniform uint asleepFrom;
 
 // Screen-space bounds of the sphere along one axis, as tangents of the angle from the line of
 // sight: the tangent lines from the eye to the circle (a, depth) of radius r in that axis's
@@ -95,6 +97,12 @@ void main() {
   vCentre = centre;
   // Rough floors and sampled bodies are not sand: a neutral stone colour.
   vAlbedo = (info.z & BODY_GRANULE) != 0u ? granuleAlbedo(body) : pow(vec3(0.45, 0.43, 0.40), vec3(2.2));
+#ifndef SHADOW_PASS
+  if (asleepFrom != 0u && (info.z & BODY_GRANULE) != 0u &&
+      floatBitsToUint(bodyVelocity[body].w) >= asleepFrom) {
+    vAlbedo = mix(vAlbedo, pow(vec3(0.35, 0.45, 0.65), vec3(2.2)), 0.6);
+  }
+#endif
 #ifdef POINT_SPRITES
   if (!fitsPoint) return;
   // The point's depth is the sphere's nearest point on the line of sight (clamped into the view

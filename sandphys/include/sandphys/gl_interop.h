@@ -32,6 +32,9 @@ struct RenderBuffers {
   unsigned bodyOrientation = 0;
   /// uvec4 per body: x first particle, y particle count, z flags (kBodyFlag*), w guard count.
   unsigned bodyInfo = 0;
+  /// vec4 per body: xyz velocity (m/s); w the calm count (uint bits; WorldSettings::sleep): the
+  /// body is asleep when it is at least sleepSubsteps.
+  unsigned bodyVelocity = 0;
   /// vec4 per particle: xyz centre in the body's principal frame (m); w inverse particle mass.
   /// World position = bodyPosition.xyz + rotate(bodyOrientation, particleLocal.xyz).
   unsigned particleLocal = 0;
@@ -46,6 +49,8 @@ struct RenderBuffers {
   std::uint32_t particleCount = 0;
   /// Every particle is a sphere of this diameter, m.
   float particleDiameter = 0.0f;
+  /// The calm count at which a body sleeps (SleepModel::substeps); 0 without sleep.
+  std::uint32_t sleepSubsteps = 0;
 };
 
 /// The buffers of `world`. Does not touch the GPU.

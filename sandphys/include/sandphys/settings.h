@@ -78,6 +78,9 @@ inline constexpr float kSleepLinearSpeed = 0.01f;
 inline constexpr float kSleepAngularSpeed = 0.02f;
 inline constexpr float kSleepTime = 10.0f;
 inline constexpr float kSleepWakeAcceleration = 0.5f;
+/// How far, in contacts, the calm of a granule waits for its neighbours' (docs/architecture.md,
+/// "sleep"): a granule sleeps only when nothing within this many contacts of it still moves.
+inline constexpr std::uint32_t kSleepContacts = 4;
 
 /// Everything a World needs at creation. Plain aggregate: designated initialisers work on it.
 struct WorldSettings {

@@ -16,6 +16,9 @@ struct SleepModel {
   float wakeAcceleration = 0.0f;  ///< m/s²
   /// Substeps below both thresholds before sleep: ceil(time / timeStep), at least 1.
   std::uint32_t substeps = 0;
+  /// How far a body's calm count may run ahead of the smallest count of the bodies it touches:
+  /// ceil(substeps / kSleepContacts).
+  std::uint32_t neighbourLead = 0;
 
   /// Resolves and validates settings.sleep for the substep `timeStep` (s); throws
   /// InvalidArgument naming the field, value and limit.

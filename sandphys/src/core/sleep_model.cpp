@@ -42,6 +42,7 @@ SleepModel SleepModel::fromSettings(const WorldSettings& s, float timeStep) {
   require(substeps < double(1u << 30), "WorldSettings.sleep.time", m.time,
           "must be < 2^30 substeps of " + detail::formatValue(timeStep) + " s");
   m.substeps = static_cast<std::uint32_t>(std::max(substeps, 1.0));
+  m.neighbourLead = (m.substeps + kSleepContacts - 1) / kSleepContacts;
   return m;
 }
 

@@ -40,7 +40,7 @@ void World::Impl::uploadParams() {
   p.colliderEnds = {ends[0], ends[1], ends[2], 0u};
   p.shearContact = {model.shearStiffnessGrain, model.shearStiffnessWall, 0.0f, 0.0f};
   p.sleepSpeeds = {sleep.linearSpeed, sleep.angularSpeed, sleep.wakeAcceleration, 0.0f};
-  p.sleepSteps = {sleep.substeps, 0u, 0u, 0u};
+  p.sleepSteps = {sleep.substeps, sleep.neighbourLead, 0u, 0u};
   buffers[kColliders].upload(0, sorted.size() * sizeof(GpuCollider), sorted.data());
   buffers.params.upload(0, sizeof p, &p);
   paramsDirty = false;

@@ -15,12 +15,14 @@ RenderBuffers renderBuffers(const World& world) {
   b.bodyPosition = w.buffers[detail::kBodyPosition].id();
   b.bodyOrientation = w.buffers[detail::kBodyOrientation].id();
   b.bodyInfo = w.buffers[detail::kBodyInfo].id();
+  b.bodyVelocity = w.buffers[detail::kBodyVelocity].id();
   b.particleLocal = w.buffers[detail::kParticleLocal].id();
   b.particleBody = w.buffers[detail::kParticleBody].id();
   b.particlePosition = w.buffers[detail::kParticlePosition].id();
   b.bodyCount = w.bodyCount;
   b.particleCount = w.particleCount;
   b.particleDiameter = w.settings.particleDiameter;
+  b.sleepSubsteps = w.sleep.enabled ? w.sleep.substeps : 0u;
   return b;
 }
 

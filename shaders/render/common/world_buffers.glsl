@@ -5,6 +5,8 @@ layout(std430, binding = 1) readonly buffer BodyOrientationBuffer { vec4 bodyOri
 layout(std430, binding = 2) readonly buffer BodyInfoBuffer { uvec4 bodyInfo[]; };
 layout(std430, binding = 3) readonly buffer ParticleLocalBuffer { vec4 particleLocal[]; };
 layout(std430, binding = 4) readonly buffer ParticleBodyBuffer { uint particleBody[]; };
+// xyz: velocity; w: calm count (uint bits), asleep from RenderBuffers::sleepSubsteps on.
+layout(std430, binding = 5) readonly buffer BodyVelocityBuffer { vec4 bodyVelocity[]; };
 
 #define BODY_ALIVE 1u
 #define BODY_GRANULE 2u

@@ -182,10 +182,9 @@ struct StatsPartial {
 #define CONTACT_PAIRS(access) layout(std430, binding = 32) access buffer ContactPairsBuffer { uvec4 contactPairs[]; };
 
 // Sleep (SLEEPING, docs/architecture.md "sleep"). A body's calm count is the number of substeps
-// its speeds have been below the thresholds, but at most one more than the smallest count among
-// the bodies it touches: so a body reaches sleepSteps.x, and sleeps, only when every body within
-// k contacts of it has been calm for sleepSteps.x - k substeps, and a touching group falls
-// asleep together. Only dynamic granules sleep; the count of every other movable body stops at
+// its speeds have been below the thresholds, but at most sleepSteps.y more than the smallest
+// count among the bodies it touches: so a body reaches sleepSteps.x, and sleeps, only when nothing
+// within kSleepContacts contacts of it moves, and a calm touching group falls asleep together. Only dynamic granules sleep; the count of every other movable body stops at
 // sleepSteps.x - 1. The contacts pass leaves in particleForce.w the smallest count among the
 // particle's partners (CALM_UNBOUNDED: none), 0 when a moving collider touches it or, asleep,
 // when its contacts are not those it fell asleep with.
@@ -204,7 +203,7 @@ layout(std140, binding = 0) uniform SimParams {
   vec4 listGeom;       // x: skin (m); y: (d + skin)^2; z: (skin / 2)^2 (m^2); w: unused
   uvec4 listLayout;    // x: stride of a neighbour-list entry (the particles in use); y, z, w: unused
   vec4 sleepSpeeds;    // SLEEPING: x: linear speed threshold (m/s); y: angular (rad/s); z: wake acceleration (m/s^2); w: unused
-  uvec4 sleepSteps;    // SLEEPING: x: substeps calm before sleep (SleepModel::substeps); y, z, w: unused
+  uvec4 sleepSteps;    // SLEEPING: x: substeps calm before sleep (SleepModel::substeps); y: SleepModel::neighbourLead; z, w: unused
 };
 
 // Linear thread index of a dispatch that World may fold into two dimensions. A macro, because

@@ -63,7 +63,7 @@ BodyMotion integrateBody(uint b, uvec4 info, vec3 force, vec3 torque, uint previ
 #ifdef SLEEPING
   if (dot(v, v) < sleepSpeeds.x * sleepSpeeds.x &&
       dot(omega, omega) < sleepSpeeds.y * sleepSpeeds.y) {
-    calm = min(min(previousCalm, neighbourCalm) + 1u, calmLimit);
+    calm = min(min(previousCalm + 1u, min(neighbourCalm, calmLimit) + sleepSteps.y), calmLimit);
   }
   if (calm >= sleepSteps.x) {
     v = vec3(0.0);
