@@ -232,7 +232,8 @@ class ViewerLoop {
     glViewport(0, 0, size.width, size.height);
     if (size.width > 0 && size.height > 0) {
       render::applyRenderQuality(pacer().quality(), m_renderer.settings());
-      m_renderer.settings().tintSleeping = m_session->controls().tintSleeping;
+      // Playing a recording there is no panel toggle: sleeping granules are tinted.
+      m_renderer.settings().tintSleeping = !m_session || m_session->controls().tintSleeping;
       m_renderer.draw(world(), m_camera, scene().bounds(), size.width, size.height);
       ++m_draws;
       const render::RenderStats& renderStats = m_renderer.stats();

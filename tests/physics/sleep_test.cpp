@@ -181,5 +181,55 @@ TEST(Sleep, SnapshotCarriesTheSleepState) {
   EXPECT_GT(a->readStats().granulesAsleep, 0u);
 }
 
+// A column of sand between four walls, whose +x wall is taken away once it has settled (and,
+// with sleep, fallen asleep): how far the slumped sand runs out, and how many granules slept at
+// the cut.
+struct CutResult {
+  double runOut = 0.0;  // largest granule x after the slump, m
+  std::uint32_t asleepAtCut = 0;
+  std::uint32_t asleepAtEnd = 0;
+};
+
+CutResult cutColumn(bool sleep) {
+  WorldSettings settings = testing::smallSettings();
+  settings.sleep.enabled = sleep;
+  testing::TestWorld w(settings);
+  const float half = 0.07f;
+  w->addCollider(Plane{});
+  const ColliderId wall = w->addCollider(Plane{{-1, 0, 0}, -half});
+  w->addCollider(Plane{{1, 0, 0}, -half});
+  w->addCollider(Plane{{0, 0, -1}, -half});
+  w->addCollider(Plane{{0, 0, 1}, -half});
+  w->addGranules(GranuleBlock{.center = {0, 0.12f, 0},
+                              .countX = 4,
+                              .countY = 6,
+                              .countZ = 4,
+                              .velocity = {0, -1.5f, 0},
+                              .seed = 11});
+  w.simulate(1.6);
+  CutResult r;
+  r.asleepAtCut = w->readStats().granulesAsleep;
+  w->setCollider(wall, Plane{{-1, 0, 0}, -10.0f});
+  w.simulate(1.5);
+  r.asleepAtEnd = w->readStats().granulesAsleep;
+  for (const BodyState& b : w->readBodies()) r.runOut = std::max(r.runOut, double(b.position.x));
+  return r;
+}
+
+TEST(Sleep, AColumnCutAtItsFootRunsOutAsWithoutSleep) {
+  const CutResult awake = cutColumn(false);
+  const CutResult asleep = cutColumn(true);
+  const double d = testing::smallSettings().particleDiameter;
+  std::printf(
+      "run-out %.2f d without sleep, %.2f d with (%u of %u asleep at the cut, %u at the "
+      "end)\n",
+      awake.runOut / d, asleep.runOut / d, asleep.asleepAtCut, kGranules, asleep.asleepAtEnd);
+  ASSERT_EQ(asleep.asleepAtCut, kGranules);  // the cut met a sleeping column
+  // The wall was at 3.5 d; the sand ran out past it, and as far as without sleep to within the
+  // spread of a slump of 96 granules.
+  EXPECT_GT(awake.runOut, 0.07 + 2.0 * d);
+  EXPECT_NEAR(asleep.runOut, awake.runOut, 2.0 * d);
+}
+
 }  // namespace
 }  // namespace sandphys
