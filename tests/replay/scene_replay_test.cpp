@@ -74,6 +74,46 @@ INSTANTIATE_TEST_SUITE_P(EveryScene, SceneReplay, ::testing::ValuesIn(sceneNames
                            return id;
                          });
 
+// The same with sleeping sand (--sleep): the sleep code path records and replays bit for bit.
+// The paper's law has no static friction and refuses sleep, by name.
+class SleepingSceneReplay : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SleepingSceneReplay, ReplaysBitIdentically) {
+  const std::string name = GetParam();
+  std::unique_ptr<scenes::Scene> scene = goldenScene(name);
+  scene->setSleep(true);
+  if (scene->contactLaw() == ContactLaw::PaperViscous) {
+    try {
+      World world(testing::gpu(), scene->settings());
+      ADD_FAILURE() << name << ": the paper's law with sleep was accepted";
+    } catch (const InvalidArgument& e) {
+      EXPECT_NE(std::string(e.what()).find("WorldSettings.contactLaw"), std::string::npos);
+    }
+    return;
+  }
+  const std::filesystem::path file = tempRecording(name + "-sleep");
+  const RunSummary run = recordScene(*scene, file, kGoldenFrames, 5);
+  ASSERT_EQ(run.frames, kGoldenFrames);
+  const Recording recording = readRecording(file);
+  const std::string* sleepSetting = recording.setting(std::string(kWorldPrefix) + "sleep");
+  ASSERT_NE(sleepSetting, nullptr);
+  EXPECT_EQ(*sleepSetting, "1");
+  EXPECT_NE(recording.frames.front().stateHash, recording.frames.back().stateHash);
+  const ReplayResult replay = replayRecording(testing::gpu(), recording);
+  EXPECT_TRUE(replay.identical) << replay.difference;
+  EXPECT_EQ(replay.frames, kGoldenFrames);
+  std::filesystem::remove(file);
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryScene, SleepingSceneReplay, ::testing::ValuesIn(sceneNames()),
+                         [](const ::testing::TestParamInfo<std::string>& param) {
+                           std::string id = param.param;
+                           for (char& c : id) {
+                             if (c == '-') c = '_';
+                           }
+                           return id;
+                         });
+
 // One unit in the last place of granule `body`'s velocity y, in the GPU's own buffer.
 void nudgeVelocity(World& world, std::uint32_t body) {
   testing::gpu().makeCurrent();
