@@ -136,9 +136,10 @@ class World {
   /// and simulated time; WorldSnapshot::frame is left 0 for the caller. Sync point.
   WorldSnapshot readSnapshot() const;
   /// A 64-bit hash of every body slot in use, bit for bit as stored (position, orientation,
-  /// velocity, angular velocity, alive), reduced on the GPU with integer sums so that it does not
-  /// depend on thread order; stateHash(readSnapshot()) gives the same. A change of any bit of one
-  /// body always changes it. Sync point: 256 bytes, meant once per frame of a recording.
+  /// velocity, angular velocity, alive and calm count), reduced on the GPU with integer sums so
+  /// that it does not depend on thread order; stateHash(readSnapshot()) gives the same. A change of
+  /// any bit of one body always changes it. Sync point: 256 bytes, meant once per frame of a
+  /// recording.
   std::uint64_t readStateHash();
   /// The sand's force and torque on every body that is neither a granule nor static, summed over
   /// the substeps since the previous call (or the body's creation), in the order the bodies were
