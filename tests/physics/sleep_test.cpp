@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include "support/test_world.h"
 
@@ -229,6 +230,28 @@ TEST(Sleep, AColumnCutAtItsFootRunsOutAsWithoutSleep) {
   // spread of a slump of 96 granules.
   EXPECT_GT(awake.runOut, 0.07 + 2.0 * d);
   EXPECT_NEAR(asleep.runOut, awake.runOut, 2.0 * d);
+}
+
+TEST(Sleep, AKinematicBodySetAtRestEveryFrameLeavesTheSandAsleep) {
+  // What an engine bridge does with a body that rests: it sets the same pose, at rest, every
+  // frame. The sand that settled around it must sleep and stay asleep.
+  testing::TestWorld w(sleepySettings());
+  const float d = w->settings().particleDiameter;
+  const BodyDesc post{{0.0f, 1.5f * d, 0.0f}, {}, {}, {}, Motion::Kinematic};
+  const BodyId body = w->addBody(
+      makeParticleTemplate({{0.0f, 0.0f, 0.0f}}, d, w->settings().material.density), post);
+  buildPile(*w);
+  ASSERT_GT(sleepAll(w, 2.0), 0.0);
+  const std::vector<BodyState> slept = w->readBodies();
+  for (int frame = 0; frame < 20; ++frame) {
+    w->setBodyState(body, post);
+    w.simulate(0.02);
+  }
+  EXPECT_EQ(w->readStats().granulesAsleep, kGranules);
+  const std::vector<BodyState> after = w->readBodies();
+  for (std::size_t i = 0; i < after.size(); ++i) {
+    EXPECT_EQ(std::memcmp(&after[i].position, &slept[i].position, sizeof(Vec3)), 0) << i;
+  }
 }
 
 }  // namespace

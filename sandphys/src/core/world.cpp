@@ -1,6 +1,7 @@
 #include "sandphys/world.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -250,6 +251,19 @@ std::uint32_t World::Impl::addBodies(const ParticleTemplate& shape,
   return firstBody;
 }
 
+std::uint32_t World::Impl::placedCalm(const BodyDesc& d) const {
+  // A dynamic body placed at rest may be about to fall: it starts moving.
+  if (!sleep.enabled || d.motion != Motion::Kinematic) return 0;
+  // A kinematic body slower than the thresholds is calm, one short of sleep, so that a body an
+  // engine sets at rest every frame (a Bullet body) does not wake the sand under it.
+  const auto below = [](Vec3 v, float limit) {
+    return double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z < double(limit) * limit;
+  };
+  const bool calm =
+      below(d.velocity, sleep.linearSpeed) && below(d.angularVelocity, sleep.angularSpeed);
+  return calm ? sleep.substeps - 1 : 0;
+}
+
 void World::Impl::uploadBodyStates(std::uint32_t first, const std::vector<BodyDesc>& descs,
                                    const ParticleTemplate& shape) {
   const std::size_t n = descs.size();
@@ -260,7 +274,8 @@ void World::Impl::uploadBodyStates(std::uint32_t first, const std::vector<BodyDe
     Quat q = multiply(d.orientation, principalRotations[first + i]);
     position[i] = toGpu(d.position, dynamic ? 1.0f / shape.mass : 0.0f);
     orientation[i] = {q.x, q.y, q.z, q.w};
-    velocity[i] = toGpu(d.motion == Motion::Static ? Vec3{} : d.velocity, 0.0f);
+    velocity[i] = toGpu(d.motion == Motion::Static ? Vec3{} : d.velocity,
+                        std::bit_cast<float>(placedCalm(d)));
     spin[i] = toGpu(d.motion == Motion::Static ? Vec3{} : d.angularVelocity, shape.boundingRadius);
   }
   buffers[kBodyPosition].upload(first * 16ull, n * 16, position.data());

@@ -139,6 +139,9 @@ struct World::Impl {
   // Setup (world.cpp)
   std::uint32_t addBodies(const ParticleTemplate& shape, const std::vector<BodyDesc>& descs,
                           bool granule);
+  /// The calm count of a body the CPU places (WorldSettings::sleep; 0 without it): only a
+  /// kinematic one slower than the thresholds counts as calm.
+  std::uint32_t placedCalm(const BodyDesc& desc) const;
   void uploadBodyStates(std::uint32_t first, const std::vector<BodyDesc>& descs,
                         const ParticleTemplate& shape);
   ColliderId putCollider(std::optional<std::uint32_t> slot, const detail::GpuCollider& collider,
