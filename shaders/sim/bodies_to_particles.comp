@@ -38,7 +38,7 @@ void main() {
   if ((flags & BODY_ALIVE) == 0u) return;
   vec4 velocity = texelFetch(bodyVelocityTexture, int(body));
   // Immovable bodies never hold a neighbour awake; the others as their count says (the CPU sets
-  // 0 for a body it places: it wakes what it touches).
+  // it for a body it places: World::Impl::placedCalm).
   uint motion = (flags & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT;
   uint calm = 0u;
 #ifdef SLEEPING
