@@ -39,9 +39,9 @@ void main() {
   vec4 velocity = texelFetch(bodyVelocityTexture, int(body));
   // Immovable bodies never hold a neighbour awake; the others as their count says (the CPU sets
   // it for a body it places: World::Impl::placedCalm).
-  uint motion = (flags & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT;
   uint calm = 0u;
 #ifdef SLEEPING
+  uint motion = (flags & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT;
   calm = motion == MOTION_STATIC ? CALM_UNBOUNDED : floatBitsToUint(velocity.w);
 #endif
   storeParticle(i, texelFetch(particleLocalTexture, int(i)), body,

@@ -475,8 +475,9 @@ void main() {
     if (touches(self, texelFetch(neighbourListTexture, listEntry(i, k)).x)) inContact |= 1u << k;
   }
   bool beyond = listed > uint(NEIGHBOUR_LIST_CAPACITY);
+  bool movable = self.velocity.w > 0.0;
   uint found;
-  uint seen = findHits(self, radius, self.velocity.w > 0.0, 0u, found);
+  uint seen = findHits(self, radius, movable, 0u, found);
 #if defined(SLEEPING) && !defined(CONTACT_LIST)
   if (self.calm >= sleepSteps.x) {
     uint calm = CALM_UNBOUNDED;
@@ -516,7 +517,6 @@ void main() {
   }
 
   // The surfaces in contact (findHits), the first batch found above.
-  bool movable = self.velocity.w > 0.0;
   for (uint skip = 0u;; skip += uint(COLLIDER_BATCH)) {
     if (skip > 0u) seen = findHits(self, radius, movable, skip, found);
     for (uint h = 0u; h < found; ++h) {

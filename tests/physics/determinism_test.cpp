@@ -11,16 +11,7 @@
 namespace sandphys {
 namespace {
 
-void buildPile(World& w) {
-  w.addCollider(Plane{});
-  w.addCollider(Box{.center = {0, 0.3f, 0}, .halfExtents = {0.1f, 0.3f, 0.1f}, .inside = true});
-  w.addGranules(GranuleBlock{.center = {0, 0.12f, 0},
-                             .countX = 4,
-                             .countY = 6,
-                             .countZ = 4,
-                             .velocity = {0, -1.5f, 0},
-                             .seed = 11});
-}
+using testing::buildPile;
 
 bool identical(const std::vector<BodyState>& a, const std::vector<BodyState>& b) {
   if (a.size() != b.size()) return false;

@@ -19,18 +19,8 @@ WorldSettings sleepySettings() {
   return s;
 }
 
-// 96 granules dropped into a box: settled well within a second of simulated time.
-void buildPile(World& w) {
-  w.addCollider(Plane{});
-  w.addCollider(Box{.center = {0, 0.3f, 0}, .halfExtents = {0.1f, 0.3f, 0.1f}, .inside = true});
-  w.addGranules(GranuleBlock{.center = {0, 0.12f, 0},
-                             .countX = 4,
-                             .countY = 6,
-                             .countZ = 4,
-                             .velocity = {0, -1.5f, 0},
-                             .seed = 11});
-}
-
+using testing::buildPile;
+// buildPile's granules.
 constexpr std::uint32_t kGranules = 96;
 
 // Simulates in steps of `chunk` seconds until every granule sleeps or `limit` seconds have run;

@@ -65,14 +65,16 @@ std::vector<std::string> sceneNames() {
   return names;
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryScene, SceneReplay, ::testing::ValuesIn(sceneNames()),
-                         [](const ::testing::TestParamInfo<std::string>& param) {
-                           std::string id = param.param;
-                           for (char& c : id) {
-                             if (c == '-') c = '_';
-                           }
-                           return id;
-                         });
+// A scene's name as a test name ("rock-drop" -> "rock_drop").
+std::string testName(const ::testing::TestParamInfo<std::string>& param) {
+  std::string id = param.param;
+  for (char& c : id) {
+    if (c == '-') c = '_';
+  }
+  return id;
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryScene, SceneReplay, ::testing::ValuesIn(sceneNames()), testName);
 
 // The same with sleeping sand (--sleep): the sleep code path records and replays bit for bit.
 // The paper's law has no static friction and refuses sleep, by name.
@@ -106,13 +108,7 @@ TEST_P(SleepingSceneReplay, ReplaysBitIdentically) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryScene, SleepingSceneReplay, ::testing::ValuesIn(sceneNames()),
-                         [](const ::testing::TestParamInfo<std::string>& param) {
-                           std::string id = param.param;
-                           for (char& c : id) {
-                             if (c == '-') c = '_';
-                           }
-                           return id;
-                         });
+                         testName);
 
 // One unit in the last place of granule `body`'s velocity y, in the GPU's own buffer.
 void nudgeVelocity(World& world, std::uint32_t body) {

@@ -12,6 +12,10 @@ const GpuContext& gpu();
 /// Settings for small test scenes: default material, capacity for `maxBodies` bodies.
 WorldSettings smallSettings(std::uint32_t maxBodies = 256);
 
+/// The small pile of the determinism and sleep tests: 96 granules dropped at 1.5 m/s into a
+/// 0.2 m box on a floor plane; it settles well within a second of simulated time.
+void buildPile(World& world);
+
 /// A world with helpers in the manner of Chrono's DEM unit tests: build the scene in a line each,
 /// then simulate(seconds).
 class TestWorld {

@@ -1,7 +1,7 @@
 #include "sandphys/sleep_model.h"
 
+#include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "core/validation.h"
 

@@ -2,8 +2,8 @@
 // tests and debugging, never for every substep.
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
-#include <cstring>
 
 #include "core/contact_state.h"
 #include "core/world_impl.h"
@@ -93,7 +93,7 @@ WorldSnapshot World::readSnapshot() const {
     b.velocity = {v.x, v.y, v.z};
     b.angularVelocity = {omega.x, omega.y, omega.z};
     b.alive = (stored.info[i].z & kBodyAlive) != 0;
-    std::memcpy(&b.calm, &v.w, sizeof b.calm);
+    b.calm = std::bit_cast<std::uint32_t>(v.w);
   }
   if (w.keepsHistory()) snapshot.contacts = downloadContacts(w.buffers, w.particleCount);
   return snapshot;

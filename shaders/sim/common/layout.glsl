@@ -183,8 +183,9 @@ struct StatsPartial {
 
 // Sleep (SLEEPING, docs/architecture.md "sleep"). A body's calm count is the number of substeps
 // its speeds have been below the thresholds, but at most sleepSteps.y more than the smallest
-// count among the bodies it touches: so a body reaches sleepSteps.x, and sleeps, only when nothing
-// within kSleepContacts contacts of it moves, and a calm touching group falls asleep together. Only dynamic granules sleep; the count of every other movable body stops at
+// count among the bodies it touches: so a body reaches sleepSteps.x, and sleeps, only when
+// nothing within kSleepContacts contacts of it moves, and a calm touching group falls asleep
+// together. Only dynamic granules sleep; the count of every other movable body stops at
 // sleepSteps.x - 1. The contacts pass leaves in particleForce.w the smallest count among the
 // particle's partners (CALM_UNBOUNDED: none), 0 when a moving collider touches it or, asleep,
 // when its contacts are not those it fell asleep with.
