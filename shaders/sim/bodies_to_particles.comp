@@ -42,7 +42,8 @@ void main() {
   uint calm = 0u;
 #ifdef SLEEPING
   uint motion = (flags & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT;
-  calm = motion == MOTION_STATIC ? CALM_UNBOUNDED : floatBitsToUint(velocity.w);
+  // A touched sleeper's mark is not copied (layout.glsl, "Sleep").
+  calm = motion == MOTION_STATIC ? CALM_UNBOUNDED : min(floatBitsToUint(velocity.w), sleepSteps.x);
 #endif
   storeParticle(i, texelFetch(particleLocalTexture, int(i)), body,
                 texelFetch(bodyPositionTexture, int(body)).xyz,

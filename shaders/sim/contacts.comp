@@ -58,6 +58,11 @@ CONTACT_SLOTS_1(readonly)
 CONTACT_SLOTS_2(readonly)
 #endif
 #else
+#ifdef SLEEPING
+ACTIVE_PARTICLES(readonly)
+COUNTERS(readonly)
+BODY_VELOCITY(writeonly)
+#endif
 PARTICLE_FORCE(writeonly)
 PARTICLE_STATS(coherent)
 #ifndef PAPER_LAW
@@ -226,7 +231,14 @@ void pairContact(Particle self, uint otherId) {
   largestOverlap = max(largestOverlap, xi);
   vec4 otherSpin = texelFetch(particleSpinTexture, int(otherId));
 #ifdef SLEEPING
-  neighbourCalm = min(neighbourCalm, floatBitsToUint(otherSpin.w));
+  uint otherCalm = floatBitsToUint(otherSpin.w);
+  neighbourCalm = min(neighbourCalm, otherCalm);
+#ifndef CONTACT_LIST
+  // Marks a sleeping partner for the next substep (every toucher writes the same value).
+  if (self.calm < sleepSteps.x && otherCalm == sleepSteps.x) {
+    bodyVelocity[floatBitsToUint(other.w)].w = uintBitsToFloat(calmTouched());
+  }
+#endif
 #endif
   // The contact point is the middle of the overlap: the same bits from both sides.
   precise vec3 point = 0.5 * (self.position.xyz + other.xyz);
@@ -439,8 +451,15 @@ uint findHits(Particle self, float radius, bool movable, uint skip, out uint fou
 }
 
 void main() {
+#if defined(SLEEPING) && !defined(CONTACT_LIST)
+  // The active particles only (collect_active.comp).
+  uint t = threadIndex();
+  if (t >= counters[COUNTER_ACTIVE_DISPATCH + 4u * ACTIVE_PASS_CONTACTS + 3u]) return;
+  uint i = activeParticles[t];
+#else
   uint i = threadIndex();
   if (i >= counts.x) return;
+#endif
   Particle self;
   self.position = texelFetch(particlePositionTexture, int(i));
   self.velocity = texelFetch(particleVelocityTexture, int(i));

@@ -28,6 +28,9 @@ PARTICLE_POSITION(writeonly)
 PARTICLE_VELOCITY(writeonly)
 SINKS(readonly)
 COUNTERS(coherent)
+#ifdef SLEEPING
+ACTIVE_BODIES(readonly)
+#endif
 #ifndef PAPER_LAW
 PARTICLE_SPIN(writeonly)
 PARTICLE_TORQUE_TEXTURE
@@ -103,8 +106,15 @@ void countPairs(uint first) {
 #endif
 
 void main() {
+#ifdef SLEEPING
+  // The active granules only (collect_active.comp).
+  uint t = threadIndex();
+  if (t >= counters[COUNTER_ACTIVE_DISPATCH + 4u * ACTIVE_PASS_BODIES + 3u]) return;
+  uint b = activeBodies[t];
+#else
   uint b = threadIndex();
   if (b >= counts.y) return;
+#endif
   uvec4 info = bodyInfo[b];
   if ((info.z & BODY_ALIVE) == 0u) return;
   // Bodies that are not granules are summed and moved by integrate_large_bodies.comp.

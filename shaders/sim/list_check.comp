@@ -1,34 +1,14 @@
 #version 450
-// First pass of every substep, one thread: decides whether the neighbour lists are built before
-// the contacts, with no read-back. It writes the group counts of the build's indirect dispatches
-// (World::Impl::buildLists): the full counts when a build was asked for (a particle moved more
-// than half the skin since the last build, a granule died, or the CPU changed the bodies or the
-// table), zero otherwise, and clears the request.
+// First pass of every substep without sleep, one thread: whether the neighbour lists are built
+// before the contacts (common/list_decision.glsl).
 #include "common/layout.glsl"
 
 layout(local_size_x = 1) in;
 
 COUNTERS(coherent)
 
-void setGroups(uint pass, uint groups) {
-  uint at = uint(COUNTER_LIST_DISPATCH) + 4u * pass;
-  counters[at] = groups;
-  counters[at + 1u] = 1u;
-  counters[at + 2u] = 1u;
-}
+#include "common/list_decision.glsl"
 
 void main() {
-  bool due = counters[COUNTER_LIST_REQUESTED] != 0u;
-  counters[COUNTER_LIST_REQUESTED] = 0u;
-  if (due) counters[COUNTER_LIST_BUILDS] += 1u;
-  uint particleGroups = due ? (counts.x + WORKGROUP_SIZE - 1u) / WORKGROUP_SIZE : 0u;
-  // The table size is a power of two of at least 4096.
-  uint scanGroups = due ? counts2.y / SCAN_BLOCK : 0u;
-  setGroups(PASS_GRID_COUNT, particleGroups);
-  setGroups(PASS_SCAN_BLOCKS, scanGroups);
-  setGroups(PASS_SCAN_BLOCK_SUMS, due ? 1u : 0u);
-  setGroups(PASS_SCAN_ADD, scanGroups);
-  setGroups(PASS_GRID_SCATTER, particleGroups);
-  setGroups(PASS_GRID_SORT, due ? counts2.y / WORKGROUP_SIZE : 0u);
-  setGroups(PASS_LIST_BUILD, particleGroups);
+  decideListBuild();
 }

@@ -15,6 +15,9 @@ BODY_ORIENTATION(readonly)
 BODY_INERTIA(readonly)
 BODY_INFO(readonly)
 STATS_PARTIALS(writeonly)
+#ifdef SLEEPING
+LIST_ORIGIN_TEXTURE
+#endif
 
 #include "common/quaternion.glsl"
 
@@ -30,6 +33,10 @@ void main() {
   uint asleep = 0u;
   for (uint i = gl_GlobalInvocationID.x; i < counts.x; i += stride) {
     uvec4 p = particleStats[i];
+#ifdef SLEEPING
+    // Only active particles are computed, so a dead body's particles keep their last contacts.
+    if (floatBitsToUint(texelFetch(listOriginTexture, int(i)).w) == LIST_DEAD) p.xw = uvec2(0u);
+#endif
     c.x += p.x;
     c.y += p.w;
     c.z += p.z;

@@ -4,9 +4,11 @@
 // carry.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <vector>
 
 #include "support/test_world.h"
 
@@ -176,7 +178,10 @@ TEST(Sleep, SnapshotCarriesTheSleepState) {
 // with sleep, fallen asleep): how far the slumped sand runs out, and how many granules slept at
 // the cut.
 struct CutResult {
-  double runOut = 0.0;  // largest granule x after the slump, m
+  // Where the front of the slumped sand lies: the 90th percentile of the granules' x (m). The
+  // largest x, one granule's luck, varies by more than 2 d between runs that differ in a bit.
+  double runOut = 0.0;
+  double farthest = 0.0;  // the largest x, m
   std::uint32_t asleepAtCut = 0;
   std::uint32_t asleepAtEnd = 0;
 };
@@ -203,7 +208,11 @@ CutResult cutColumn(bool sleep) {
   w->setCollider(wall, Plane{{-1, 0, 0}, -10.0f});
   w.simulate(1.5);
   r.asleepAtEnd = w->readStats().granulesAsleep;
-  for (const BodyState& b : w->readBodies()) r.runOut = std::max(r.runOut, double(b.position.x));
+  std::vector<double> x;
+  for (const BodyState& b : w->readBodies()) x.push_back(b.position.x);
+  std::sort(x.begin(), x.end());
+  r.runOut = x[x.size() * 9 / 10];
+  r.farthest = x.back();
   return r;
 }
 
@@ -212,11 +221,12 @@ TEST(Sleep, AColumnCutAtItsFootRunsOutAsWithoutSleep) {
   const CutResult asleep = cutColumn(true);
   const double d = testing::smallSettings().particleDiameter;
   std::printf(
-      "run-out %.2f d without sleep, %.2f d with (%u of %u asleep at the cut, %u at the "
-      "end)\n",
-      awake.runOut / d, asleep.runOut / d, asleep.asleepAtCut, kGranules, asleep.asleepAtEnd);
+      "run-out (90th percentile of x) %.2f d without sleep, %.2f d with (farthest granule "
+      "%.2f d, %.2f d; %u of %u asleep at the cut, %u at the end)\n",
+      awake.runOut / d, asleep.runOut / d, awake.farthest / d, asleep.farthest / d,
+      asleep.asleepAtCut, kGranules, asleep.asleepAtEnd);
   ASSERT_EQ(asleep.asleepAtCut, kGranules);  // the cut met a sleeping column
-  // The wall was at 3.5 d; the sand ran out past it, and as far as without sleep to within the
+  // The wall was at 3.5 d; the front ran out past it, and as far as without sleep to within the
   // spread of a slump of 96 granules.
   EXPECT_GT(awake.runOut, 0.07 + 2.0 * d);
   EXPECT_NEAR(asleep.runOut, awake.runOut, 2.0 * d);

@@ -43,7 +43,9 @@ enum Binding : unsigned {
   kParticleSpin = 28,
   kContactSlots0 = 29,  // kContactSlotGroups buffers in a row
   kContactPairs = 32,
-  kBindingCount = 33,
+  kActiveBodies = 33,
+  kActiveParticles = 34,
+  kBindingCount = 35,
 };
 
 /// Texture units of the read-only buffer-texture views of some of the buffers above (layout.glsl,
@@ -84,6 +86,9 @@ inline constexpr std::uint32_t kCounterSpawnTaken = 1;
 inline constexpr std::uint32_t kCounterListRequested = 2;
 inline constexpr std::uint32_t kCounterListBuilds = 3;
 inline constexpr std::uint32_t kCounterListOverflows = 4;
+inline constexpr std::uint32_t kCounterActiveBodies = 5;
+inline constexpr std::uint32_t kCounterActiveParticles = 6;
+inline constexpr std::uint32_t kCounterActiveGroupsDone = 7;
 inline constexpr std::uint32_t kCounterListDispatch = 8;
 /// The passes of a list build, each dispatched from its own indirect command (list_check.comp).
 enum ListBuildPass : std::uint32_t {
@@ -96,10 +101,24 @@ enum ListBuildPass : std::uint32_t {
   kPassListBuild,
   kListBuildPasses,
 };
-inline constexpr std::uint32_t kCounterCount = kCounterListDispatch + 4 * kListBuildPasses;
+inline constexpr std::uint32_t kCounterActiveDispatch = kCounterListDispatch + 4 * kListBuildPasses;
+/// SLEEPING: the passes over the active lists, each from its own indirect command
+/// (collect_active.comp).
+enum ActivePass : std::uint32_t {
+  kActivePassContacts,
+  kActivePassBodies,
+  kActivePasses,
+};
+inline constexpr std::uint32_t kCounterCount = kCounterActiveDispatch + 4 * kActivePasses;
 /// Byte offset of a pass's indirect command in the counters buffer.
 inline constexpr std::uint32_t listDispatchOffset(ListBuildPass pass) {
   return 4 * (kCounterListDispatch + 4 * pass);
+}
+/// Bodies per thread of collect_active.comp (COLLECT_CHUNK there).
+inline constexpr std::uint32_t kCollectChunk = 32;
+/// Byte offset of an active pass's indirect command in the counters buffer.
+inline constexpr std::uint32_t activeDispatchOffset(ActivePass pass) {
+  return 4 * (kCounterActiveDispatch + 4 * pass);
 }
 /// Neighbour-list entries per particle (layout.glsl, NEIGHBOUR_LIST_CAPACITY).
 inline constexpr std::uint32_t kNeighbourListCapacity = 16;

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <variant>
 
+#include "core/collider_bounds.h"
 #include "core/contact_state.h"
 #include "core/granule_spawner.h"
 #include "core/overlap_check.h"
@@ -27,6 +28,9 @@ constexpr std::uint32_t kMaxParticles = 1u << 21;
 // Collider keys of contact slots hold collider * 8 + face in 23 bits (contact_slots.glsl); the
 // contact kernel loops over every collider, so far fewer are practical.
 constexpr std::uint32_t kMaxColliders = 1u << 16;
+// A granule whose centre is this many diameters from a collider's surface may touch it: a
+// particle's radius plus the granule's bounding radius, with room to spare.
+constexpr float kColliderWakeMargin = 2.0f;
 
 GpuVec4 toGpu(Vec3 v, float w) {
   return {v.x, v.y, v.z, w};
@@ -298,12 +302,31 @@ ColliderId World::Impl::putCollider(std::optional<std::uint32_t> slot, const Gpu
   } else {
     if (index >= colliders.size())
       throw InvalidId("ColliderId " + std::to_string(index) + " does not exist");
+    GpuCollider changed = collider;
+    std::memcpy(&changed.material.w, &index, sizeof index);
+    if (std::memcmp(&changed, &colliders[index], sizeof changed) == 0) return ColliderId{index};
+    // A sleeping granule touches no collider it does not see: the sand where the collider was
+    // wakes (where it is now wakes below).
+    wakeBox(colliderBounds(colliderShapes[index], kColliderWakeMargin * settings.particleDiameter));
     colliders[index] = collider;
     colliderShapes[index] = shape;
   }
   std::memcpy(&colliders[index].material.w, &index, sizeof index);
   paramsDirty = true;  // uploadParams re-sorts and uploads the colliders
+  wakeBox(colliderBounds(shape, kColliderWakeMargin * settings.particleDiameter));
   return ColliderId{index};
+}
+
+void World::Impl::wakeBox(const Bounds& box) {
+  if (!sleep.enabled || bodyCount == 0) return;
+  gpu->makeCurrent();
+  if (paramsDirty) uploadParams();
+  buffers.bindAll();
+  glUseProgram(kernels.wakeRegion);
+  glUniform3f(0, box.lo.x, box.lo.y, box.lo.z);
+  glUniform3f(1, box.hi.x, box.hi.y, box.hi.z);
+  dispatch(kernels.wakeRegion, "wake_region", bodyCount, kWorkgroupSize);
+  gl::check("waking a region");
 }
 
 void World::Impl::requireBody(BodyId id) const {
@@ -450,16 +473,7 @@ void World::wake(Vec3 lo, Vec3 hi) {
   requireFiniteVec("World::wake hi", hi);
   require(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z, "World::wake hi.x/y/z", hi.x,
           "must be >= lo on every axis");
-  Impl& w = *m_impl;
-  if (!w.sleep.enabled || w.bodyCount == 0) return;
-  w.gpu->makeCurrent();
-  if (w.paramsDirty) w.uploadParams();
-  w.buffers.bindAll();
-  glUseProgram(w.kernels.wakeRegion);
-  glUniform3f(0, lo.x, lo.y, lo.z);
-  glUniform3f(1, hi.x, hi.y, hi.z);
-  w.dispatch(w.kernels.wakeRegion, "wake_region", w.bodyCount, kWorkgroupSize);
-  gl::check("World::wake");
+  m_impl->wakeBox({lo, hi});
 }
 
 BodyId World::addRoughFloor(const RoughFloor& floor) {

@@ -65,6 +65,8 @@ constexpr BufferSpec kSpecs[kBindingCount] = {
     {"contactSlots1", 16 * kContactSlotsPerGroup, SizedBy::History},
     {"contactSlots2", 16 * kContactSlotsPerGroup, SizedBy::History},
     {"contactPairs", 16, SizedBy::History},
+    {"activeBodies", 4, SizedBy::Bodies},
+    {"activeParticles", 4, SizedBy::Particles},
 };
 static_assert(kContactSlots0 + kContactSlotGroups == kContactPairs);
 
@@ -243,13 +245,17 @@ void WorldKernels::compile(ContactLaw law, bool sleeping) {
   statsReduce = compile("sim/stats_reduce.comp");
   stateHash = compile("sim/state_hash.comp");
   spawnCheck = compile("sim/spawn_check.comp");
-  if (sleeping) wakeRegion = compile("sim/wake_region.comp");
+  if (sleeping) {
+    wakeRegion = compile("sim/wake_region.comp");
+    collectActive = compile("sim/collect_active.comp");
+  }
 }
 
 void WorldKernels::release() {
-  for (GLuint p : {bodiesToParticles, listCheck, gridCount, scanBlocks, scanBlockSums, scanAdd,
-                   gridScatter, gridSort, listBuild, contacts, contactList, integrateBodies,
-                   integrateLargeBodies, statsReduce, stateHash, spawnCheck, wakeRegion}) {
+  for (GLuint p :
+       {bodiesToParticles, listCheck, gridCount, scanBlocks, scanBlockSums, scanAdd, gridScatter,
+        gridSort, listBuild, contacts, contactList, integrateBodies, integrateLargeBodies,
+        statsReduce, stateHash, spawnCheck, wakeRegion, collectActive}) {
     if (p) glDeleteProgram(p);
   }
   *this = {};

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/collider_bounds.h"
 #include "core/emitter.h"
 #include "core/gpu_layout.h"
 #include "gl/buffer.h"
@@ -60,7 +61,8 @@ struct WorldKernels {
   GLuint statsReduce = 0;
   GLuint stateHash = 0;
   GLuint spawnCheck = 0;
-  GLuint wakeRegion = 0;  // with sleeping only
+  GLuint wakeRegion = 0;     // with sleeping only
+  GLuint collectActive = 0;  // with sleeping only
 
   /// Compiles every kernel for `law` (PAPER_LAW defined for ContactLaw::PaperViscous) and, with
   /// `sleeping`, for sleeping sand (SLEEPING defined).
@@ -144,6 +146,9 @@ struct World::Impl {
   std::uint32_t placedCalm(const BodyDesc& desc) const;
   void uploadBodyStates(std::uint32_t first, const std::vector<BodyDesc>& descs,
                         const ParticleTemplate& shape);
+  // Wakes the sleeping granules whose centres lie in `box` (wake_region.comp); nothing without
+  // sleep.
+  void wakeBox(const detail::Bounds& box);
   ColliderId putCollider(std::optional<std::uint32_t> slot, const detail::GpuCollider& collider,
                          const ColliderShape& shape);
   void requireBody(BodyId id) const;
@@ -159,10 +164,16 @@ struct World::Impl {
   /// What the contacts of a substep need first: the particles the CPU changed, and the neighbour
   /// lists, built on the GPU's decision (list_check.comp) with indirect dispatches.
   void prepareContacts();
+  /// Its parts: the particles the CPU changed (and a build request when it changed bodies), and
+  /// the build's passes, which run with zero groups when the decision found no build due.
+  void prepareBodies();
+  void buildLists();
   void runSubstep();
   void dispatch(GLuint program, const char* name, std::uint32_t threads, std::uint32_t groupSize);
-  /// One pass of the list build, with the group counts list_check.comp wrote.
+  /// One pass of the list build, with the group counts the decision wrote.
   void dispatchListPass(GLuint program, const char* name, detail::ListBuildPass pass);
+  /// SLEEPING: one pass over an active list, with the command collect_active.comp wrote.
+  void dispatchActivePass(GLuint program, const char* name, detail::ActivePass pass);
   void emit(double dt, StepReport* report);
   /// spawn_check.comp over the `count` granules just added from body slot `firstBody`.
   void checkSpawnPlaces(std::uint32_t firstBody, std::uint32_t count);

@@ -70,6 +70,14 @@ void World::Impl::dispatchListPass(GLuint program, const char* name, ListBuildPa
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
+void World::Impl::dispatchActivePass(GLuint program, const char* name, ActivePass pass) {
+  glUseProgram(program);
+  profiler.begin(name);
+  glDispatchComputeIndirect(GLintptr(activeDispatchOffset(pass)));
+  profiler.end();
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
 void World::Impl::markParticlesDirty(std::uint32_t first, std::uint32_t end) {
   if (first >= end) return;
   dirtyBegin = dirtyEnd > dirtyBegin ? std::min(dirtyBegin, first) : first;
@@ -84,7 +92,7 @@ void World::Impl::fitTable() {
   listsStale = true;
 }
 
-void World::Impl::prepareContacts() {
+void World::Impl::prepareBodies() {
   fitTable();
   if (paramsDirty) uploadParams();
   // 0. The particles of bodies the CPU set, from their bodies (eq. 7, 8); the integration writes
@@ -96,15 +104,16 @@ void World::Impl::prepareContacts() {
              kWorkgroupSize);
     dirtyBegin = dirtyEnd = 0;
   }
-  // 1. Build the neighbour lists or not: the GPU decides (a particle moved half the skin, a
-  // granule died), or the CPU asks (bodies added or restored, a new table).
+  // The CPU asks for a list build when it changed the bodies (added, restored) or the table.
   if (listsStale) {
     const std::uint32_t requested = 1;
     buffers[kCounters].upload(4 * kCounterListRequested, 4, &requested);
     listsStale = false;
   }
-  dispatch(kernels.listCheck, "list_check", 1, 1);
-  // 2. The build, in passes whose group counts list_check wrote (zero when not due): bucket
+}
+
+void World::Impl::buildLists() {
+  // 2. The build, in passes whose group counts the decision wrote (zero when not due): bucket
   // counts, their prefix sum (blocks of 1024), scatter into buckets, id order inside each
   // bucket, then each particle's list.
   dispatchListPass(kernels.gridCount, "grid_count", kPassGridCount);
@@ -117,13 +126,34 @@ void World::Impl::prepareContacts() {
   gridValid = true;
 }
 
+void World::Impl::prepareContacts() {
+  prepareBodies();
+  // 1. Build the neighbour lists or not: the GPU decides (a particle moved half the skin, a
+  // granule died, the CPU asked).
+  dispatch(kernels.listCheck, "list_check", 1, 1);
+  buildLists();
+}
+
 void World::Impl::runSubstep() {
-  prepareContacts();
-  // 3. Contact forces (eq. 9, 10) from the lists, and colliders, gathered per particle.
-  dispatch(kernels.contacts, "contacts", particleCount, kWorkgroupSize);
-  // 4. Body sums (eq. 2, 3) and integration (eq. 4-6), guards, sinks; the particles of the next
-  // substep.
-  dispatch(kernels.integrateBodies, "integrate_bodies", bodyCount, kWorkgroupSize);
+  if (sleep.enabled && bodyCount > 0) {
+    // With sleep: the bodies and particles this substep computes, the awake ones and the
+    // sleepers something awake touched (and the list decision, in the same pass); the passes
+    // below run over them alone, from indirect commands.
+    prepareBodies();
+    dispatch(kernels.collectActive, "collect_active",
+             (bodyCount + kCollectChunk - 1) / kCollectChunk, kWorkgroupSize);
+    buildLists();
+    // 3, 4 as below.
+    dispatchActivePass(kernels.contacts, "contacts", kActivePassContacts);
+    dispatchActivePass(kernels.integrateBodies, "integrate_bodies", kActivePassBodies);
+  } else {
+    prepareContacts();
+    // 3. Contact forces (eq. 9, 10) from the lists, and colliders, gathered per particle.
+    dispatch(kernels.contacts, "contacts", particleCount, kWorkgroupSize);
+    // 4. Body sums (eq. 2, 3) and integration (eq. 4-6), guards, sinks; the particles of the
+    // next substep.
+    dispatch(kernels.integrateBodies, "integrate_bodies", bodyCount, kWorkgroupSize);
+  }
   // 4b. Every other body: a workgroup each (force sums for read-back, then the same integration).
   if (!largeBodies.empty()) {
     dispatch(kernels.integrateLargeBodies, "integrate_large_bodies",

@@ -62,6 +62,8 @@
 #define NEIGHBOUR_LIST(access) layout(std430, binding = 15) access buffer NeighbourListBuffer { uint neighbourList[]; };
 // Per particle, xyz: its position at the last list build (m); w: how many partners it had then
 // (uint bits; more than NEIGHBOUR_LIST_CAPACITY: the rest are found again in the grid).
+// listOrigin.w of a particle whose body was dead at the last build.
+#define LIST_DEAD 0xffffffffu
 #define LIST_ORIGIN(access) layout(std430, binding = 16) access buffer ListOriginBuffer { vec4 listOrigin[]; };
 // Hash bucket of each particle at the last list build, or INVALID_CELL for particles of dead
 // bodies.
@@ -127,6 +129,11 @@ struct SinkBox {
 #define COUNTER_LIST_BUILDS 3
 // Particles that had more partners than NEIGHBOUR_LIST_CAPACITY at a build (total).
 #define COUNTER_LIST_OVERFLOWS 4
+// SLEEPING: the entries collect_active.comp has put in the active lists so far this substep, and
+// its workgroups done (the last one turns them into the commands below and clears them).
+#define COUNTER_ACTIVE_BODIES 5
+#define COUNTER_ACTIVE_PARTICLES 6
+#define COUNTER_ACTIVE_GROUPS_DONE 7
 // From this uint on: the indirect dispatch commands of the list build, one per pass below (4
 // uints each: groups x, y, z and padding), zero groups when no build is due.
 #define COUNTER_LIST_DISPATCH 8
@@ -138,6 +145,11 @@ struct SinkBox {
 #define PASS_GRID_SORT 5u
 #define PASS_LIST_BUILD 6u
 #define LIST_BUILD_PASSES 7
+// SLEEPING: after those, the indirect commands of the contacts and integrate_bodies passes over
+// the active lists (ACTIVE_PARTICLES, ACTIVE_BODIES); the fourth uint of each is the list's length.
+#define COUNTER_ACTIVE_DISPATCH (COUNTER_LIST_DISPATCH + 4 * LIST_BUILD_PASSES)
+#define ACTIVE_PASS_CONTACTS 0u
+#define ACTIVE_PASS_BODIES 1u
 #define COUNTERS(access) layout(std430, binding = 21) access buffer CounterBuffer { uint counters[]; };
 // Partial sums of the statistics reduction, one per workgroup (see stats_reduce.comp).
 struct StatsPartial {
@@ -181,6 +193,13 @@ struct StatsPartial {
 // use (at least that many: a particle left without contacts may keep a stale count).
 #define CONTACT_PAIRS(access) layout(std430, binding = 32) access buffer ContactPairsBuffer { uvec4 contactPairs[]; };
 
+// SLEEPING: the particles and the granules a substep computes (collect_active.comp): those of
+// awake bodies and of sleeping ones something awake touched in the last substep; in blocks of a
+// workgroup, ascending inside a block, the blocks in any order (no result depends on the order:
+// each thread gathers for its own particle or body).
+#define ACTIVE_BODIES(access) layout(std430, binding = 33) access buffer ActiveBodiesBuffer { uint activeBodies[]; };
+#define ACTIVE_PARTICLES(access) layout(std430, binding = 34) access buffer ActiveParticlesBuffer { uint activeParticles[]; };
+
 // Sleep (SLEEPING, docs/architecture.md "sleep"). A body's calm count is the number of substeps
 // its speeds have been below the thresholds, but at most sleepSteps.y more than the smallest
 // count among the bodies it touches: so a body reaches sleepSteps.x, and sleeps, only when
@@ -188,8 +207,11 @@ struct StatsPartial {
 // together. Only dynamic granules sleep; the count of every other movable body stops at
 // sleepSteps.x - 1. The contacts pass leaves in particleForce.w the smallest count among the
 // particle's partners (CALM_UNBOUNDED: none), 0 when a moving collider touches it or, asleep,
-// when its contacts are not those it fell asleep with.
+// when its contacts are not those it fell asleep with. An awake particle marks the sleeping bodies
+// it touches by setting their count (not their particles' copies) to calmTouched(): they are
+// computed in the next substep (collect_active.comp takes the mark back to sleepSteps.x).
 #define CALM_UNBOUNDED 0xffffffffu
+#define calmTouched() (sleepSteps.x + 1u)
 
 // Constant for the whole step; set by World when settings or counts change.
 layout(std140, binding = 0) uniform SimParams {

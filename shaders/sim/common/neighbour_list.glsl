@@ -5,9 +5,6 @@
 // snapshots need not carry. The includer declares CELL_START_TEXTURE and CELL_PARTICLES_TEXTURE
 // and includes spatial_hash.glsl.
 
-// listOrigin.w of a particle whose body was dead at the last build.
-#define LIST_DEAD 0xffffffffu
-
 // Entry k of particle i's list in neighbourList.
 int listEntry(uint particle, uint k) {
   return int(k * listLayout.x + particle);

@@ -1,0 +1,111 @@
+#version 450
+// SLEEPING, first pass of every substep, one thread per COLLECT_CHUNK bodies: lists what this
+// substep computes.
+// A body is active when it is alive, not static, and awake or touched by something awake in the
+// last substep (its count is calmTouched(), which this pass takes back to plain asleep); an active
+// granule goes into activeBodies (integrate_bodies.comp), the particles of every active body into
+// activeParticles (contacts.comp). Each workgroup packs its entries in body order (a scan in
+// shared memory) and takes its place in the lists with one atomic add; the last workgroup to
+// finish writes the two passes' indirect commands, clears the totals for the next substep and
+// decides on the list build. So the passes that follow cost what the awake sand costs, and
+// nothing is read back.
+#include "common/layout.glsl"
+
+layout(local_size_x = WORKGROUP_SIZE) in;
+
+BODY_INFO_TEXTURE
+BODY_VELOCITY_TEXTURE
+BODY_VELOCITY(writeonly)
+ACTIVE_BODIES(writeonly)
+ACTIVE_PARTICLES(writeonly)
+COUNTERS(coherent)
+#include "common/list_decision.glsl"
+
+// Bodies per thread, consecutive: a workgroup lists WORKGROUP_SIZE * COLLECT_CHUNK bodies with one
+// scan in shared memory, whose barriers are what this pass costs on a CPU.
+#define COLLECT_CHUNK 32u
+
+shared uint bodyOffsets[WORKGROUP_SIZE];
+shared uint particleOffsets[WORKGROUP_SIZE];
+shared uint bodyBase;
+shared uint particleBase;
+
+// The command of `pass` for `entries` threads of WORKGROUP_SIZE, spilling into y as
+// World::Impl::dispatch does; the fourth uint holds `entries`.
+void writeCommand(uint pass, uint entries) {
+  uint groups = (entries + WORKGROUP_SIZE - 1u) / WORKGROUP_SIZE;
+  uint x = min(groups, 32768u);
+  uint at = uint(COUNTER_ACTIVE_DISPATCH) + 4u * pass;
+  counters[at] = x;
+  counters[at + 1u] = x == 0u ? 0u : (groups + x - 1u) / x;
+  counters[at + 2u] = 1u;
+  counters[at + 3u] = entries;
+}
+
+// Whether body b is computed this substep, and its info. Takes a touched sleeper's mark back.
+bool computed(uint b, out uvec4 info) {
+  info = texelFetch(bodyInfoTexture, int(b));
+  uint motion = (info.z & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT;
+  // The thread reads its own body's count before it writes it; no other thread touches it.
+  uint calm = floatBitsToUint(texelFetch(bodyVelocityTexture, int(b)).w);
+  return (info.z & BODY_ALIVE) != 0u && motion != MOTION_STATIC && calm != sleepSteps.x;
+}
+
+void main() {
+  uint local = gl_LocalInvocationID.x;
+  uint first = threadIndex() * COLLECT_CHUNK;
+  uint end = min(first + COLLECT_CHUNK, counts.y);
+  uint bodies = 0u;
+  uint particles = 0u;
+  for (uint b = first; b < end; ++b) {
+    uvec4 info;
+    if (computed(b, info)) {
+      if ((info.z & BODY_LARGE) == 0u) ++bodies;
+      particles += info.y;
+    }
+  }
+  bodyOffsets[local] = bodies;
+  particleOffsets[local] = particles;
+  barrier();
+  // Inclusive scan of the threads' counts (Hillis-Steele).
+  for (uint width = 1u; width < uint(WORKGROUP_SIZE); width <<= 1u) {
+    uint b = bodyOffsets[local];
+    uint p = particleOffsets[local];
+    if (local >= width) {
+      b += bodyOffsets[local - width];
+      p += particleOffsets[local - width];
+    }
+    barrier();
+    bodyOffsets[local] = b;
+    particleOffsets[local] = p;
+    barrier();
+  }
+  if (local == uint(WORKGROUP_SIZE) - 1u) {
+    bodyBase = atomicAdd(counters[COUNTER_ACTIVE_BODIES], bodyOffsets[local]);
+    particleBase = atomicAdd(counters[COUNTER_ACTIVE_PARTICLES], particleOffsets[local]);
+  }
+  barrier();
+  uint nextBody = bodyBase + bodyOffsets[local] - bodies;
+  uint nextParticle = particleBase + particleOffsets[local] - particles;
+  for (uint b = first; b < end && bodies + particles > 0u; ++b) {
+    uvec4 info;
+    if (!computed(b, info)) continue;
+    if (floatBitsToUint(texelFetch(bodyVelocityTexture, int(b)).w) == calmTouched()) {
+      bodyVelocity[b].w = uintBitsToFloat(sleepSteps.x);
+    }
+    if ((info.z & BODY_LARGE) == 0u) activeBodies[nextBody++] = b;
+    for (uint k = 0u; k < info.y; ++k) activeParticles[nextParticle++] = info.x + k;
+  }
+  // The last workgroup to get here sees every workgroup's totals.
+  memoryBarrierBuffer();
+  barrier();
+  if (local == 0u) {
+    uint groups = gl_NumWorkGroups.x * gl_NumWorkGroups.y;
+    if (atomicAdd(counters[COUNTER_ACTIVE_GROUPS_DONE], 1u) == groups - 1u) {
+      writeCommand(ACTIVE_PASS_CONTACTS, atomicExchange(counters[COUNTER_ACTIVE_PARTICLES], 0u));
+      writeCommand(ACTIVE_PASS_BODIES, atomicExchange(counters[COUNTER_ACTIVE_BODIES], 0u));
+      counters[COUNTER_ACTIVE_GROUPS_DONE] = 0u;
+      decideListBuild();  // what list_check.comp does without sleep, one dispatch fewer
+    }
+  }
+}
