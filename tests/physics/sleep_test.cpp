@@ -158,6 +158,89 @@ TEST(Sleep, AGranuleDroppedOnTheSleepingPileWakesItsNeighboursAndRests) {
   EXPECT_EQ(hashes[0], hashes[1]);  // the same sleep and wake pattern, bit for bit
 }
 
+// A rock (a body of 33 particles: a ball of radius 2 d on a lattice of spacing d) set down at
+// 0.3 m/s onto the middle of a bed of 432 granules three deep in a box 30 d wide, settled (and,
+// with sleep, asleep), and left for a second.
+struct RockResult {
+  double restHeight = 0.0;     // the rock's centre a second after the drop, m
+  std::uint32_t moved = 0;     // granules whose position changed at all
+  std::uint32_t movedFar = 0;  // of those, the ones farther than kQuietRadius from the rock
+  double farthestMoved = 0.0;  // the largest horizontal distance of one of them from the rock, m
+  std::uint32_t asleepAtDrop = 0;
+  std::uint32_t asleepAtEnd = 0;
+};
+
+constexpr std::uint32_t kBedGranules = 432;
+// Beyond this many diameters from the rock's axis (5.6 rock radii) nothing may wake.
+constexpr double kQuietRadius = 14.0;
+
+RockResult dropRock(bool sleep) {
+  WorldSettings settings = testing::smallSettings(kBedGranules + 1);
+  settings.maxParticles = 4 * kBedGranules + 64;
+  settings.sleep.enabled = sleep;
+  testing::TestWorld w(settings);
+  const float d = settings.particleDiameter;
+  w->addCollider(Plane{});
+  w->addCollider(Box{.center = {0, 0.3f, 0}, .halfExtents = {0.3f, 0.3f, 0.3f}, .inside = true});
+  w->addGranules(GranuleBlock{.center = {0, 0.07f, 0},
+                              .countX = 12,
+                              .countY = 3,
+                              .countZ = 12,
+                              .velocity = {0, -0.5f, 0},
+                              .seed = 5});
+  w.simulate(1.6);
+  RockResult r;
+  r.asleepAtDrop = w->readStats().granulesAsleep;
+  const std::vector<BodyState> before = w->readBodies();
+  float top = 0.0f;
+  for (const BodyState& b : before) top = std::max(top, b.position.y);
+  std::vector<Vec3> ball;
+  for (int x = -2; x <= 2; ++x)
+    for (int y = -2; y <= 2; ++y)
+      for (int z = -2; z <= 2; ++z)
+        if (x * x + y * y + z * z <= 4) ball.push_back({x * d, y * d, z * d});
+  const float rockX = 0.01f, rockZ = -0.005f;
+  w->addBody(makeParticleTemplate(ball, d, settings.material.density),
+             {{rockX, top + 3.0f * d, rockZ}, {}, {0, -0.3f, 0}, {}, Motion::Dynamic});
+  w.simulate(1.0);
+  const std::vector<BodyState> after = w->readBodies();
+  r.restHeight = after.back().position.y;
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    const Vec3 a = before[i].position, b = after[i].position;
+    if (std::memcmp(&a, &b, sizeof a) == 0) continue;
+    const double away = std::hypot(a.x - rockX, a.z - rockZ);
+    ++r.moved;
+    if (away > kQuietRadius * d) ++r.movedFar;
+    r.farthestMoved = std::max(r.farthestMoved, away);
+  }
+  r.asleepAtEnd = w->readStats().granulesAsleep;
+  return r;
+}
+
+TEST(Sleep, ARockDroppedOnASleepingBedWakesOnlyItsSurroundingsAndRestsAsWithoutSleep) {
+  const RockResult awake = dropRock(false);
+  const RockResult asleep = dropRock(true);
+  const double d = testing::smallSettings().particleDiameter;
+  std::printf(
+      "rock at rest %.3f d up without sleep, %.3f d with; moved: %u of %u granules without sleep "
+      "(%u beyond %.0f d), %u with (%u beyond, the farthest %.2f d from the rock's axis); with "
+      "sleep %u asleep at the drop, %u a second later\n",
+      awake.restHeight / d, asleep.restHeight / d, awake.moved, kBedGranules, awake.movedFar,
+      kQuietRadius, asleep.moved, asleep.movedFar, asleep.farthestMoved / d, asleep.asleepAtDrop,
+      asleep.asleepAtEnd);
+  // The rock met a bed nearly all asleep (a few rattlers take longer than the sleep time).
+  EXPECT_GE(asleep.asleepAtDrop, kBedGranules * 9 / 10);
+  // Without sleep the whole bed feels the rock (a bit at least); with it, only its surroundings
+  // wake: beyond kQuietRadius no granule changes a bit.
+  ASSERT_GT(awake.movedFar, 0u);
+  EXPECT_EQ(asleep.movedFar, 0u);
+  EXPECT_GT(asleep.moved, 0u);
+  // It digs in and rests where it rests without sleep, to within a quarter of a diameter, and
+  // the bed sleeps again under it.
+  EXPECT_NEAR(asleep.restHeight, awake.restHeight, 0.25 * d);
+  EXPECT_GE(asleep.asleepAtEnd, asleep.asleepAtDrop);
+}
+
 TEST(Sleep, SnapshotCarriesTheSleepState) {
   testing::TestWorld a(sleepySettings());
   buildPile(*a);
