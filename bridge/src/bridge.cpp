@@ -46,6 +46,9 @@ Bridge::Bridge(World& sand, btDiscreteDynamicsWorld& dynamics, const BridgeSetti
                           ": must be finite and > 0 s");
   }
   m_lastStep = automaticStep();
+  const SleepModel& sleep = sand.sleepModel();
+  m_wakeAcceleration =
+      sleep.enabled ? sleep.wakeAcceleration : kSleepWakeAcceleration * float(sandGravity.length());
 }
 
 float Bridge::automaticStep() const {
@@ -111,6 +114,8 @@ BodyId Bridge::couple(btRigidBody* body, const TriangleMesh& surface,
       {body, id, std::uint32_t(shape.offsets.size()), {}, {}, shape.boundingRadius + 0.5f * d});
   m_frameForce.emplace_back();
   m_frameTorque.emplace_back();
+  m_lastForce.emplace_back();
+  m_lastTorque.emplace_back();
   return id;
 }
 
@@ -121,14 +126,34 @@ const Bridge::Coupled* Bridge::find(const btRigidBody* body) const {
   return nullptr;
 }
 
+namespace {
+
+float length(Vec3 v) {
+  return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+}
+
+Vec3 difference(Vec3 a, Vec3 b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+
+}  // namespace
+
 void Bridge::pushPoses() {
-  for (const Coupled& c : m_coupled) {
+  for (std::size_t i = 0; i < m_coupled.size(); ++i) {
+    Coupled& c = m_coupled[i];
     if (c.body->getInvMass() == btScalar(0)) continue;  // static on both sides
+    const bool asleep = !c.body->isActive();
+    if (asleep && c.asleep) continue;  // pushed at rest when it fell asleep
+    if (asleep) {
+      c.restForce = m_lastForce[i];
+      c.restTorque = m_lastTorque[i];
+    }
+    c.asleep = asleep;
     const btTransform& pose = c.body->getCenterOfMassTransform();
     const BodyDesc state{.position = toSand(pose.getOrigin()),
                          .orientation = toSand(pose.getRotation()),
-                         .velocity = toSand(c.body->getLinearVelocity()),
-                         .angularVelocity = toSand(c.body->getAngularVelocity()),
+                         .velocity = asleep ? Vec3{} : toSand(c.body->getLinearVelocity()),
+                         .angularVelocity = asleep ? Vec3{} : toSand(c.body->getAngularVelocity()),
                          .motion = Motion::Kinematic};
     m_sand.setBodyState(c.sandBody, state);
     m_pushes.push_back({c.sandBody.index, state});
@@ -147,8 +172,15 @@ void Bridge::applySandForces(double weight) {
       if (f.substeps > 0) {
         c.body->applyCentralForce(toBullet(force));
         c.body->applyTorque(toBullet(torque));
-        // Sand resting on a body that Bullet put to sleep must wake it.
-        if (force.x != 0.0f || force.y != 0.0f || force.z != 0.0f) c.body->activate();
+        m_lastForce[i] = force;
+        m_lastTorque[i] = torque;
+        // Sand that pushes a body Bullet put to sleep harder (or less) than it did then wakes it.
+        const float mass = float(btScalar(1) / c.body->getInvMass());
+        const float limit = m_wakeAcceleration * mass;
+        if (c.asleep && (length(difference(force, c.restForce)) > limit ||
+                         length(difference(torque, c.restTorque)) > limit * c.reach)) {
+          c.body->activate();
+        }
       }
       m_frameForce[i] = {m_frameForce[i].x + float(weight) * force.x,
                          m_frameForce[i].y + float(weight) * force.y,

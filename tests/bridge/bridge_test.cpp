@@ -164,9 +164,18 @@ TEST(Bridge, RefusesMismatchedGravityLightBodiesAndDoubleCoupling) {
 
 // A light wooden box set on a bed of sand sinks a little, then rests: Bullet moves it, the sand
 // carries it. Over the last seconds it stays put and the mean sand force equals its weight.
-// The box of BoxRestsOnASandBedCarriedByTheSandForce, with sleeping sand or without; returns
-// the granules asleep at the end.
-std::uint32_t boxOnSandBed(bool sleep) {
+// The box of BoxRestsOnASandBedCarriedByTheSandForce, with sleeping sand or without. At the
+// end, what slept; then, with sleep, Bullet wakes the box and sends it sideways into the sand.
+struct BedResult {
+  std::uint32_t granulesAsleep = 0;   // at the end of the 5 s
+  bool boxAsleepInBullet = false;     // Bullet had deactivated the box
+  bool bridgeSawItAsleep = false;     // Bridge::Coupled::asleep
+  std::size_t lastFramePushes = 0;    // what the bridge pushed in the last frame
+  std::uint32_t asleepAfterKick = 0;  // granules asleep 0.1 s after the kick
+  float kickSpeed = 0.0f;             // the box's speed then, m/s
+};
+
+BedResult boxOnSandBed(bool sleep) {
   WorldSettings settings = smallSettings(400);
   settings.sleep.enabled = sleep;
   settings.maxParticles = 400 * 4 + 4000;
@@ -240,19 +249,47 @@ std::uint32_t boxOnSandBed(bool sleep) {
   EXPECT_LT(sink, 3.0f * d) << "the box sank through the bed";
   const btVector3 up = box->getCenterOfMassTransform().getBasis().getColumn(1);
   EXPECT_GT(up.y(), 0.99f) << "the box tipped over";
-  return sand.readStats().granulesAsleep;
+  BedResult r;
+  r.granulesAsleep = sand.readStats().granulesAsleep;
+  r.boxAsleepInBullet = !box->isActive();
+  r.bridgeSawItAsleep = bridge.coupled()[0].asleep;
+  r.lastFramePushes = bridge.pushes().size();
+  if (sleep) {
+    // Woken in Bullet (as another Bullet body hitting it would), it ploughs into the sand.
+    box->activate(true);
+    box->setLinearVelocity(btVector3(0.3f, 0, 0));
+    for (int f = 0; f < 6; ++f) bridge.step(frame);
+    r.asleepAfterKick = sand.readStats().granulesAsleep;
+    r.kickSpeed = float(box->getLinearVelocity().x());
+  }
+  return r;
 }
 
 TEST(Bridge, BoxRestsOnASandBedCarriedByTheSandForce) {
-  EXPECT_EQ(boxOnSandBed(false), 0u);
+  const BedResult r = boxOnSandBed(false);
+  EXPECT_EQ(r.granulesAsleep, 0u);
+  // Bullet may put the resting box to sleep: the sand's force on it no longer changes.
+  std::printf("box asleep in Bullet at the end: %d\n", int(r.boxAsleepInBullet));
 }
 
 // The same on sleeping sand: the box rests, carried, with no sink, and once it is at rest the
 // sand under it falls asleep again (the bridge sets the resting box as a calm kinematic body).
+// Bullet's own deactivation of the resting box is allowed, and the bridge then stops pushing it;
+// woken in Bullet and moving, the box wakes the sand it touches.
 TEST(Bridge, BoxRestsOnASleepingSandBed) {
-  const std::uint32_t asleep = boxOnSandBed(true);
-  std::printf("granules asleep at the end: %u of 144\n", asleep);
-  EXPECT_GE(asleep, 130u);  // nine in ten of the 144 granules
+  const BedResult r = boxOnSandBed(true);
+  std::printf(
+      "granules asleep at the end: %u of 144; box asleep in Bullet %d (bridge %d), %zu pushes in "
+      "the last frame; 0.1 s after Bullet sent it at 0.3 m/s: %u asleep, box at %.3f m/s\n",
+      r.granulesAsleep, int(r.boxAsleepInBullet), int(r.bridgeSawItAsleep), r.lastFramePushes,
+      r.asleepAfterKick, r.kickSpeed);
+  EXPECT_GE(r.granulesAsleep, 130u);  // nine in ten of the 144 granules
+  EXPECT_TRUE(r.boxAsleepInBullet);
+  EXPECT_TRUE(r.bridgeSawItAsleep);
+  EXPECT_EQ(r.lastFramePushes, 0u);
+  // The sand it ploughs into wakes and holds it back.
+  EXPECT_LT(r.asleepAfterKick + 10u, r.granulesAsleep);
+  EXPECT_LT(r.kickSpeed, 0.3f);
 }
 
 // Sand thrown at a light free box in empty space (no gravity, no floor, no walls): whatever the

@@ -82,7 +82,8 @@ class Bridge {
   int exchanges() const { return m_lastExchanges; }
 
   /// Every pose and velocity the last step() pushed to the sand, in order (each exchange pushes
-  /// every coupled body that moves): the inputs a recording keeps from Bullet.
+  /// every coupled body that moves, and not one that Bullet has put to sleep: see Coupled::asleep):
+  /// the inputs a recording keeps from Bullet.
   const std::vector<RecordedInput>& pushes() const { return m_pushes; }
 
   /// What the sand did to one coupled body over the last frame.
@@ -93,6 +94,14 @@ class Bridge {
     Vec3 force{};        ///< mean sand force over the last step(), N
     Vec3 torque{};       ///< mean sand torque about the centre of mass over the last step(), N m
     float reach = 0.0f;  ///< farthest particle surface from the centre of mass, m
+    /// Bullet has deactivated the body: the bridge pushed it once at rest and pushes it no more,
+    /// so sand that sleeps around it stays asleep. The sand wakes it (btRigidBody::activate)
+    /// when its force or torque on it departs from what it was when the body fell asleep by
+    /// more than the sand's wake acceleration (SleepModel::wakeAcceleration, or the default
+    /// kSleepWakeAcceleration g without sleep) times its mass (and reach, for the torque).
+    bool asleep = false;
+    Vec3 restForce{};   ///< the sand force when it fell asleep, N
+    Vec3 restTorque{};  ///< the sand torque then, N m
   };
   const std::vector<Coupled>& coupled() const { return m_coupled; }
   /// The entry of `body`, or nullptr when it is not coupled.
@@ -106,6 +115,9 @@ class Bridge {
   World& m_sand;
   btDiscreteDynamicsWorld& m_dynamics;
   BridgeSettings m_settings;
+  float m_wakeAcceleration = 0.0f;  // m/s^2 (Coupled::asleep)
+  std::vector<Vec3> m_lastForce;    // each body's mean sand force of the last exchange, N
+  std::vector<Vec3> m_lastTorque;   // and torque, N m
   float m_lastStep = 0.0f;
   int m_lastExchanges = 0;
   std::vector<Coupled> m_coupled;
