@@ -102,10 +102,11 @@ void main() {
   if (local == 0u) {
     uint groups = gl_NumWorkGroups.x * gl_NumWorkGroups.y;
     if (atomicAdd(counters[COUNTER_ACTIVE_GROUPS_DONE], 1u) == groups - 1u) {
-      writeCommand(ACTIVE_PASS_CONTACTS, atomicExchange(counters[COUNTER_ACTIVE_PARTICLES], 0u));
+      uint particles = atomicExchange(counters[COUNTER_ACTIVE_PARTICLES], 0u);
+      writeCommand(ACTIVE_PASS_CONTACTS, particles);
       writeCommand(ACTIVE_PASS_BODIES, atomicExchange(counters[COUNTER_ACTIVE_BODIES], 0u));
       counters[COUNTER_ACTIVE_GROUPS_DONE] = 0u;
-      decideListBuild();  // what list_check.comp does without sleep, one dispatch fewer
+      decideListBuild(false, particles);  // what list_check.comp does without sleep
     }
   }
 }

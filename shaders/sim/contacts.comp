@@ -60,7 +60,6 @@ CONTACT_SLOTS_2(readonly)
 #else
 #ifdef SLEEPING
 ACTIVE_PARTICLES(readonly)
-COUNTERS(readonly)
 BODY_VELOCITY(writeonly)
 #endif
 PARTICLE_FORCE(writeonly)
@@ -71,6 +70,10 @@ CONTACT_SLOTS_0(coherent)
 CONTACT_SLOTS_1(coherent)
 CONTACT_SLOTS_2(coherent)
 #endif
+#endif
+#ifdef SLEEPING
+COUNTERS(readonly)
+LIST_BUILT(readonly)
 #endif
 #include "common/neighbour_list.glsl"
 
@@ -315,7 +318,8 @@ bool touches(Particle self, uint id) {
 
 // The partner with the smallest id above `after` that touches the current particle, found in the
 // grid of the last build (cells of d + skin: whatever touches now stood within d + skin then),
-// or NO_PARTNER. Only for particles with more partners than their list holds.
+// or NO_PARTNER (`after` NO_PARTNER: the smallest of all). Only for particles with more partners
+// than their list holds, and under SLEEPING for those whose list is older than the last build.
 uint nextPartnerAfter(Particle self, uint after) {
   uint best = NO_PARTNER;
   ivec3 cell = cellOf(texelFetch(listOriginTexture, int(self.id)).xyz);
@@ -325,7 +329,7 @@ uint nextPartnerAfter(Particle self, uint after) {
       uvec2 slots = rowSlots(cell, row, part, parts);
       for (uint s = slots.x; s < slots.y; ++s) {
         uint id = texelFetch(cellParticlesTexture, int(s)).x;
-        if (id <= after || id >= best) continue;
+        if ((after != NO_PARTNER && id <= after) || id >= best) continue;
         vec4 other = texelFetch(particlePositionTexture, int(id));
         float otherInverseMass = texelFetch(particleVelocityTexture, int(id)).w;
         if (floatBitsToUint(other.w) == self.body ||
@@ -494,6 +498,15 @@ void main() {
     if (touches(self, texelFetch(neighbourListTexture, listEntry(i, k)).x)) inContact |= 1u << k;
   }
   bool beyond = listed > uint(NEIGHBOUR_LIST_CAPACITY);
+#ifdef SLEEPING
+  // A list the last build passed over (it was built while the particle slept) may miss what
+  // came near since: every partner from the grid instead.
+  if (listBuilt[i] != counters[COUNTER_LIST_BUILDS]) {
+    inList = 0u;
+    inContact = 0u;
+    beyond = true;
+  }
+#endif
   bool movable = self.velocity.w > 0.0;
   uint found;
   uint seen = findHits(self, radius, movable, 0u, found);
@@ -510,9 +523,10 @@ void main() {
       takeHit(h, hit, collider, face);
       if (colliderMoves(colliders[collider])) calm = 0u;
     }
+    // Beyond the list or the first batch of surfaces, the contacts are not all known here (they
+    // are compared once counted, below).
     uint contacts = min(uint(bitCount(inContact)) + seen, uint(CONTACT_SLOTS));
-    if (contacts != min(previousPairs.w, uint(CONTACT_SLOTS))) calm = 0u;
-    // Beyond the list or the first batch of surfaces, the contacts are not all known here.
+    if (!beyond && contacts != min(previousPairs.w, uint(CONTACT_SLOTS))) calm = 0u;
     if (!beyond && seen == found && calm >= sleepSteps.x) {
       particleForce[i].w = uintBitsToFloat(calm);  // the force stays the last computed
       return;
@@ -520,7 +534,8 @@ void main() {
     neighbourCalm = min(neighbourCalm, calm);
   }
 #endif
-  uint last = beyond ? texelFetch(neighbourListTexture, listEntry(i, inList - 1u)).x : 0u;
+  uint last = beyond && inList > 0u ? texelFetch(neighbourListTexture, listEntry(i, inList - 1u)).x
+                                     : NO_PARTNER;
   for (;;) {
     uint partner = NO_PARTNER;
     if (inContact != 0u) {
@@ -548,6 +563,13 @@ void main() {
   }
 
 #ifndef CONTACT_LIST
+#ifdef SLEEPING
+  // A sleeper whose contacts are not those it fell asleep with wakes.
+  if (self.calm >= sleepSteps.x && min(pairContacts + wallContacts, uint(CONTACT_SLOTS)) !=
+                                       min(previousPairs.w, uint(CONTACT_SLOTS))) {
+    neighbourCalm = 0u;
+  }
+#endif
 #ifndef PAPER_LAW
   clearUnusedSlots(self.id);
   particleTorque[self.id] = vec4(torque, 0.0);

@@ -30,6 +30,7 @@ SINKS(readonly)
 COUNTERS(coherent)
 #ifdef SLEEPING
 ACTIVE_BODIES(readonly)
+LIST_ORIGIN(writeonly)
 #endif
 #ifndef PAPER_LAW
 PARTICLE_SPIN(writeonly)
@@ -163,7 +164,16 @@ void main() {
   uint calmLimit = motion == MOTION_DYNAMIC ? sleepSteps.x : sleepSteps.x - 1u;
   BodyMotion moved =
       integrateBody(b, info, force, torque, previousCalm, neighbourCalm, calmLimit);
-  if (!moved.alive) return;
+  if (!moved.alive) {
+#ifdef SLEEPING
+    // A build the motion asks for passes over the dead (they are not active): they leave the
+    // lists here.
+    for (uint k = 0u; k < GRANULE_PARTICLES; ++k) {
+      listOrigin[info.x + k].w = uintBitsToFloat(LIST_DEAD);
+    }
+#endif
+    return;
+  }
   for (uint k = 0u; k < GRANULE_PARTICLES; ++k) {
     storeParticle(info.x + k, local[k], b, moved.position, moved.orientation, moved.velocity,
                   moved.spin, moved.calm);

@@ -4,7 +4,9 @@
 // could touch (not two immovable ones), ascending by id: the NEIGHBOUR_LIST_CAPACITY smallest,
 // and how many there were (a particle with more finds the rest in the grid, contacts.comp). It
 // records where it stands, from which the integration measures how far it moves. Static particles
-// (rough floors) get no list: nobody needs their force; they are listed by the others.
+// (rough floors) get no list: nobody needs their force; they are listed by the others. Under
+// SLEEPING a build the motion asked for runs over the active particles only (COUNTER_LIST_ALL,
+// common/list_decision.glsl), and every list records the build it comes from (LIST_BUILT).
 #include "common/layout.glsl"
 #include "common/spatial_hash.glsl"
 
@@ -19,11 +21,25 @@ BODY_INFO_TEXTURE
 NEIGHBOUR_LIST(writeonly)
 LIST_ORIGIN(writeonly)
 COUNTERS(coherent)
+#ifdef SLEEPING
+ACTIVE_PARTICLES(readonly)
+LIST_BUILT(writeonly)
+#endif
 #include "common/neighbour_list.glsl"
 
 void main() {
+#ifdef SLEEPING
+  uint t = threadIndex();
+  bool every = counters[COUNTER_LIST_ALL] != 0u;
+  if (t >= (every ? counts.x : counters[COUNTER_ACTIVE_DISPATCH + 4u * ACTIVE_PASS_CONTACTS + 3u])) {
+    return;
+  }
+  uint i = every ? t : activeParticles[t];
+  listBuilt[i] = counters[COUNTER_LIST_BUILDS];
+#else
   uint i = threadIndex();
   if (i >= counts.x) return;
+#endif
   vec4 self = texelFetch(particlePositionTexture, int(i));
   float selfInverseMass = texelFetch(particleVelocityTexture, int(i)).w;
   // The owner from particleBody, as grid_count.comp: a granule never born has no state.

@@ -138,10 +138,10 @@ TEST(Sleep, AGranuleDroppedOnTheSleepingPileWakesItsNeighboursAndRests) {
       w.simulate(0.01);
       fewest = std::min(fewest, w->readStats().granulesAsleep);
     }
-    // The impact woke some of the pile, not all of it.
+    // The impact woke some of the pile, not all of it: a quarter at least stayed asleep.
     std::printf("fewest asleep after the drop: %u of %u\n", fewest, kGranules);
     EXPECT_LT(fewest, kGranules);
-    EXPECT_GT(fewest, 0u);
+    EXPECT_GE(fewest, kGranules / 4);
     // The dropped granule came to rest on the pile: it did not sink through sleeping sand.
     w.simulate(1.0);
     const BodyState dropped = w->readBodies().back();
@@ -236,9 +236,9 @@ TEST(Sleep, ARockDroppedOnASleepingBedWakesOnlyItsSurroundingsAndRestsAsWithoutS
   EXPECT_EQ(asleep.movedFar, 0u);
   EXPECT_GT(asleep.moved, 0u);
   // It digs in and rests where it rests without sleep, to within a quarter of a diameter, and
-  // the bed sleeps again under it.
+  // the bed sleeps again under it (as much of it as at the drop, give or take a few rattlers).
   EXPECT_NEAR(asleep.restHeight, awake.restHeight, 0.25 * d);
-  EXPECT_GE(asleep.asleepAtEnd, asleep.asleepAtDrop);
+  EXPECT_GE(asleep.asleepAtEnd, kBedGranules * 9 / 10);
 }
 
 TEST(Sleep, SnapshotCarriesTheSleepState) {

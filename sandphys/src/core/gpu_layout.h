@@ -45,7 +45,8 @@ enum Binding : unsigned {
   kContactPairs = 32,
   kActiveBodies = 33,
   kActiveParticles = 34,
-  kBindingCount = 35,
+  kListBuilt = 35,
+  kBindingCount = 36,
 };
 
 /// Texture units of the read-only buffer-texture views of some of the buffers above (layout.glsl,
@@ -89,7 +90,10 @@ inline constexpr std::uint32_t kCounterListOverflows = 4;
 inline constexpr std::uint32_t kCounterActiveBodies = 5;
 inline constexpr std::uint32_t kCounterActiveParticles = 6;
 inline constexpr std::uint32_t kCounterActiveGroupsDone = 7;
-inline constexpr std::uint32_t kCounterListDispatch = 8;
+inline constexpr std::uint32_t kCounterListAll = 8;
+inline constexpr std::uint32_t kCounterListDispatch = 12;
+/// COUNTER_LIST_REQUESTED values (layout.glsl): the CPU asks for every list.
+inline constexpr std::uint32_t kListRequestAll = 1;
 /// The passes of a list build, each dispatched from its own indirect command (list_check.comp).
 enum ListBuildPass : std::uint32_t {
   kPassGridCount,

@@ -67,6 +67,7 @@ constexpr BufferSpec kSpecs[kBindingCount] = {
     {"contactPairs", 16, SizedBy::History},
     {"activeBodies", 4, SizedBy::Bodies},
     {"activeParticles", 4, SizedBy::Particles},
+    {"listBuilt", 4, SizedBy::Particles},
 };
 static_assert(kContactSlots0 + kContactSlotGroups == kContactPairs);
 

@@ -106,8 +106,7 @@ void World::Impl::prepareBodies() {
   }
   // The CPU asks for a list build when it changed the bodies (added, restored) or the table.
   if (listsStale) {
-    const std::uint32_t requested = 1;
-    buffers[kCounters].upload(4 * kCounterListRequested, 4, &requested);
+    buffers[kCounters].upload(4 * kCounterListRequested, 4, &kListRequestAll);
     listsStale = false;
   }
 }

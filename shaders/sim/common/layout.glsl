@@ -121,10 +121,13 @@ struct SinkBox {
 #define COUNTER_KILLED 0
 // Emitted granules not born because their place was taken (spawn_check.comp).
 #define COUNTER_SPAWN_TAKEN 1
-// Non-zero when the neighbour lists must be built before the next contacts: a particle moved
-// more than half the skin since the last build, a granule died, or the CPU asked
-// (list_check.comp reads and clears it).
+// Non-zero when the neighbour lists must be built before the next contacts (list_check.comp reads
+// and clears it): LIST_REQUEST_ALL when the CPU asked (bodies added or restored, a new table),
+// LIST_REQUEST_MOVED when a particle moved more than half the skin since the last build or a
+// granule died. Under SLEEPING the second builds the lists of the active particles only.
 #define COUNTER_LIST_REQUESTED 2
+#define LIST_REQUEST_ALL 1u
+#define LIST_REQUEST_MOVED 2u
 // Neighbour list builds so far.
 #define COUNTER_LIST_BUILDS 3
 // Particles that had more partners than NEIGHBOUR_LIST_CAPACITY at a build (total).
@@ -134,9 +137,12 @@ struct SinkBox {
 #define COUNTER_ACTIVE_BODIES 5
 #define COUNTER_ACTIVE_PARTICLES 6
 #define COUNTER_ACTIVE_GROUPS_DONE 7
+// SLEEPING: non-zero when the build due builds every particle's list, zero when only the active
+// particles' (list_build.comp).
+#define COUNTER_LIST_ALL 8
 // From this uint on: the indirect dispatch commands of the list build, one per pass below (4
 // uints each: groups x, y, z and padding), zero groups when no build is due.
-#define COUNTER_LIST_DISPATCH 8
+#define COUNTER_LIST_DISPATCH 12
 #define PASS_GRID_COUNT 0u
 #define PASS_SCAN_BLOCKS 1u
 #define PASS_SCAN_BLOCK_SUMS 2u
@@ -199,6 +205,10 @@ struct StatsPartial {
 // each thread gathers for its own particle or body).
 #define ACTIVE_BODIES(access) layout(std430, binding = 33) access buffer ActiveBodiesBuffer { uint activeBodies[]; };
 #define ACTIVE_PARTICLES(access) layout(std430, binding = 34) access buffer ActiveParticlesBuffer { uint activeParticles[]; };
+// SLEEPING: per particle, the build (COUNTER_LIST_BUILDS) its neighbour list comes from. A build
+// that the motion asked for lists the active particles only; a particle whose list is older than
+// the last build finds its partners in the grid instead (contacts.comp).
+#define LIST_BUILT(access) layout(std430, binding = 35) access buffer ListBuiltBuffer { uint listBuilt[]; };
 
 // Sleep (SLEEPING, docs/architecture.md "sleep"). A body's calm count is the number of substeps
 // its speeds have been below the thresholds, but at most sleepSteps.y more than the smallest

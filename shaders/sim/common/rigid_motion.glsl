@@ -77,7 +77,7 @@ BodyMotion integrateBody(uint b, uvec4 info, vec3 force, vec3 torque, uint previ
           all(lessThanEqual(position.xyz, sinks[k].hi.xyz))) {
         info.z &= ~BODY_ALIVE;
         atomicAdd(counters[COUNTER_KILLED], 1u);
-        counters[COUNTER_LIST_REQUESTED] = 1u;
+        counters[COUNTER_LIST_REQUESTED] = LIST_REQUEST_MOVED;
         v = vec3(0.0);
         omega = vec3(0.0);
         break;
