@@ -175,6 +175,11 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
       ->capture_default_str();
   app.add_flag("--sleep", measure.sleep,
                "sleeping sand (WorldSettings::sleep): time the pile once it has fallen asleep");
+  app.add_option("--rock", measure.rockSpeed,
+                 "box: at the start of timing, set a ball of radius 3 d down on the pile near one "
+                 "wall, rolling across it at this speed, m/s (0: no ball)")
+      ->check(CLI::Range(0.0f, 10.0f))
+      ->capture_default_str();
   CLI::Option* packingOption = app.add_option(
       "--packing", packing,
       "cylinder: initial pile: 'crystal' (aligned granules whose particles form an FCC packing "

@@ -20,6 +20,17 @@ double secondsSince(Clock::time_point start) {
 // Seconds between progress lines.
 constexpr double kProgressInterval = 15.0;
 
+// The particle centres of the --rock ball: a lattice of spacing d inside radius kRockRadius d.
+std::vector<Vec3> rockOffsets(float d) {
+  std::vector<Vec3> offsets;
+  const int n = int(kRockRadius);
+  for (int x = -n; x <= n; ++x)
+    for (int y = -n; y <= n; ++y)
+      for (int z = -n; z <= n; ++z)
+        if (x * x + y * y + z * z <= n * n) offsets.push_back({x * d, y * d, z * d});
+  return offsets;
+}
+
 PileState readPileState(World& world, const BenchPile& pile, const WorldStats& stats) {
   const double d = pile.particleDiameter();
   const double granules = pile.granules();
@@ -168,6 +179,9 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   }
   settings.listSkin = options.listSkin * d;
   settings.sleep.enabled = options.sleep;
+  const std::vector<Vec3> rock = options.rockSpeed > 0.0f ? rockOffsets(d) : std::vector<Vec3>{};
+  settings.maxBodies += options.rockSpeed > 0.0f ? 1u : 0u;
+  settings.maxParticles += std::uint32_t(rock.size());
   World world(gpu, settings);
   pile.build(world);
   result.setupSeconds = secondsSince(setupStart);
@@ -235,6 +249,19 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   result.asleepAtStart = settledStats.granulesAsleep;
   result.settleWallSeconds = secondsSince(settleStart);
   result.settled = readPileState(world, pile, settledStats);
+  if (options.rockSpeed > 0.0f) {
+    const float side = result.layout.boxSide * d;
+    const Vec3 at{-0.5f * side + (kRockRadius + 2.0f) * d,
+                  float(result.settled.pileTop) * d + (kRockRadius + 0.5f) * d, 0.0f};
+    const float density = settings.material.density;
+    world.addBody(makeParticleTemplate(rock, d, density),
+                  {at,
+                   {},
+                   {options.rockSpeed, 0.0f, 0.0f},
+                   {0.0f, 0.0f, -options.rockSpeed / (kRockRadius * d)},
+                   Motion::Dynamic});
+    result.rockParticles = std::uint32_t(rock.size());
+  }
 
   // Measure: whole chunks of substeps, timed from a synchronised start to a synchronised end.
   const Clock::time_point start = Clock::now();

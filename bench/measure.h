@@ -55,7 +55,12 @@ struct MeasureOptions {
   /// sleeps (at most sleepWaitFactor sleep times), then the timed ones.
   bool sleep = false;
   double sleepWaitFactor = 4.0;
+  /// A ball (radius kRockRadius d, particles on a lattice of spacing d) set down on the pile
+  /// near one wall at the start of timing, rolling across it at this speed (m/s; 0: no ball):
+  /// the timed substeps then cost what the sand it disturbs costs.
+  float rockSpeed = 0.0f;
 };
+inline constexpr float kRockRadius = 3.0f;  // d
 
 /// How settled the pile is at one moment (one readStats and one readBodies, both sync points).
 struct PileState {
@@ -99,6 +104,8 @@ struct SizeResult {
   std::uint32_t sleepWaitSteps = 0;
   std::uint32_t asleepAtStart = 0;
   std::uint32_t asleepAtEnd = 0;
+  /// MeasureOptions::rock: the ball's particles (0 without).
+  std::uint32_t rockParticles = 0;
   double settleWallSeconds = 0.0;
   bool settleBudgetHit = false;
   PileState built{};     ///< right after build

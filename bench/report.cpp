@@ -113,6 +113,7 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
       {"sleep_wait_substeps", size.sleepWaitSteps},
       {"granules_asleep_at_start", size.asleepAtStart},
       {"granules_asleep_at_end", size.asleepAtEnd},
+      {"rock_particles", size.rockParticles},
       {"microseconds_per_granule_step", size.microsecondsPerGranuleStep()},
       {"simulated_seconds_per_wall_second", size.simulatedPerWallSecond()},
       {"gpu_memory_bytes", size.gpuMemoryBytes},
@@ -408,6 +409,13 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
                  "  %u granules, sleeping sand: %u substeps after the settling until all slept; "
                  "%u asleep at the start of timing, %u at its end\n",
                  s.granules, s.sleepWaitSteps, s.asleepAtStart, s.asleepAtEnd);
+  }
+  for (const SizeResult& s : report.sizes) {
+    if (s.rockParticles == 0) continue;
+    std::fprintf(out,
+                 "  %u granules, rock: a ball of %u particles (radius %.0f d) rolled across the "
+                 "pile at %.1f m/s from the start of timing\n",
+                 s.granules, s.rockParticles, double(kRockRadius), double(measure.rockSpeed));
   }
   if (!measure.kernelTimes) {
     std::fprintf(out, "  kernel timer queries off (--no-kernel-times)\n");

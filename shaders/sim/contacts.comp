@@ -17,11 +17,12 @@
 // World::readContacts: the same contacts, the ones the next substep applies, are appended to a
 // list (each particle pair once, from the side that keeps its history) and nothing is written.
 //
-// Under SLEEPING (layout.glsl, "Sleep") each particle also finds the smallest calm count among
-// its partners. A sleeping particle first only finds what it touches: when every partner sleeps
-// or is immovable, no collider it touches moves and its contacts are those it fell asleep with,
-// it writes that count and nothing else (its history stays as it was); otherwise it computes its
-// contacts as an awake particle does.
+// Under SLEEPING (layout.glsl, "Sleep") it runs over the particles collect_active.comp listed,
+// and each also finds the smallest calm count among its partners (and, awake, marks the sleeping
+// ones it touches). A sleeping particle first only finds what it touches: when every partner
+// sleeps or is immovable, no collider it touches moves and its contacts are those it fell asleep
+// with, it writes that count and nothing else (its history stays as it was); otherwise it
+// computes its contacts as an awake particle does.
 #include "common/layout.glsl"
 #include "common/quaternion.glsl"
 #include "common/spatial_hash.glsl"
@@ -458,7 +459,7 @@ void main() {
 #if defined(SLEEPING) && !defined(CONTACT_LIST)
   // The active particles only (collect_active.comp).
   uint t = threadIndex();
-  if (t >= counters[COUNTER_ACTIVE_DISPATCH + 4u * ACTIVE_PASS_CONTACTS + 3u]) return;
+  if (t >= activeListLength(ACTIVE_PASS_CONTACTS)) return;
   uint i = activeParticles[t];
 #else
   uint i = threadIndex();

@@ -31,7 +31,7 @@ void main() {
 #ifdef SLEEPING
   uint t = threadIndex();
   bool every = counters[COUNTER_LIST_ALL] != 0u;
-  if (t >= (every ? counts.x : counters[COUNTER_ACTIVE_DISPATCH + 4u * ACTIVE_PASS_CONTACTS + 3u])) {
+  if (t >= (every ? counts.x : activeListLength(ACTIVE_PASS_CONTACTS))) {
     return;
   }
   uint i = every ? t : activeParticles[t];

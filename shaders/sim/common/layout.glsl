@@ -156,6 +156,8 @@ struct SinkBox {
 #define COUNTER_ACTIVE_DISPATCH (COUNTER_LIST_DISPATCH + 4 * LIST_BUILD_PASSES)
 #define ACTIVE_PASS_CONTACTS 0u
 #define ACTIVE_PASS_BODIES 1u
+// The length of the active list a pass runs over (the includer declares COUNTERS).
+#define activeListLength(pass) counters[COUNTER_ACTIVE_DISPATCH + 4u * (pass) + 3u]
 #define COUNTERS(access) layout(std430, binding = 21) access buffer CounterBuffer { uint counters[]; };
 // Partial sums of the statistics reduction, one per workgroup (see stats_reduce.comp).
 struct StatsPartial {
