@@ -1,6 +1,5 @@
 #include "core/collider_bounds.h"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -37,11 +36,6 @@ Bounds colliderBounds(const ColliderShape& shape, float margin) {
   }
   const float big = std::numeric_limits<float>::max();
   return {{-big, -big, -big}, {big, big, big}};
-}
-
-Bounds merged(const Bounds& a, const Bounds& b) {
-  return {{std::min(a.lo.x, b.lo.x), std::min(a.lo.y, b.lo.y), std::min(a.lo.z, b.lo.z)},
-          {std::max(a.hi.x, b.hi.x), std::max(a.hi.y, b.hi.y), std::max(a.hi.z, b.hi.z)}};
 }
 
 }  // namespace sandphys::detail

@@ -14,7 +14,4 @@ struct Bounds {
 /// space (the largest floats).
 Bounds colliderBounds(const ColliderShape& shape, float margin);
 
-/// The smallest box that holds both.
-Bounds merged(const Bounds& a, const Bounds& b);
-
 }  // namespace sandphys::detail
