@@ -115,6 +115,11 @@ nlohmann::json metricsJson(const RunSummary& summary, scenes::Scene& scene) {
     series.push_back({{"time", sample.time}, {"bodies", bodiesJson(sample.bodies)}});
   }
   metrics["bodies_series"] = series;
+  nlohmann::json frames = nlohmann::json::array();
+  for (const RunSummary::FrameSample& f : summary.frameSeries) {
+    frames.push_back({f.time, f.wallMilliseconds, f.granules, f.granulesAsleep});
+  }
+  metrics["frame_series"] = frames;
   // A scene's series sit beside the run's own numbers, where a plot script looks first; a name
   // the runner already uses would silently replace a number, so it is refused.
   auto addTopLevel = [&](const std::string& key, nlohmann::json value) {

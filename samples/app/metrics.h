@@ -15,7 +15,8 @@ namespace sandphys::samples {
 /// granules_spawned, granules_killed, granules_lost, time_step (s), gpu, scene_parameters,
 /// scene_metrics, bodies: the scene's rigid bodies that are not sand at the end, each with name,
 /// position (m), orientation (w, x, y, z), speed (m/s) and tilt_deg; bodies_series: the same
-/// every kBodySeriesFrames frames with its time (s), ...), and at the top level each of the
+/// every kBodySeriesFrames frames with its time (s); frame_series: per frame with statistics,
+/// [simulated time (s), wall ms, granules, granules asleep], ...), and at the top level each of the
 /// scene's series (Scene::series) as a list of [x, y] pairs under its name, with the numbers
 /// derived from it under theirs. Throws std::logic_error when a series' key is already taken.
 nlohmann::json metricsJson(const RunSummary& summary, scenes::Scene& scene);

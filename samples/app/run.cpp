@@ -123,7 +123,12 @@ RunSummary runScene(const GpuContext& gpu, scenes::Scene& scene, std::uint64_t f
   const Clock::time_point loopStart = Clock::now();
   for (std::uint64_t frame = 0; frame < frames; ++frame) {
     if (untilDone && scene.finished()) break;
+    const Clock::time_point frameStart = Clock::now();
     const StepReport report = scene.step(world, static_cast<float>(frameDt));
+    if (report.hasStats) {
+      summary.frameSeries.push_back({world.simulatedTime(), 1e3 * secondsSince(frameStart),
+                                     report.stats.granulesAlive, report.stats.granulesAsleep});
+    }
     // Count the granules this step moved before the scene may add the next batch.
     const std::uint32_t granules =
         report.hasStats ? report.stats.granulesAlive : world.granulesSpawned();

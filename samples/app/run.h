@@ -46,6 +46,15 @@ struct RunSummary {
     std::vector<scenes::SceneBody> bodies;
   };
   std::vector<BodySample> bodySeries;
+  /// Every frame whose report has statistics: simulated time at its end (s), its wall time (ms,
+  /// the stats read makes it wait for the GPU), and the granules alive and asleep.
+  struct FrameSample {
+    double time = 0.0;
+    double wallMilliseconds = 0.0;
+    std::uint32_t granules = 0;
+    std::uint32_t granulesAsleep = 0;
+  };
+  std::vector<FrameSample> frameSeries;
 };
 
 /// Frames between two samples of RunSummary::bodySeries (10 per second at 60 frames per second).

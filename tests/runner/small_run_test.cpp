@@ -43,6 +43,7 @@ TEST(SmallRun, MetricsHaveEveryField) {
                           "body_slots",
                           "bodies",
                           "bodies_series",
+                          "frame_series",
                           "steps",
                           "simulated_seconds",
                           "wall_seconds",
@@ -93,6 +94,14 @@ TEST(SmallRun, MetricsDescribeTheRun) {
 
   EXPECT_GT(m["wall_seconds"].get<double>(), 0.0);
   EXPECT_GT(m["cundall_number"].get<double>(), 0.0);
+  // One sample per frame (the app reads statistics every frame), ending at the run's end, with
+  // every granule alive and, without sleep, none asleep.
+  const nlohmann::json& frames = m["frame_series"];
+  ASSERT_EQ(frames.size(), std::size_t(kFrames));
+  EXPECT_NEAR(frames.back()[0].get<double>(), simulated, 1e-9);
+  EXPECT_GT(frames.back()[1].get<double>(), 0.0);
+  EXPECT_EQ(frames.back()[2], kGranules);
+  EXPECT_EQ(frames.back()[3], 0);
   EXPECT_GT(m["seconds_simulated_per_wall_second"].get<double>(), 0.0);
 }
 
