@@ -126,18 +126,6 @@ const Bridge::Coupled* Bridge::find(const btRigidBody* body) const {
   return nullptr;
 }
 
-namespace {
-
-float length(Vec3 v) {
-  return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
-}
-
-Vec3 difference(Vec3 a, Vec3 b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-
-}  // namespace
-
 void Bridge::pushPoses() {
   for (std::size_t i = 0; i < m_coupled.size(); ++i) {
     Coupled& c = m_coupled[i];
@@ -177,8 +165,8 @@ void Bridge::applySandForces(double weight) {
         // Sand that pushes a body Bullet put to sleep harder (or less) than it did then wakes it.
         const float mass = float(btScalar(1) / c.body->getInvMass());
         const float limit = m_wakeAcceleration * mass;
-        if (c.asleep && (length(difference(force, c.restForce)) > limit ||
-                         length(difference(torque, c.restTorque)) > limit * c.reach)) {
+        if (c.asleep && ((toBullet(force) - toBullet(c.restForce)).length() > limit ||
+                         (toBullet(torque) - toBullet(c.restTorque)).length() > limit * c.reach)) {
           c.body->activate();
         }
       }

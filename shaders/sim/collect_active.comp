@@ -42,12 +42,12 @@ void writeCommand(uint pass, uint entries) {
   counters[at + 3u] = entries;
 }
 
-// Whether body b is computed this substep, and its info. Takes a touched sleeper's mark back.
-bool computed(uint b, out uvec4 info) {
+// Whether body b is computed this substep, its info and its calm count.
+bool computed(uint b, out uvec4 info, out uint calm) {
   info = texelFetch(bodyInfoTexture, int(b));
   uint motion = (info.z & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT;
   // The thread reads its own body's count before it writes it; no other thread touches it.
-  uint calm = floatBitsToUint(texelFetch(bodyVelocityTexture, int(b)).w);
+  calm = floatBitsToUint(texelFetch(bodyVelocityTexture, int(b)).w);
   return (info.z & BODY_ALIVE) != 0u && motion != MOTION_STATIC && calm != sleepSteps.x;
 }
 
@@ -59,7 +59,8 @@ void main() {
   uint particles = 0u;
   for (uint b = first; b < end; ++b) {
     uvec4 info;
-    if (computed(b, info)) {
+    uint calm;
+    if (computed(b, info, calm)) {
       if ((info.z & BODY_LARGE) == 0u) ++bodies;
       particles += info.y;
     }
@@ -89,10 +90,10 @@ void main() {
   uint nextParticle = particleBase + particleOffsets[local] - particles;
   for (uint b = first; b < end && bodies + particles > 0u; ++b) {
     uvec4 info;
-    if (!computed(b, info)) continue;
-    if (floatBitsToUint(texelFetch(bodyVelocityTexture, int(b)).w) == calmTouched()) {
-      bodyVelocity[b].w = uintBitsToFloat(sleepSteps.x);
-    }
+    uint calm;
+    if (!computed(b, info, calm)) continue;
+    // A touched sleeper's mark is taken back: it is listed now.
+    if (calm == calmTouched()) bodyVelocity[b].w = uintBitsToFloat(sleepSteps.x);
     if ((info.z & BODY_LARGE) == 0u) activeBodies[nextBody++] = b;
     for (uint k = 0u; k < info.y; ++k) activeParticles[nextParticle++] = info.x + k;
   }

@@ -170,10 +170,10 @@ struct World::Impl {
   void buildLists();
   void runSubstep();
   void dispatch(GLuint program, const char* name, std::uint32_t threads, std::uint32_t groupSize);
-  /// One pass of the list build, with the group counts the decision wrote.
-  void dispatchListPass(GLuint program, const char* name, detail::ListBuildPass pass);
-  /// SLEEPING: one pass over an active list, with the command collect_active.comp wrote.
-  void dispatchActivePass(GLuint program, const char* name, detail::ActivePass pass);
+  /// A pass whose group counts the GPU wrote into the counters at `commandOffset` (bytes): the
+  /// list build's passes (listDispatchOffset) and, with sleep, those over the active lists
+  /// (activeDispatchOffset).
+  void dispatchIndirect(GLuint program, const char* name, std::uint32_t commandOffset);
   void emit(double dt, StepReport* report);
   /// spawn_check.comp over the `count` granules just added from body slot `firstBody`.
   void checkSpawnPlaces(std::uint32_t firstBody, std::uint32_t count);

@@ -62,18 +62,10 @@ void World::Impl::dispatch(GLuint program, const char* name, std::uint32_t threa
                   GL_COMMAND_BARRIER_BIT);
 }
 
-void World::Impl::dispatchListPass(GLuint program, const char* name, ListBuildPass pass) {
+void World::Impl::dispatchIndirect(GLuint program, const char* name, std::uint32_t commandOffset) {
   glUseProgram(program);
   profiler.begin(name);
-  glDispatchComputeIndirect(GLintptr(listDispatchOffset(pass)));
-  profiler.end();
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-}
-
-void World::Impl::dispatchActivePass(GLuint program, const char* name, ActivePass pass) {
-  glUseProgram(program);
-  profiler.begin(name);
-  glDispatchComputeIndirect(GLintptr(activeDispatchOffset(pass)));
+  glDispatchComputeIndirect(GLintptr(commandOffset));
   profiler.end();
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
@@ -115,13 +107,14 @@ void World::Impl::buildLists() {
   // 2. The build, in passes whose group counts the decision wrote (zero when not due): bucket
   // counts, their prefix sum (blocks of 1024), scatter into buckets, id order inside each
   // bucket, then each particle's list.
-  dispatchListPass(kernels.gridCount, "grid_count", kPassGridCount);
-  dispatchListPass(kernels.scanBlocks, "scan_blocks", kPassScanBlocks);
-  dispatchListPass(kernels.scanBlockSums, "scan_block_sums", kPassScanBlockSums);
-  dispatchListPass(kernels.scanAdd, "scan_add", kPassScanAdd);
-  dispatchListPass(kernels.gridScatter, "grid_scatter", kPassGridScatter);
-  dispatchListPass(kernels.gridSort, "grid_sort", kPassGridSort);
-  dispatchListPass(kernels.listBuild, "list_build", kPassListBuild);
+  dispatchIndirect(kernels.gridCount, "grid_count", listDispatchOffset(kPassGridCount));
+  dispatchIndirect(kernels.scanBlocks, "scan_blocks", listDispatchOffset(kPassScanBlocks));
+  dispatchIndirect(kernels.scanBlockSums, "scan_block_sums",
+                   listDispatchOffset(kPassScanBlockSums));
+  dispatchIndirect(kernels.scanAdd, "scan_add", listDispatchOffset(kPassScanAdd));
+  dispatchIndirect(kernels.gridScatter, "grid_scatter", listDispatchOffset(kPassGridScatter));
+  dispatchIndirect(kernels.gridSort, "grid_sort", listDispatchOffset(kPassGridSort));
+  dispatchIndirect(kernels.listBuild, "list_build", listDispatchOffset(kPassListBuild));
   gridValid = true;
 }
 
@@ -143,8 +136,9 @@ void World::Impl::runSubstep() {
              (bodyCount + kCollectChunk - 1) / kCollectChunk, kWorkgroupSize);
     buildLists();
     // 3, 4 as below.
-    dispatchActivePass(kernels.contacts, "contacts", kActivePassContacts);
-    dispatchActivePass(kernels.integrateBodies, "integrate_bodies", kActivePassBodies);
+    dispatchIndirect(kernels.contacts, "contacts", activeDispatchOffset(kActivePassContacts));
+    dispatchIndirect(kernels.integrateBodies, "integrate_bodies",
+                     activeDispatchOffset(kActivePassBodies));
   } else {
     prepareContacts();
     // 3. Contact forces (eq. 9, 10) from the lists, and colliders, gathered per particle.
