@@ -21,6 +21,9 @@ layout(std430, binding = 43) readonly buffer ListCapacityProbe { uint listCapaci
 layout(std430, binding = 44) readonly buffer ListDispatchProbe { uint listDispatchProbe[COUNTER_LIST_DISPATCH]; };
 layout(std430, binding = 45) readonly buffer ListPassesProbe { uvec4 listPassesProbe[LIST_BUILD_PASSES]; };
 layout(std430, binding = 46) readonly buffer ListPassProbe { uvec4 listPassProbe[PASS_LIST_BUILD + 1u]; };
+// The active passes' commands (sleep).
+layout(std430, binding = 47) readonly buffer ActiveDispatchProbe { uint activeDispatchProbe[COUNTER_ACTIVE_DISPATCH]; };
+layout(std430, binding = 48) readonly buffer ActivePassesProbe { uvec4 activePassesProbe[ACTIVE_PASS_BODIES + 1u]; };
 
 void main() {
   vec4 sum = gravityDt + particleGeom + grainContact + wallContact + shearContact +
@@ -30,6 +33,7 @@ void main() {
   sum += slotsProbe[0] + slotGroupProbe[0] + slotGroupsProbe[0];
   sum += vec4(listPassesProbe[0]) + listGeom + vec4(listLayout) + sleepSpeeds + vec4(sleepSteps);
   sum.y += float(listCapacityProbe[0] + listDispatchProbe[0] + listPassProbe[0].x);
+  sum.z += float(activeDispatchProbe[0] + activePassesProbe[0].x);
   sum += sinks[0].lo + sinks[0].hi;
   sum += vec4(statsPartials[0].counts) + statsPartials[0].sums + vec4(statsPartials[0].sleep);
   sum += contactList[0] + vec4(float(contactListCount + contactListCapacity + pad0 + pad1));

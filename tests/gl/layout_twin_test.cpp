@@ -106,6 +106,10 @@ TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
             GLint(16 * kListBuildPasses));
   EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "ListPassProbe"),
             GLint(16 * (kPassListBuild + 1)));
+  EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "ActiveDispatchProbe"),
+            GLint(4 * kCounterActiveDispatch));
+  EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "ActivePassesProbe"),
+            GLint(16 * kActivePasses));
   glDeleteProgram(program);
 }
 

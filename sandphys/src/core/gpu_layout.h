@@ -81,16 +81,13 @@ inline constexpr unsigned kWorkgroupSize = 64;
 inline constexpr unsigned kScanBlock = 1024;      // elements per scan workgroup (256 x 4)
 inline constexpr unsigned kStatsWorkgroups = 32;  // fixed: the reduction order never changes
 // counters[] (layout.glsl, COUNTER_*): rare events, the neighbour lists' control and, from
-// kCounterListDispatch on, the indirect commands of the list build's passes.
+// kCounterListDispatch on, the indirect commands of the list build's passes, then (sleep) those of
+// the passes over the active lists. Words 5-8 are the GPU's alone (layout.glsl).
 inline constexpr std::uint32_t kCounterKilled = 0;
 inline constexpr std::uint32_t kCounterSpawnTaken = 1;
 inline constexpr std::uint32_t kCounterListRequested = 2;
 inline constexpr std::uint32_t kCounterListBuilds = 3;
 inline constexpr std::uint32_t kCounterListOverflows = 4;
-inline constexpr std::uint32_t kCounterActiveBodies = 5;
-inline constexpr std::uint32_t kCounterActiveParticles = 6;
-inline constexpr std::uint32_t kCounterActiveGroupsDone = 7;
-inline constexpr std::uint32_t kCounterListAll = 8;
 inline constexpr std::uint32_t kCounterListDispatch = 12;
 /// COUNTER_LIST_REQUESTED values (layout.glsl): the CPU asks for every list.
 inline constexpr std::uint32_t kListRequestAll = 1;
