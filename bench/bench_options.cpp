@@ -180,6 +180,14 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
                  "wall, rolling across it at this speed, m/s (0: no ball)")
       ->check(CLI::Range(0.0f, 10.0f))
       ->capture_default_str();
+  CLI::Option* sandboxOption =
+      app.add_option("--sandbox", measure.sandboxSeconds,
+                     "box: instead of the timed substeps, run this many simulated seconds of a "
+                     "sandbox script on the settled pile (a ball of radius 3 d dropped at the "
+                     "start; a kinematic ball of radius 6 d sinks in at 1 s, ploughs 0.4 m/s for "
+                     "1 s and is lifted out), timing every frame of 1/60 s")
+          ->check(CLI::Range(0.0, 600.0))
+          ->capture_default_str();
   CLI::Option* packingOption = app.add_option(
       "--packing", packing,
       "cylinder: initial pile: 'crystal' (aligned granules whose particles form an FCC packing "
@@ -245,6 +253,12 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
           throw UsageError(option->get_name() + ": applies to --scene cylinder only");
         }
       }
+    }
+    if (sandboxOption->count() > 0 && !box) {
+      throw UsageError("--sandbox: applies to --scene box only");
+    }
+    if (measure.sandboxSeconds > 0.0 && measure.rockSpeed > 0.0f) {
+      throw UsageError("--sandbox with --rock: the sandbox script drops its own ball");
     }
     measure.pile.packing = packing == "crystal" ? Packing::Crystal : Packing::Lattice;
     measure.pile.contactLaw = *scenes::contactLawFromName(law);

@@ -20,17 +20,6 @@ double secondsSince(Clock::time_point start) {
 // Seconds between progress lines.
 constexpr double kProgressInterval = 15.0;
 
-// The particle centres of the --rock ball: a lattice of spacing d inside radius kRockRadius d.
-std::vector<Vec3> rockOffsets(float d) {
-  std::vector<Vec3> offsets;
-  const int n = int(kRockRadius);
-  for (int x = -n; x <= n; ++x)
-    for (int y = -n; y <= n; ++y)
-      for (int z = -n; z <= n; ++z)
-        if (x * x + y * y + z * z <= n * n) offsets.push_back({x * d, y * d, z * d});
-  return offsets;
-}
-
 PileState readPileState(World& world, const BenchPile& pile, const WorldStats& stats) {
   const double d = pile.particleDiameter();
   const double granules = pile.granules();
@@ -179,9 +168,15 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   }
   settings.listSkin = options.listSkin * d;
   settings.sleep.enabled = options.sleep;
-  const std::vector<Vec3> rock = options.rockSpeed > 0.0f ? rockOffsets(d) : std::vector<Vec3>{};
+  const std::vector<Vec3> rock =
+      options.rockSpeed > 0.0f ? ballOffsets(kRockRadius, d) : std::vector<Vec3>{};
   settings.maxBodies += options.rockSpeed > 0.0f ? 1u : 0u;
   settings.maxParticles += std::uint32_t(rock.size());
+  const SandboxScript sandbox{};
+  if (options.sandboxSeconds > 0.0) {
+    settings.maxBodies += sandboxBodies();
+    settings.maxParticles += sandboxParticles(sandbox, d);
+  }
   World world(gpu, settings);
   pile.build(world);
   result.setupSeconds = secondsSince(setupStart);
@@ -263,11 +258,18 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
     result.rockParticles = std::uint32_t(rock.size());
   }
 
-  // Measure: whole chunks of substeps, timed from a synchronised start to a synchronised end.
+  // Measure: whole chunks of substeps, timed from a synchronised start to a synchronised end;
+  // or the sandbox script's frames.
   const Clock::time_point start = Clock::now();
   const double cpuStart = processCpuSeconds();
   lastProgress = start;
-  while (result.steps < plan.steps) {
+  if (options.sandboxSeconds > 0.0) {
+    const double before = world.simulatedTime();
+    result.timeline = runSandbox(world, sandbox, result.layout.boxSide * d,
+                                 float(result.settled.pileTop) * d, options.sandboxSeconds);
+    result.steps = std::uint32_t(std::llround((world.simulatedTime() - before) / world.timeStep()));
+  }
+  while (options.sandboxSeconds <= 0.0 && result.steps < plan.steps) {
     if (options.budgetSeconds > 0.0 && result.steps > 0 &&
         secondsSince(start) >= options.budgetSeconds) {
       result.budgetHit = true;

@@ -11,6 +11,7 @@
 #include "box_pile.h"
 #include "dense_pile.h"
 #include "render_measure.h"
+#include "sandbox_timeline.h"
 
 namespace sandphys::bench {
 
@@ -59,6 +60,9 @@ struct MeasureOptions {
   /// near one wall at the start of timing, rolling across it at this speed (m/s; 0: no ball):
   /// the timed substeps then cost what the sand it disturbs costs.
   float rockSpeed = 0.0f;
+  /// Box: instead of the timed substeps, this many simulated seconds of SandboxScript (a ball
+  /// dropped, a pusher ploughing), each frame timed (SizeResult::timeline); 0: off.
+  double sandboxSeconds = 0.0;
 };
 inline constexpr float kRockRadius = 3.0f;  // d
 
@@ -106,6 +110,8 @@ struct SizeResult {
   std::uint32_t asleepAtEnd = 0;
   /// MeasureOptions::rock: the ball's particles (0 without).
   std::uint32_t rockParticles = 0;
+  /// MeasureOptions::sandboxSeconds: every frame of the script (empty without).
+  std::vector<TimelineFrame> timeline;
   double settleWallSeconds = 0.0;
   bool settleBudgetHit = false;
   PileState built{};     ///< right after build

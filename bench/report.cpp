@@ -68,6 +68,30 @@ nlohmann::json renderJson(const RenderTiming& timing) {
   };
 }
 
+// The sandbox frames in spans of 0.25 s simulated: mean wall ms per frame, the counts at the
+// span's last frame.
+void printTimeline(std::FILE* out, const SizeResult& size) {
+  std::fprintf(out, "  %u granules, sandbox script (frames of 1/60 s):\n", size.granules);
+  std::fprintf(out, "    %-12s %10s %10s %14s\n", "simulated s", "awake", "asleep", "ms per frame");
+  constexpr double kSpan = 0.25;
+  double sum = 0.0;
+  int frames = 0;
+  double spanEnd = kSpan;
+  for (std::size_t i = 0; i < size.timeline.size(); ++i) {
+    const TimelineFrame& f = size.timeline[i];
+    sum += f.wallMilliseconds;
+    ++frames;
+    const bool last = i + 1 == size.timeline.size();
+    if (f.simulatedSeconds + 1e-9 >= spanEnd || last) {
+      std::fprintf(out, "    %-12.2f %10u %10u %14.1f\n", f.simulatedSeconds, f.granulesAwake,
+                   f.granulesAsleep, sum / frames);
+      sum = 0.0;
+      frames = 0;
+      spanEnd += kSpan;
+    }
+  }
+}
+
 nlohmann::json sizeJson(const SizeResult& size, double d) {
   nlohmann::json renders = nlohmann::json::array();
   for (const RenderTiming& timing : size.renders) renders.push_back(renderJson(timing));
@@ -91,7 +115,12 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
                            {"wall_height_d", size.layout.wallHeight},
                            {"wall_raised", size.layout.wallRaised}};
   if (size.layout.boxSide > 0.0f) layout["box_side_d"] = size.layout.boxSide;
-  return {
+  // [simulated s, wall ms, granules awake, granules asleep] per frame.
+  nlohmann::json timeline = nlohmann::json::array();
+  for (const TimelineFrame& f : size.timeline) {
+    timeline.push_back({f.simulatedSeconds, f.wallMilliseconds, f.granulesAwake, f.granulesAsleep});
+  }
+  nlohmann::json result = {
       {"granules", size.granules},
       {"particles", size.particles},
       {"floor_particles", size.floorParticles},
@@ -149,6 +178,8 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
         {"settled", pileStateJson(size.settled)},
         {"measured", pileStateJson(size.measured)}}},
   };
+  if (!size.timeline.empty()) result["sandbox_timeline"] = timeline;
+  return result;
 }
 
 }  // namespace
@@ -416,6 +447,10 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
                  "  %u granules, rock: a ball of %u particles (radius %.0f d) rolled across the "
                  "pile at %.1f m/s from the start of timing\n",
                  s.granules, s.rockParticles, double(kRockRadius), double(measure.rockSpeed));
+  }
+  for (const SizeResult& s : report.sizes) {
+    if (s.timeline.empty()) continue;
+    printTimeline(out, s);
   }
   if (!measure.kernelTimes) {
     std::fprintf(out, "  kernel timer queries off (--no-kernel-times)\n");
