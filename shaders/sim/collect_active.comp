@@ -7,10 +7,8 @@
 // activeParticles (contacts.comp). Each workgroup packs its entries in body order (a scan in
 // shared memory) and takes its place in the lists with one atomic add; the last workgroup to
 // finish writes the two passes' indirect commands, clears the totals for the next substep and
-// decides on the list build. When a build is due it also stamps the bodies that go into the
-// moving grid (BODY_GRID_BUILD): the active ones and, unless the still grid is built again, the
-// sleepers that moved since it was (their particles into recentParticles; layout.glsl "Sleep").
-// So the passes that follow cost what the awake sand costs, and nothing is read back.
+// decides on the list build. So the passes that follow cost what the awake sand costs, and
+// nothing is read back.
 #include "common/layout.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
@@ -20,8 +18,6 @@ BODY_VELOCITY_TEXTURE
 BODY_VELOCITY(writeonly)
 ACTIVE_BODIES(writeonly)
 ACTIVE_PARTICLES(writeonly)
-RECENT_PARTICLES(writeonly)
-BODY_GRID_BUILD(coherent)
 COUNTERS(coherent)
 #include "common/list_decision.glsl"
 
@@ -31,10 +27,8 @@ COUNTERS(coherent)
 
 shared uint bodyOffsets[WORKGROUP_SIZE];
 shared uint particleOffsets[WORKGROUP_SIZE];
-shared uint recentOffsets[WORKGROUP_SIZE];
 shared uint bodyBase;
 shared uint particleBase;
-shared uint recentBase;
 
 // The command of `pass` for `entries` threads of WORKGROUP_SIZE, spilling into y as
 // World::Impl::dispatch does; the fourth uint holds `entries`.
@@ -48,93 +42,60 @@ void writeCommand(uint pass, uint entries) {
   counters[at + 3u] = entries;
 }
 
-// Whether body b is computed this substep, its info and its calm count; and, at a build whose
-// still grid is kept (`recentDue`), whether it is a sleeper that moved since the still grid was
-// built (its stamp is not below COUNTER_STILL_BUILD).
-bool computed(uint b, bool recentDue, uint stillBuild, out uvec4 info, out uint calm,
-              out bool recent) {
+// Whether body b is computed this substep, its info and its calm count.
+bool computed(uint b, out uvec4 info, out uint calm) {
   info = texelFetch(bodyInfoTexture, int(b));
   uint motion = (info.z & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT;
   // The thread reads its own body's count before it writes it; no other thread touches it.
   calm = floatBitsToUint(texelFetch(bodyVelocityTexture, int(b)).w);
-  bool movable = (info.z & BODY_ALIVE) != 0u && motion != MOTION_STATIC;
-  bool listed = movable && calm != sleepSteps.x;
-  recent = false;
-  if (recentDue && movable && !listed) recent = bodyGridBuild[b] >= stillBuild;
-  return listed;
+  return (info.z & BODY_ALIVE) != 0u && motion != MOTION_STATIC && calm != sleepSteps.x;
 }
 
 void main() {
   uint local = gl_LocalInvocationID.x;
   uint first = threadIndex() * COLLECT_CHUNK;
   uint end = min(first + COLLECT_CHUNK, counts.y);
-  // Every workgroup reads the request before the last one clears it (decideListBuild).
-  uint requested = counters[COUNTER_LIST_REQUESTED];
-  bool stillDue = stillGridDue(requested);
-  bool recentDue = requested != 0u && !stillDue;
-  uint build = counters[COUNTER_LIST_BUILDS] + 1u;  // the number of the build, if one is due
-  uint stillBuild = counters[COUNTER_STILL_BUILD];
   uint bodies = 0u;
   uint particles = 0u;
-  uint recents = 0u;
   for (uint b = first; b < end; ++b) {
     uvec4 info;
     uint calm;
-    bool recent;
-    if (computed(b, recentDue, stillBuild, info, calm, recent)) {
+    if (computed(b, info, calm)) {
       if ((info.z & BODY_LARGE) == 0u) ++bodies;
       particles += info.y;
-    } else if (recent) {
-      recents += info.y;
     }
   }
   bodyOffsets[local] = bodies;
   particleOffsets[local] = particles;
-  recentOffsets[local] = recents;
   barrier();
   // Inclusive scan of the threads' counts (Hillis-Steele).
   for (uint width = 1u; width < uint(WORKGROUP_SIZE); width <<= 1u) {
     uint b = bodyOffsets[local];
     uint p = particleOffsets[local];
-    uint r = recentOffsets[local];
     if (local >= width) {
       b += bodyOffsets[local - width];
       p += particleOffsets[local - width];
-      r += recentOffsets[local - width];
     }
     barrier();
     bodyOffsets[local] = b;
     particleOffsets[local] = p;
-    recentOffsets[local] = r;
     barrier();
   }
   if (local == uint(WORKGROUP_SIZE) - 1u) {
     bodyBase = atomicAdd(counters[COUNTER_ACTIVE_BODIES], bodyOffsets[local]);
     particleBase = atomicAdd(counters[COUNTER_ACTIVE_PARTICLES], particleOffsets[local]);
-    recentBase = recentOffsets[local] == 0u
-                     ? 0u
-                     : atomicAdd(counters[COUNTER_RECENT_PARTICLES], recentOffsets[local]);
   }
   barrier();
   uint nextBody = bodyBase + bodyOffsets[local] - bodies;
   uint nextParticle = particleBase + particleOffsets[local] - particles;
-  uint nextRecent = recentBase + recentOffsets[local] - recents;
-  for (uint b = first; b < end && bodies + particles + recents > 0u; ++b) {
+  for (uint b = first; b < end && bodies + particles > 0u; ++b) {
     uvec4 info;
     uint calm;
-    bool recent;
-    if (computed(b, recentDue, stillBuild, info, calm, recent)) {
-      // A touched sleeper's mark is taken back: it is listed now.
-      if (calm == calmTouched()) bodyVelocity[b].w = uintBitsToFloat(sleepSteps.x);
-      if ((info.z & BODY_LARGE) == 0u) activeBodies[nextBody++] = b;
-      for (uint k = 0u; k < info.y; ++k) activeParticles[nextParticle++] = info.x + k;
-    } else if (recent) {
-      for (uint k = 0u; k < info.y; ++k) recentParticles[nextRecent++] = info.x + k;
-    } else {
-      continue;
-    }
-    // Into the moving grid of this build (every active body, also when the still grid is built).
-    if (requested != 0u) bodyGridBuild[b] = build;
+    if (!computed(b, info, calm)) continue;
+    // A touched sleeper's mark is taken back: it is listed now.
+    if (calm == calmTouched()) bodyVelocity[b].w = uintBitsToFloat(sleepSteps.x);
+    if ((info.z & BODY_LARGE) == 0u) activeBodies[nextBody++] = b;
+    for (uint k = 0u; k < info.y; ++k) activeParticles[nextParticle++] = info.x + k;
   }
   // The last workgroup to get here sees every workgroup's totals.
   memoryBarrierBuffer();
@@ -146,8 +107,7 @@ void main() {
       writeCommand(ACTIVE_PASS_CONTACTS, particles);
       writeCommand(ACTIVE_PASS_BODIES, atomicExchange(counters[COUNTER_ACTIVE_BODIES], 0u));
       counters[COUNTER_ACTIVE_GROUPS_DONE] = 0u;
-      // What list_check.comp does without sleep.
-      decideListBuild(false, particles, atomicExchange(counters[COUNTER_RECENT_PARTICLES], 0u));
+      decideListBuild(false, particles);  // what list_check.comp does without sleep
     }
   }
 }

@@ -75,9 +75,6 @@ CONTACT_SLOTS_2(coherent)
 #ifdef SLEEPING
 COUNTERS(readonly)
 LIST_BUILT(readonly)
-STILL_CELL_START_TEXTURE
-STILL_CELL_PARTICLES_TEXTURE
-BODY_GRID_BUILD_TEXTURE
 #endif
 #include "common/neighbour_list.glsl"
 
@@ -327,25 +324,20 @@ bool touches(Particle self, uint id) {
 uint nextPartnerAfter(Particle self, uint after) {
   uint best = NO_PARTNER;
   ivec3 cell = cellOf(texelFetch(listOriginTexture, int(self.id)).xyz);
-  uint stillBuild = stillGridBuild();
-  for (uint grid = 0u; grid < GRIDS; ++grid) {
-    for (int row = 0; row < 9; ++row) {
-      uint parts = rowParts(cell, row);
-      for (uint part = 0u; part < parts; ++part) {
-        uvec2 slots = rowSlots(grid, cell, row, part, parts);
-        for (uint s = slots.x; s < slots.y; ++s) {
-          uint id = gridParticleAt(grid, s);
-          if ((after != NO_PARTNER && id <= after) || id >= best) continue;
-          vec4 other = texelFetch(particlePositionTexture, int(id));
-          float otherInverseMass = texelFetch(particleVelocityTexture, int(id)).w;
-          if (floatBitsToUint(other.w) == self.body ||
-              max(self.velocity.w, 0.0) + max(otherInverseMass, 0.0) == 0.0) {
-            continue;
-          }
-          if (touches(self, id) && gridHolds(grid, floatBitsToUint(other.w), stillBuild)) {
-            best = id;
-          }
+  for (int row = 0; row < 9; ++row) {
+    uint parts = rowParts(cell, row);
+    for (uint part = 0u; part < parts; ++part) {
+      uvec2 slots = rowSlots(cell, row, part, parts);
+      for (uint s = slots.x; s < slots.y; ++s) {
+        uint id = texelFetch(cellParticlesTexture, int(s)).x;
+        if ((after != NO_PARTNER && id <= after) || id >= best) continue;
+        vec4 other = texelFetch(particlePositionTexture, int(id));
+        float otherInverseMass = texelFetch(particleVelocityTexture, int(id)).w;
+        if (floatBitsToUint(other.w) == self.body ||
+            max(self.velocity.w, 0.0) + max(otherInverseMass, 0.0) == 0.0) {
+          continue;
         }
+        if (touches(self, id)) best = id;
       }
     }
   }

@@ -24,15 +24,6 @@ layout(std430, binding = 46) readonly buffer ListPassProbe { uvec4 listPassProbe
 // The active passes' commands (sleep).
 layout(std430, binding = 47) readonly buffer ActiveDispatchProbe { uint activeDispatchProbe[COUNTER_ACTIVE_DISPATCH]; };
 layout(std430, binding = 48) readonly buffer ActivePassesProbe { uvec4 activePassesProbe[ACTIVE_PASS_BODIES + 1u]; };
-// The two grids' counters that the CPU reads (sleep), and where the moving grid's passes start:
-// one block (a compute shader may declare only 16), each length from the next member's offset.
-layout(std430, binding = 49) readonly buffer GridCountersProbe {
-  uint gridActiveProbe[COUNTER_GRID_ACTIVE];
-  uint gridRecentProbe[COUNTER_GRID_RECENT];
-  uint stillBuildsProbe[COUNTER_STILL_BUILDS];
-  uint gridPassProbe[PASS_GRID_COUNT];
-  uint gridProbeEnd;
-};
 
 void main() {
   vec4 sum = gravityDt + particleGeom + grainContact + wallContact + shearContact +
@@ -43,7 +34,6 @@ void main() {
   sum += vec4(listPassesProbe[0]) + listGeom + vec4(listLayout) + sleepSpeeds + vec4(sleepSteps);
   sum.y += float(listCapacityProbe[0] + listDispatchProbe[0] + listPassProbe[0].x);
   sum.z += float(activeDispatchProbe[0] + activePassesProbe[0].x);
-  sum.w += float(gridActiveProbe[0] + gridRecentProbe[0] + stillBuildsProbe[0] + gridPassProbe[0] + gridProbeEnd);
   sum += sinks[0].lo + sinks[0].hi;
   sum += vec4(statsPartials[0].counts) + statsPartials[0].sums + vec4(statsPartials[0].sleep);
   sum += contactList[0] + vec4(float(contactListCount + contactListCapacity + pad0 + pad1));

@@ -6,8 +6,7 @@
 // records where it stands, from which the integration measures how far it moves. Static particles
 // (rough floors) get no list: nobody needs their force; they are listed by the others. Under
 // SLEEPING a build the motion asked for runs over the active particles only (COUNTER_LIST_ALL,
-// common/list_decision.glsl), and every list records the build it comes from (LIST_BUILT); the
-// grid is then two grids (layout.glsl "Sleep"), the lists the same as from one.
+// common/list_decision.glsl), and every list records the build it comes from (LIST_BUILT).
 #include "common/layout.glsl"
 #include "common/spatial_hash.glsl"
 
@@ -25,9 +24,6 @@ COUNTERS(coherent)
 #ifdef SLEEPING
 ACTIVE_PARTICLES(readonly)
 LIST_BUILT(writeonly)
-STILL_CELL_START_TEXTURE
-STILL_CELL_PARTICLES_TEXTURE
-BODY_GRID_BUILD_TEXTURE
 #endif
 #include "common/neighbour_list.glsl"
 
@@ -51,20 +47,18 @@ void main() {
   bool alive = (texelFetch(bodyInfoTexture, int(body)).z & BODY_ALIVE) != 0u;
   uint ids[NEIGHBOUR_LIST_CAPACITY];
   uint count = 0u;
-  uint stillBuild = stillGridBuild();
-  for (uint grid = 0u; grid < GRIDS && alive && selfInverseMass >= 0.0; ++grid) {
+  if (alive && selfInverseMass >= 0.0) {
     ivec3 cell = cellOf(self.xyz);
     for (int row = 0; row < 9; ++row) {
       uint parts = rowParts(cell, row);
       for (uint part = 0u; part < parts; ++part) {
-        uvec2 slots = rowSlots(grid, cell, row, part, parts);
+        uvec2 slots = rowSlots(cell, row, part, parts);
         for (uint s = slots.x; s < slots.y; ++s) {
-          uint id = gridParticleAt(grid, s);
+          uint id = texelFetch(cellParticlesTexture, int(s)).x;
           vec4 other = texelFetch(particlePositionTexture, int(id));
           if (floatBitsToUint(other.w) == body) continue;
           vec3 d = self.xyz - other.xyz;
           if (dot(d, d) >= listGeom.y) continue;
-          if (!gridHolds(grid, floatBitsToUint(other.w), stillBuild)) continue;
           float otherInverseMass = texelFetch(particleVelocityTexture, int(id)).w;
           if (max(selfInverseMass, 0.0) + max(otherInverseMass, 0.0) == 0.0) continue;
           // Keep the smallest ids, in order.

@@ -22,11 +22,6 @@ PARTICLE_LOCAL_TEXTURE
 PARTICLE_BODY_TEXTURE
 BODY_INFO(coherent)
 COUNTERS(coherent)
-#ifdef SLEEPING
-STILL_CELL_START_TEXTURE
-STILL_CELL_PARTICLES_TEXTURE
-BODY_GRID_BUILD_TEXTURE
-#endif
 #include "common/particle_offset.glsl"
 #include "common/neighbour_list.glsl"
 
@@ -43,21 +38,15 @@ void main() {
   float diameter = particleGeom.y;
   ivec3 cell = cellOf(position);
   bool taken = false;
-  uint stillBuild = stillGridBuild();
-  for (uint grid = 0u; grid < GRIDS; ++grid) {
-    for (int row = 0; row < 9; ++row) {
-      uint parts = rowParts(cell, row);
-      for (uint part = 0u; part < parts; ++part) {
-        uvec2 slots = rowSlots(grid, cell, row, part, parts);
-        for (uint s = slots.x; s < slots.y; ++s) {
-          uint id = gridParticleAt(grid, s);
-          vec4 other = texelFetch(particlePositionTexture, int(id));
-          vec3 d = position - other.xyz;
-          if (floatBitsToUint(other.w) != body && dot(d, d) < diameter * diameter &&
-              gridHolds(grid, floatBitsToUint(other.w), stillBuild)) {
-            taken = true;
-          }
-        }
+  for (int row = 0; row < 9; ++row) {
+    uint parts = rowParts(cell, row);
+    for (uint part = 0u; part < parts; ++part) {
+      uvec2 slots = rowSlots(cell, row, part, parts);
+      for (uint s = slots.x; s < slots.y; ++s) {
+        uint id = texelFetch(cellParticlesTexture, int(s)).x;
+        vec4 other = texelFetch(particlePositionTexture, int(id));
+        vec3 d = position - other.xyz;
+        if (floatBitsToUint(other.w) != body && dot(d, d) < diameter * diameter) taken = true;
       }
     }
   }

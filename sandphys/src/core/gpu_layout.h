@@ -46,11 +46,7 @@ enum Binding : unsigned {
   kActiveBodies = 33,
   kActiveParticles = 34,
   kListBuilt = 35,
-  kStillCellStart = 36,  // SLEEPING: the still grid (layout.glsl "Sleep")
-  kStillCellParticles = 37,
-  kBodyGridBuild = 38,
-  kRecentParticles = 39,
-  kBindingCount = 40,
+  kBindingCount = 36,
 };
 
 /// Texture units of the read-only buffer-texture views of some of the buffers above (layout.glsl,
@@ -77,10 +73,7 @@ enum TextureUnit : unsigned {
   kParticleSpinTexture = 16,
   kContactSlots0Texture = 17,  // kContactSlotGroups views in a row
   kContactPairsTexture = 20,
-  kStillCellStartTexture = 21,
-  kStillCellParticlesTexture = 22,
-  kBodyGridBuildTexture = 23,
-  kTextureCount = 24,
+  kTextureCount = 21,
 };
 
 inline constexpr unsigned kSimParamsBinding = 0;
@@ -89,27 +82,17 @@ inline constexpr unsigned kScanBlock = 1024;      // elements per scan workgroup
 inline constexpr unsigned kStatsWorkgroups = 32;  // fixed: the reduction order never changes
 // counters[] (layout.glsl, COUNTER_*): rare events, the neighbour lists' control and, from
 // kCounterListDispatch on, the indirect commands of the list build's passes, then (sleep) those of
-// the passes over the active lists. Words 5-10 are the GPU's alone (layout.glsl).
+// the passes over the active lists. Words 5-8 are the GPU's alone (layout.glsl).
 inline constexpr std::uint32_t kCounterKilled = 0;
 inline constexpr std::uint32_t kCounterSpawnTaken = 1;
 inline constexpr std::uint32_t kCounterListRequested = 2;
 inline constexpr std::uint32_t kCounterListBuilds = 3;
 inline constexpr std::uint32_t kCounterListOverflows = 4;
-inline constexpr std::uint32_t kCounterGridActive = 11;
-inline constexpr std::uint32_t kCounterGridRecent = 12;
-inline constexpr std::uint32_t kCounterStillBuilds = 13;
-inline constexpr std::uint32_t kCounterListDispatch = 16;
+inline constexpr std::uint32_t kCounterListDispatch = 12;
 /// COUNTER_LIST_REQUESTED values (layout.glsl): the CPU asks for every list.
 inline constexpr std::uint32_t kListRequestAll = 1;
-/// The passes of a list build, each dispatched from its own indirect command (list_check.comp);
-/// the still grid's first (SLEEPING only).
+/// The passes of a list build, each dispatched from its own indirect command (list_check.comp).
 enum ListBuildPass : std::uint32_t {
-  kPassStillCount,
-  kPassStillScanBlocks,
-  kPassStillScanBlockSums,
-  kPassStillScanAdd,
-  kPassStillScatter,
-  kPassStillSort,
   kPassGridCount,
   kPassScanBlocks,
   kPassScanBlockSums,

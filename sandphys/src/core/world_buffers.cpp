@@ -68,10 +68,6 @@ constexpr BufferSpec kSpecs[kBindingCount] = {
     {"activeBodies", 4, SizedBy::Bodies},
     {"activeParticles", 4, SizedBy::Particles},
     {"listBuilt", 4, SizedBy::Particles},
-    {"stillCellStart", 4, SizedBy::TablePlusOne},
-    {"stillCellParticles", 4, SizedBy::Particles},
-    {"bodyGridBuild", 4, SizedBy::Bodies},
-    {"recentParticles", 4, SizedBy::Particles},
 };
 static_assert(kContactSlots0 + kContactSlotGroups == kContactPairs);
 
@@ -104,9 +100,6 @@ constexpr TextureView kTextureViews[] = {
     {TextureUnit(kContactSlots0Texture + 1), Binding(kContactSlots0 + 1), GL_RGBA32F},
     {TextureUnit(kContactSlots0Texture + 2), Binding(kContactSlots0 + 2), GL_RGBA32F},
     {kContactPairsTexture, kContactPairs, GL_RGBA32UI},
-    {kStillCellStartTexture, kStillCellStart, GL_R32UI},
-    {kStillCellParticlesTexture, kStillCellParticles, GL_R32UI},
-    {kBodyGridBuildTexture, kBodyGridBuild, GL_R32UI},
 };
 static_assert(kContactSlots0Texture + kContactSlotGroups == kContactPairsTexture);
 static_assert(std::size(kTextureViews) == kTextureCount);
@@ -256,42 +249,14 @@ void WorldKernels::compile(ContactLaw law, bool sleeping) {
   if (sleeping) {
     wakeRegion = compile("sim/wake_region.comp");
     collectActive = compile("sim/collect_active.comp");
-    // The still grid's build: the grid passes on its buffers (layout.glsl, STILL_GRID).
-    const std::vector<std::string> still = {"STILL_GRID 1"};
-    stillCount = compile("sim/grid_count.comp", still);
-    stillScanBlocks = compile("sim/scan_blocks.comp", still);
-    stillScanBlockSums = compile("sim/scan_block_sums.comp", still);
-    stillScanAdd = compile("sim/scan_add.comp", still);
-    stillScatter = compile("sim/grid_scatter.comp", still);
-    stillSort = compile("sim/grid_sort.comp", still);
   }
 }
 
 void WorldKernels::release() {
-  for (GLuint p : {bodiesToParticles,
-                   listCheck,
-                   gridCount,
-                   scanBlocks,
-                   scanBlockSums,
-                   scanAdd,
-                   gridScatter,
-                   gridSort,
-                   listBuild,
-                   contacts,
-                   contactList,
-                   integrateBodies,
-                   integrateLargeBodies,
-                   statsReduce,
-                   stateHash,
-                   spawnCheck,
-                   wakeRegion,
-                   collectActive,
-                   stillCount,
-                   stillScanBlocks,
-                   stillScanBlockSums,
-                   stillScanAdd,
-                   stillScatter,
-                   stillSort}) {
+  for (GLuint p :
+       {bodiesToParticles, listCheck, gridCount, scanBlocks, scanBlockSums, scanAdd, gridScatter,
+        gridSort, listBuild, contacts, contactList, integrateBodies, integrateLargeBodies,
+        statsReduce, stateHash, spawnCheck, wakeRegion, collectActive}) {
     if (p) glDeleteProgram(p);
   }
   *this = {};

@@ -63,13 +63,6 @@ struct WorldKernels {
   GLuint spawnCheck = 0;
   GLuint wakeRegion = 0;     // with sleeping only
   GLuint collectActive = 0;  // with sleeping only
-  // With sleeping only: the still grid's build (the grid passes compiled with STILL_GRID).
-  GLuint stillCount = 0;
-  GLuint stillScanBlocks = 0;
-  GLuint stillScanBlockSums = 0;
-  GLuint stillScanAdd = 0;
-  GLuint stillScatter = 0;
-  GLuint stillSort = 0;
 
   /// Compiles every kernel for `law` (PAPER_LAW defined for ContactLaw::PaperViscous) and, with
   /// `sleeping`, for sleeping sand (SLEEPING defined).
@@ -127,10 +120,6 @@ struct World::Impl {
   // The CPU changed what the lists hold (bodies added or restored, the table or the buffers
   // changed): the next substep builds them.
   bool listsStale = true;
-  // With sleep: every build sorts the sleepers into the still grid again, as if there were one
-  // grid (a test's oracle: the lists and the results are the same bit for bit). Set
-  // paramsDirty after changing it.
-  bool stillGridEveryBuild = false;
   // Particles whose state must be written from their bodies before the next contacts (bodies
   // added, set or restored by the CPU): [dirtyBegin, dirtyEnd).
   std::uint32_t dirtyBegin = 0;

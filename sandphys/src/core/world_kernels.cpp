@@ -40,7 +40,7 @@ void World::Impl::uploadParams() {
   p.colliderEnds = {ends[0], ends[1], ends[2], 0u};
   p.shearContact = {model.shearStiffnessGrain, model.shearStiffnessWall, 0.0f, 0.0f};
   p.sleepSpeeds = {sleep.linearSpeed, sleep.angularSpeed, sleep.wakeAcceleration, 0.0f};
-  p.sleepSteps = {sleep.substeps, sleep.neighbourLead, stillGridEveryBuild ? 1u : 0u, 0u};
+  p.sleepSteps = {sleep.substeps, sleep.neighbourLead, 0u, 0u};
   buffers[kColliders].upload(0, sorted.size() * sizeof(GpuCollider), sorted.data());
   buffers.params.upload(0, sizeof p, &p);
   paramsDirty = false;
@@ -106,18 +106,7 @@ void World::Impl::prepareBodies() {
 void World::Impl::buildLists() {
   // 2. The build, in passes whose group counts the decision wrote (zero when not due): bucket
   // counts, their prefix sum (blocks of 1024), scatter into buckets, id order inside each
-  // bucket, then each particle's list. With sleep the grid is two (layout.glsl "Sleep"): the
-  // still grid's passes run first, and have groups only when it is due.
-  if (sleep.enabled) {
-    dispatchIndirect(kernels.stillCount, "still_count", listDispatchOffset(kPassStillCount));
-    dispatchIndirect(kernels.stillScanBlocks, "still_scan_blocks",
-                     listDispatchOffset(kPassStillScanBlocks));
-    dispatchIndirect(kernels.stillScanBlockSums, "still_scan_block_sums",
-                     listDispatchOffset(kPassStillScanBlockSums));
-    dispatchIndirect(kernels.stillScanAdd, "still_scan_add", listDispatchOffset(kPassStillScanAdd));
-    dispatchIndirect(kernels.stillScatter, "still_scatter", listDispatchOffset(kPassStillScatter));
-    dispatchIndirect(kernels.stillSort, "still_sort", listDispatchOffset(kPassStillSort));
-  }
+  // bucket, then each particle's list.
   dispatchIndirect(kernels.gridCount, "grid_count", listDispatchOffset(kPassGridCount));
   dispatchIndirect(kernels.scanBlocks, "scan_blocks", listDispatchOffset(kPassScanBlocks));
   dispatchIndirect(kernels.scanBlockSums, "scan_block_sums",
@@ -234,10 +223,6 @@ WorldStats World::Impl::reduceStats() {
   s.gridBuckets = table.size;
   s.listBuilds = counters[kCounterListBuilds];
   s.neighbourListOverflows = counters[kCounterListOverflows];
-  if (sleep.enabled) {
-    s.stillGridBuilds = counters[kCounterStillBuilds];
-    s.movingGridParticles = counters[kCounterGridActive] + counters[kCounterGridRecent];
-  }
   s.contacts = std::uint32_t(pairEnds / 2 + wallContacts);
   s.steps = steps;
   s.simulatedTime = simTime;

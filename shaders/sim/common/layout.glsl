@@ -50,21 +50,10 @@
 #define PARTICLE_STATS(access) layout(std430, binding = 11) access buffer ParticleStatsBuffer { uvec4 particleStats[]; };
 // Particles per hash bucket; returns to zero after every scatter.
 #define CELL_COUNT(access) layout(std430, binding = 12) access buffer CellCountBuffer { uint cellCount[]; };
-// The grid of the last list build. Under SLEEPING it is two grids of one table (see "Sleep"):
-// these buffers (the moving grid) hold what the build found awake or moved since the still grid
-// was built; bindings 36, 37 (STILL_CELL_*_TEXTURE) hold the sleepers. A kernel compiled with
-// STILL_GRID builds the still grid through these same names.
-#ifdef STILL_GRID
-#define CELL_START_BINDING 36
-#define CELL_PARTICLES_BINDING 37
-#else
-#define CELL_START_BINDING 13
-#define CELL_PARTICLES_BINDING 14
-#endif
 // Exclusive prefix sum of cellCount; entry tableSize holds the total.
-#define CELL_START(access) layout(std430, binding = CELL_START_BINDING) access buffer CellStartBuffer { uint cellStart[]; };
+#define CELL_START(access) layout(std430, binding = 13) access buffer CellStartBuffer { uint cellStart[]; };
 // Particle ids in bucket order, ascending id inside each bucket.
-#define CELL_PARTICLES(access) layout(std430, binding = CELL_PARTICLES_BINDING) access buffer CellParticlesBuffer { uint cellParticles[]; };
+#define CELL_PARTICLES(access) layout(std430, binding = 14) access buffer CellParticlesBuffer { uint cellParticles[]; };
 // Neighbour lists (common/neighbour_list.glsl): per particle, the ids of the particles of other
 // bodies that were closer than d + skin at the last build, ascending; entry k of particle i at
 // k * listLayout.x (the particles in use) + i, so that the threads of a dispatch read one entry
@@ -90,11 +79,7 @@
 // view only what earlier dispatches wrote, never a buffer it writes itself.
 #define NEIGHBOUR_LIST_TEXTURE layout(binding = 0) uniform usamplerBuffer neighbourListTexture;
 #define LIST_ORIGIN_TEXTURE layout(binding = 1) uniform samplerBuffer listOriginTexture;
-#ifdef STILL_GRID
-#define CELL_START_TEXTURE layout(binding = 21) uniform usamplerBuffer cellStartTexture;
-#else
 #define CELL_START_TEXTURE layout(binding = 2) uniform usamplerBuffer cellStartTexture;
-#endif
 #define BODY_POSITION_TEXTURE layout(binding = 3) uniform samplerBuffer bodyPositionTexture;
 #define BODY_ORIENTATION_TEXTURE layout(binding = 4) uniform samplerBuffer bodyOrientationTexture;
 #define BODY_VELOCITY_TEXTURE layout(binding = 5) uniform samplerBuffer bodyVelocityTexture;
@@ -105,11 +90,7 @@
 #define PARTICLE_POSITION_TEXTURE layout(binding = 10) uniform samplerBuffer particlePositionTexture;
 #define PARTICLE_VELOCITY_TEXTURE layout(binding = 11) uniform samplerBuffer particleVelocityTexture;
 #define PARTICLE_FORCE_TEXTURE layout(binding = 12) uniform samplerBuffer particleForceTexture;
-#ifdef STILL_GRID
-#define CELL_PARTICLES_TEXTURE layout(binding = 22) uniform usamplerBuffer cellParticlesTexture;
-#else
 #define CELL_PARTICLES_TEXTURE layout(binding = 13) uniform usamplerBuffer cellParticlesTexture;
-#endif
 #define CELL_COUNT_TEXTURE layout(binding = 14) uniform usamplerBuffer cellCountTexture;
 #define PARTICLE_TORQUE_TEXTURE layout(binding = 15) uniform samplerBuffer particleTorqueTexture;
 #define PARTICLE_SPIN_TEXTURE layout(binding = 16) uniform samplerBuffer particleSpinTexture;
@@ -117,9 +98,6 @@
 #define CONTACT_SLOTS_1_TEXTURE layout(binding = 18) uniform samplerBuffer contactSlots1Texture;
 #define CONTACT_SLOTS_2_TEXTURE layout(binding = 19) uniform samplerBuffer contactSlots2Texture;
 #define CONTACT_PAIRS_TEXTURE layout(binding = 20) uniform usamplerBuffer contactPairsTexture;
-#define STILL_CELL_START_TEXTURE layout(binding = 21) uniform usamplerBuffer stillCellStartTexture;
-#define STILL_CELL_PARTICLES_TEXTURE layout(binding = 22) uniform usamplerBuffer stillCellParticlesTexture;
-#define BODY_GRID_BUILD_TEXTURE layout(binding = 23) uniform usamplerBuffer bodyGridBuildTexture;
 
 struct Collider {
   vec4 a;         // meaning depends on the type (see colliders.glsl)
@@ -162,34 +140,17 @@ struct SinkBox {
 // SLEEPING: non-zero when the build due builds every particle's list, zero when only the active
 // particles' (list_build.comp).
 #define COUNTER_LIST_ALL 8
-// SLEEPING, the two grids ("Sleep" below): the build that last built the still grid; the
-// particles collect_active.comp has put in recentParticles so far this substep; and, at the last
-// build, how many of the moving grid's particles came from the active list and how many from
-// recentParticles (they decide when the still grid is built again).
-#define COUNTER_STILL_BUILD 9
-#define COUNTER_RECENT_PARTICLES 10
-#define COUNTER_GRID_ACTIVE 11
-#define COUNTER_GRID_RECENT 12
-// SLEEPING: builds of the still grid so far.
-#define COUNTER_STILL_BUILDS 13
 // From this uint on: the indirect dispatch commands of the list build, one per pass below (4
-// uints each: groups x, y, z and padding), zero groups when no build is due. Under SLEEPING the
-// still grid's passes come first, when it is due.
-#define COUNTER_LIST_DISPATCH 16
-#define PASS_STILL_COUNT 0u
-#define PASS_STILL_SCAN_BLOCKS 1u
-#define PASS_STILL_SCAN_BLOCK_SUMS 2u
-#define PASS_STILL_SCAN_ADD 3u
-#define PASS_STILL_SCATTER 4u
-#define PASS_STILL_SORT 5u
-#define PASS_GRID_COUNT 6u
-#define PASS_SCAN_BLOCKS 7u
-#define PASS_SCAN_BLOCK_SUMS 8u
-#define PASS_SCAN_ADD 9u
-#define PASS_GRID_SCATTER 10u
-#define PASS_GRID_SORT 11u
-#define PASS_LIST_BUILD 12u
-#define LIST_BUILD_PASSES 13
+// uints each: groups x, y, z and padding), zero groups when no build is due.
+#define COUNTER_LIST_DISPATCH 12
+#define PASS_GRID_COUNT 0u
+#define PASS_SCAN_BLOCKS 1u
+#define PASS_SCAN_BLOCK_SUMS 2u
+#define PASS_SCAN_ADD 3u
+#define PASS_GRID_SCATTER 4u
+#define PASS_GRID_SORT 5u
+#define PASS_LIST_BUILD 6u
+#define LIST_BUILD_PASSES 7
 // SLEEPING: after those, the indirect commands of the contacts and integrate_bodies passes over
 // the active lists (ACTIVE_PARTICLES, ACTIVE_BODIES); the fourth uint of each is the list's length.
 #define COUNTER_ACTIVE_DISPATCH (COUNTER_LIST_DISPATCH + 4 * LIST_BUILD_PASSES)
@@ -250,15 +211,6 @@ struct StatsPartial {
 // that the motion asked for lists the active particles only; a particle whose list is older than
 // the last build finds its partners in the grid instead (contacts.comp).
 #define LIST_BUILT(access) layout(std430, binding = 35) access buffer ListBuiltBuffer { uint listBuilt[]; };
-// Bindings 36, 37: SLEEPING, the still grid's cellStart and cellParticles (CELL_START above).
-// SLEEPING: per body, the last list build that put its particles in the moving grid (0: none
-// since the still grid took them; GRID_BUILD_DEAD once it died). Its particles in the still grid
-// count only while this is below COUNTER_STILL_BUILD.
-#define GRID_BUILD_DEAD 0xffffffffu
-#define BODY_GRID_BUILD(access) layout(std430, binding = 38) access buffer BodyGridBuildBuffer { uint bodyGridBuild[]; };
-// SLEEPING: the particles of the sleepers the moving grid holds (collect_active.comp, at a
-// build): those the still grid does not, since they moved after it was built.
-#define RECENT_PARTICLES(access) layout(std430, binding = 39) access buffer RecentParticlesBuffer { uint recentParticles[]; };
 
 // Sleep (SLEEPING, docs/architecture.md "sleep"). A body's calm count is the number of substeps
 // its speeds have been below the thresholds, but at most sleepSteps.y more than the smallest
@@ -270,14 +222,6 @@ struct StatsPartial {
 // when its contacts are not those it fell asleep with. An awake particle marks the sleeping bodies
 // it touches by setting their count (not their particles' copies) to calmTouched(): they are
 // computed in the next substep (collect_active.comp takes the mark back to sleepSteps.x).
-// The grid of a list build is two grids, so that a build costs what the awake sand costs: the
-// still grid holds the particles of every body that was not computed (asleep, or immovable) when
-// it was last built, and is built again only when the build is asked for by the CPU or when the
-// sleepers that have moved since (recentParticles) outnumber the awake particles and are more
-// than a sixteenth of all; the moving grid holds the rest and is built at every build, from the
-// active list and recentParticles. A particle counts in the still grid while its body has not
-// been in the moving grid since (BODY_GRID_BUILD), so the two never hold a particle twice and
-// every search (list_build.comp, contacts.comp, spawn_check.comp) goes through both.
 #define CALM_UNBOUNDED 0xffffffffu
 #define calmTouched() (sleepSteps.x + 1u)
 
@@ -294,7 +238,7 @@ layout(std140, binding = 0) uniform SimParams {
   vec4 listGeom;       // x: skin (m); y: (d + skin)^2; z: (skin / 2)^2 (m^2); w: unused
   uvec4 listLayout;    // x: stride of a neighbour-list entry (the particles in use); y, z, w: unused
   vec4 sleepSpeeds;    // SLEEPING: x: linear speed threshold (m/s); y: angular (rad/s); z: wake acceleration (m/s^2); w: unused
-  uvec4 sleepSteps;    // SLEEPING: x: substeps calm before sleep (SleepModel::substeps); y: SleepModel::neighbourLead; z: 1 builds the still grid at every build (a test's oracle); w: unused
+  uvec4 sleepSteps;    // SLEEPING: x: substeps calm before sleep (SleepModel::substeps); y: SleepModel::neighbourLead; z, w: unused
 };
 
 // Linear thread index of a dispatch that World may fold into two dimensions. A macro, because
