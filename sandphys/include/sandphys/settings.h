@@ -93,9 +93,10 @@ struct WorldSettings {
   /// The contact law (see ContactLaw).
   ContactLaw contactLaw = ContactLaw::HertzMindlin;
   /// Fixed substep in s. 0 derives it: t_n(maxSpeed) / stepsPerContact (eq. 11, Hertz form).
-  /// A value above t_n / kMinStepsPerContact is refused.
+  /// A value above t_n / kMinStepsPerContact or below t_n / kMaxStepsPerContact is refused.
   float timeStep = 0.0f;
-  /// Substeps per Hertz contact duration when the step is derived; >= kMinStepsPerContact.
+  /// Substeps per Hertz contact duration when the step is derived; in [kMinStepsPerContact,
+  /// kMaxStepsPerContact].
   float stepsPerContact = 20.0f;
   /// Speed guard in m/s; > 0. Body speeds above it are clamped (and counted); it is also the
   /// impact speed at which the contact duration t_n that sets the time step, and the peak
@@ -127,6 +128,16 @@ struct WorldSettings {
 
 /// Fewest substeps per contact duration t_n a World accepts; fewer is refused as unstable.
 inline constexpr float kMinStepsPerContact = 8.0f;
+/// Most substeps per contact duration t_n a World accepts. A contact is resolved long before
+/// that; a finer step only multiplies the cost (and, far enough, moves a grain at rest by less
+/// than a float can tell).
+inline constexpr float kMaxStepsPerContact = 1.0e4f;
+
+/// Coarsest float spacing, in particle diameters, a World accepts where it places a body: a body
+/// (or block, floor, emitter) reaching farther than kMaxPositionSpacing · d · 2^23 from the origin
+/// (about 84,000 d) is refused, since contacts there would be resolved in steps coarser than their
+/// overlaps.
+inline constexpr float kMaxPositionSpacing = 0.01f;
 
 /// The derived skin of the neighbour lists (WorldSettings::listSkin = 0): 2 · kListSkinSubsteps ·
 /// maxSpeed · timeStep, so that a particle at the speed guard keeps its list that many substeps,

@@ -37,7 +37,9 @@ struct KernelTime {
 /// Capacities are fixed at creation (WorldSettings) and grown only by reserve(); nothing is
 /// allocated inside step(). Setup calls throw sandphys::Error; step() does not throw. Calls that
 /// read GPU memory are marked "sync point": they wait for the GPU and are meant for analysis,
-/// tests and debugging, not for every frame of a game. Two worlds may share one GpuContext.
+/// tests and debugging, not for every frame of a game. Two worlds may share one GpuContext. A
+/// World that was moved from holds nothing: every call on it but destruction and assignment
+/// throws InvalidArgument (step() included).
 class World {
  public:
   /// Validates `settings` (throws InvalidArgument naming field, value and limit), compiles the

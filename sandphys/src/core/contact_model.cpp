@@ -151,10 +151,11 @@ ContactModel ContactModel::fromSettings(const WorldSettings& s) {
   requireNonNegative("WorldSettings.material.tangentialDamping", s.material.tangentialDamping,
                      "(N s/m)");
   requirePositive("WorldSettings.maxSpeed", s.maxSpeed, "(m/s)");
-  require(std::isfinite(s.stepsPerContact) && s.stepsPerContact >= kMinStepsPerContact,
+  require(std::isfinite(s.stepsPerContact) && s.stepsPerContact >= kMinStepsPerContact &&
+              s.stepsPerContact <= kMaxStepsPerContact,
           "WorldSettings.stepsPerContact", s.stepsPerContact,
-          "must be >= " + detail::formatValue(kMinStepsPerContact) +
-              " (substeps per contact time t_n)");
+          "must be in [" + detail::formatValue(kMinStepsPerContact) + ", " +
+              detail::formatValue(kMaxStepsPerContact) + "] (substeps per contact time t_n)");
   requireNonNegative("WorldSettings.timeStep", s.timeStep, "(s)");
   require(std::isfinite(s.listSkin) && s.listSkin >= 0.0f && s.listSkin <= s.particleDiameter,
           "WorldSettings.listSkin", s.listSkin,
@@ -210,6 +211,7 @@ ContactModel ContactModel::fromSettings(const WorldSettings& s) {
   const double tWall = hertzContactTime(mass, m.stiffnessWall, m.dampingFactorGrain, s.maxSpeed);
   m.contactTime = static_cast<float>(std::min(tGrain, tWall));
   const double limit = m.contactTime / kMinStepsPerContact;
+  const double finest = m.contactTime / kMaxStepsPerContact;
   if (s.timeStep > 0.0f) {
     require(s.timeStep <= limit, "WorldSettings.timeStep", s.timeStep,
             "must be <= t_n / " + detail::formatValue(kMinStepsPerContact) + " = " +
@@ -217,6 +219,11 @@ ContactModel ContactModel::fromSettings(const WorldSettings& s) {
                 " s for this material (t_n = " + detail::formatValue(m.contactTime) +
                 " s at maxSpeed " + detail::formatValue(s.maxSpeed) +
                 " m/s); lower it, or lower youngsModulus or maxSpeed");
+    require(s.timeStep >= finest, "WorldSettings.timeStep", s.timeStep,
+            "must be >= t_n / " + detail::formatValue(kMaxStepsPerContact) + " = " +
+                detail::formatValue(finest) +
+                " s for this material (t_n = " + detail::formatValue(m.contactTime) +
+                " s): a finer step resolves nothing more and only multiplies the cost");
     m.timeStep = s.timeStep;
   } else {
     m.timeStep = static_cast<float>(m.contactTime / s.stepsPerContact);

@@ -3,10 +3,11 @@
 #include <cmath>
 
 #include "core/validation.h"
+#include "core/world_checks.h"
 
 namespace sandphys::detail {
 
-EmitterState::EmitterState(const EmitterSettings& s, float particleDiameter)
+EmitterState::EmitterState(const EmitterSettings& s, float particleDiameter, std::uint32_t maxSlots)
     : m_settings(s), m_rng(s.seed) {
   requireFinite("EmitterSettings.center.x", s.center.x);
   requireFinite("EmitterSettings.center.y", s.center.y);
@@ -21,8 +22,18 @@ EmitterState::EmitterState(const EmitterSettings& s, float particleDiameter)
                   "(m/s): emitted granules must move away");
 
   const double spacing = kDefaultGranuleSpacing * particleDiameter;
-  const int nx = 1 + int(std::floor(2.0 * s.halfExtentX / spacing));
-  const int nz = 1 + int(std::floor(2.0 * s.halfExtentZ / spacing));
+  const double columns = 1.0 + std::floor(2.0 * s.halfExtentX / spacing);
+  const double rows = 1.0 + std::floor(2.0 * s.halfExtentZ / spacing);
+  require(columns * rows <= double(maxSlots), "EmitterSettings.halfExtentX/Z (lattice slots)",
+          columns * rows,
+          "must be <= WorldSettings.maxBodies = " + std::to_string(maxSlots) +
+              ": a layer of the rectangle's lattice (spacing " + formatValue(spacing) +
+              " m) must fit in the World");
+  requireResolvable("EmitterSettings.center", s.center,
+                    std::hypot(double(s.halfExtentX), double(s.halfExtentZ)), particleDiameter);
+  const int nx = int(columns);
+  const int nz = int(rows);
+  m_slots.reserve(std::size_t(columns * rows));
   for (int z = 0; z < nz; ++z) {
     for (int x = 0; x < nx; ++x) {
       m_slots.push_back({float(s.center.x + (x - 0.5 * (nx - 1)) * spacing), s.center.y,

@@ -16,7 +16,10 @@ namespace sandphys::detail {
 /// maxRate() is refused at creation.
 class EmitterState {
  public:
-  EmitterState(const EmitterSettings& settings, float particleDiameter);
+  /// Throws InvalidArgument naming the field for a rectangle whose layer holds more lattice
+  /// slots than `maxSlots` (the World's body capacity: a layer that can never fit), checked
+  /// before any slot is built.
+  EmitterState(const EmitterSettings& settings, float particleDiameter, std::uint32_t maxSlots);
 
   /// Granules due after `dt` more seconds, at most `room`. Sets `blocked` when capacity, not the
   /// rate, stopped it. CPU work is proportional to the granules returned.

@@ -21,7 +21,7 @@ Quat randomOrientation(std::mt19937_64& rng) {
           float(b * std::cos(u3))};
 }
 
-std::vector<GranuleSpawn> layoutGranuleBlock(const GranuleBlock& block, float particleDiameter) {
+double granuleBlockSpacing(const GranuleBlock& block, float particleDiameter) {
   require(block.countX > 0, "GranuleBlock.countX", block.countX, "must be > 0");
   require(block.countY > 0, "GranuleBlock.countY", block.countY, "must be > 0");
   require(block.countZ > 0, "GranuleBlock.countZ", block.countZ, "must be > 0");
@@ -43,7 +43,11 @@ std::vector<GranuleSpawn> layoutGranuleBlock(const GranuleBlock& block, float pa
           "less twice the jitter must be >= 2.225 particle diameters (" +
               formatValue(2.0 * kGranuleReach * particleDiameter) +
               " m), or granules start overlapping");
+  return spacing;
+}
 
+std::vector<GranuleSpawn> layoutGranuleBlock(const GranuleBlock& block, float particleDiameter) {
+  const double spacing = granuleBlockSpacing(block, particleDiameter);
   std::mt19937_64 rng(block.seed);
   std::vector<GranuleSpawn> spawns;
   spawns.reserve(std::size_t(block.countX) * block.countY * block.countZ);

@@ -22,6 +22,9 @@ Quat randomOrientation(std::mt19937_64& rng);
 /// unlike std::uniform_real_distribution).
 double uniform(std::mt19937_64& rng, double lo, double hi);
 
+/// Validates a GranuleBlock (InvalidArgument names the field) and returns its lattice spacing, m.
+double granuleBlockSpacing(const GranuleBlock& block, float particleDiameter);
+
 /// Granule poses of a GranuleBlock; validates it (InvalidArgument names the field).
 std::vector<GranuleSpawn> layoutGranuleBlock(const GranuleBlock& block, float particleDiameter);
 

@@ -13,6 +13,7 @@
 #include "core/granule_spawner.h"
 #include "core/overlap_check.h"
 #include "core/validation.h"
+#include "core/world_checks.h"
 #include "core/world_impl.h"
 #include "gl/gl_check.h"
 
@@ -41,19 +42,6 @@ Quat multiply(Quat a, Quat b) {
   return {
       a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z, a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
       a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x, a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w};
-}
-
-Quat normalised(Quat q, const std::string& field) {
-  double n =
-      std::sqrt(double(q.w) * q.w + double(q.x) * q.x + double(q.y) * q.y + double(q.z) * q.z);
-  require(std::isfinite(n) && n > 1e-6, field, n, "must be a non-zero, finite quaternion");
-  return {float(q.w / n), float(q.x / n), float(q.y / n), float(q.z / n)};
-}
-
-void requireFiniteVec(const std::string& field, Vec3 v) {
-  requireFinite(field + ".x", v.x);
-  requireFinite(field + ".y", v.y);
-  requireFinite(field + ".z", v.z);
 }
 
 void requireSurface(const std::string& type, const SurfaceMaterial& m) {
@@ -179,17 +167,7 @@ std::uint32_t World::Impl::addBodies(const ParticleTemplate& shape,
                                      const std::vector<BodyDesc>& descs, bool isGranule) {
   const std::uint64_t n = descs.size();
   const std::uint64_t perBody = shape.offsets.size();
-  if (bodyCount + n > bodyCapacity) {
-    throw CapacityExceeded("adding " + std::to_string(n) + " bodies to " +
-                           std::to_string(bodyCount) + " exceeds WorldSettings.maxBodies = " +
-                           std::to_string(bodyCapacity) + " (grow it with World::reserve)");
-  }
-  if (particleCount + n * perBody > particleCapacity) {
-    throw CapacityExceeded(
-        "adding " + std::to_string(n * perBody) + " particles to " + std::to_string(particleCount) +
-        " exceeds WorldSettings.maxParticles = " + std::to_string(particleCapacity) +
-        " (grow it with World::reserve)");
-  }
+  requireRoom(n, n * perBody);
   // Every body that is not a granule (and not static) gets a workgroup and a force sum of its
   // own (integrate_large_bodies.comp), from a fixed-size list.
   auto isLarge = [&](const BodyDesc& d) { return !isGranule && d.motion != Motion::Static; };
@@ -253,6 +231,20 @@ std::uint32_t World::Impl::addBodies(const ParticleTemplate& shape,
   if (isGranule) granulesSpawned += std::uint32_t(n);
   paramsDirty = true;
   return firstBody;
+}
+
+void World::Impl::requireRoom(std::uint64_t bodies, std::uint64_t particles) const {
+  if (bodyCount + bodies > bodyCapacity) {
+    throw CapacityExceeded("adding " + std::to_string(bodies) + " bodies to " +
+                           std::to_string(bodyCount) + " exceeds WorldSettings.maxBodies = " +
+                           std::to_string(bodyCapacity) + " (grow it with World::reserve)");
+  }
+  if (particleCount + particles > particleCapacity) {
+    throw CapacityExceeded(
+        "adding " + std::to_string(particles) + " particles to " + std::to_string(particleCount) +
+        " exceeds WorldSettings.maxParticles = " + std::to_string(particleCapacity) +
+        " (grow it with World::reserve)");
+  }
 }
 
 std::uint32_t World::Impl::placedCalm(const BodyDesc& d) const {
@@ -346,47 +338,51 @@ World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
 
 const WorldSettings& World::settings() const {
-  return m_impl->settings;
+  return impl().settings;
 }
 const ContactModel& World::contactModel() const {
-  return m_impl->model;
+  return impl().model;
 }
 const SleepModel& World::sleepModel() const {
-  return m_impl->sleep;
+  return impl().sleep;
 }
 float World::timeStep() const {
-  return m_impl->model.timeStep;
+  return impl().model.timeStep;
 }
 World::Impl& World::impl() {
+  if (!m_impl)
+    throw InvalidArgument("World: used after it was moved from (move-assign a World to it first)");
   return *m_impl;
 }
 const World::Impl& World::impl() const {
+  if (!m_impl)
+    throw InvalidArgument("World: used after it was moved from (move-assign a World to it first)");
   return *m_impl;
 }
 
 ColliderId World::addCollider(const Plane& plane) {
-  return m_impl->putCollider({}, toGpu(plane), plane);
+  return impl().putCollider({}, toGpu(plane), plane);
 }
 ColliderId World::addCollider(const Box& box) {
-  return m_impl->putCollider({}, toGpu(box), box);
+  return impl().putCollider({}, toGpu(box), box);
 }
 ColliderId World::addCollider(const Cylinder& c) {
-  return m_impl->putCollider({}, toGpu(c), c);
+  return impl().putCollider({}, toGpu(c), c);
 }
 ColliderId World::addCollider(const Funnel& f) {
-  return m_impl->putCollider({}, toGpu(f), f);
+  return impl().putCollider({}, toGpu(f), f);
 }
 void World::setCollider(ColliderId id, const Plane& p) {
-  m_impl->putCollider(id.index, toGpu(p), p);
+  impl().putCollider(id.index, toGpu(p), p);
 }
 void World::setCollider(ColliderId id, const Box& b) {
-  m_impl->putCollider(id.index, toGpu(b), b);
+  impl().putCollider(id.index, toGpu(b), b);
 }
 void World::setCollider(ColliderId id, const Cylinder& c) {
-  m_impl->putCollider(id.index, toGpu(c), c);
+  impl().putCollider(id.index, toGpu(c), c);
 }
 void World::setCollider(ColliderId id, const Funnel& f) {
-  m_impl->putCollider(id.index, toGpu(f), f);
+  impl().putCollider(id.index, toGpu(f), f);
 }
 
 namespace {
@@ -441,10 +437,10 @@ ColliderShape withDerivedMotion(const ColliderShape& before, ColliderShape shape
 
 void World::moveCollider(ColliderId id, const ColliderShape& shape, float seconds) {
   requirePositive("World::moveCollider seconds", seconds, "(s)");
-  if (!id.isValid() || id.index >= m_impl->colliderShapes.size()) {
+  if (!id.isValid() || id.index >= impl().colliderShapes.size()) {
     throw InvalidId("ColliderId " + std::to_string(id.index) + " does not exist");
   }
-  const ColliderShape moved = withDerivedMotion(m_impl->colliderShapes[id.index], shape, seconds);
+  const ColliderShape moved = withDerivedMotion(impl().colliderShapes[id.index], shape, seconds);
   std::visit([&](const auto& s) { setCollider(id, s); }, moved);
 }
 
@@ -453,7 +449,7 @@ SinkId World::addSink(const Sink& sink) {
   requireFiniteVec("Sink.max", sink.max);
   require(sink.min.x <= sink.max.x && sink.min.y <= sink.max.y && sink.min.z <= sink.max.z,
           "Sink.max.x/y/z", sink.max.x, "must be >= Sink.min on every axis");
-  Impl& w = *m_impl;
+  Impl& w = impl();
   if (w.sinks.size() >= w.settings.maxColliders) {
     throw CapacityExceeded("adding a sink exceeds WorldSettings.maxColliders = " +
                            std::to_string(w.settings.maxColliders));
@@ -473,14 +469,14 @@ void World::wake(Vec3 lo, Vec3 hi) {
   requireFiniteVec("World::wake hi", hi);
   require(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z, "World::wake hi.x/y/z", hi.x,
           "must be >= lo on every axis");
-  m_impl->wakeBox({lo, hi});
+  impl().wakeBox({lo, hi});
 }
 
 BodyId World::addRoughFloor(const RoughFloor& floor) {
   requireFiniteVec("RoughFloor.center", floor.center);
   requireNonNegative("RoughFloor.radius", floor.radius, "(m)");
   requireNonNegative("RoughFloor.spacing", floor.spacing, "(m)");
-  const float d = m_impl->settings.particleDiameter;
+  const float d = impl().settings.particleDiameter;
   const double spacing = floor.spacing > 0.0f ? floor.spacing : d;
   double hx = floor.radius, hz = floor.radius;
   if (floor.radius == 0.0f) {
@@ -489,19 +485,25 @@ BodyId World::addRoughFloor(const RoughFloor& floor) {
     hx = floor.halfExtentX;
     hz = floor.halfExtentZ;
   }
-  if (m_impl->keepsHistory()) {
+  if (impl().keepsHistory()) {
     // A granule landing on the floor at maxSpeed must not slip between its particles.
     requireNoPassThrough(
-        m_impl->settings, m_impl->model.peakOverlapFixedParticle, floorPassOverlap(spacing / d),
+        impl().settings, impl().model.peakOverlapFixedParticle, floorPassOverlap(spacing / d),
         "a granule meeting a RoughFloor of spacing " + formatValue(spacing / d) + " d");
   }
-  const int nx = int(std::floor(hx / spacing));
-  const int nz = int(std::floor(hz / spacing));
+  requireResolvable("RoughFloor.center", floor.center, std::sqrt(hx * hx + hz * hz), d);
+  // Counted before anything is built: a floor too large for the World costs no memory.
+  Impl& w = impl();
+  const std::uint64_t room = std::uint64_t(w.particleCapacity) - w.particleCount;
+  const double radius = floor.radius;
+  w.requireRoom(1, roughFloorParticles(spacing, hx, hz, radius, room));
+  const auto nx = std::int64_t(std::floor(hx / spacing));
+  const auto nz = std::int64_t(std::floor(hz / spacing));
   std::vector<Vec3> centres;
-  for (int z = -nz; z <= nz; ++z) {
-    for (int x = -nx; x <= nx; ++x) {
-      double px = x * spacing, pz = z * spacing;
-      if (floor.radius > 0.0f && px * px + pz * pz > double(floor.radius) * floor.radius) continue;
+  for (std::int64_t z = -nz; z <= nz; ++z) {
+    for (std::int64_t x = -nx; x <= nx; ++x) {
+      double px = double(x) * spacing, pz = double(z) * spacing;
+      if (radius > 0.0 && !inRoughFloor(px, pz, radius)) continue;
       centres.push_back({float(px), 0.0f, float(pz)});
     }
   }
@@ -512,55 +514,72 @@ BodyId World::addRoughFloor(const RoughFloor& floor) {
   shape.principalInertia = {1.0f, 1.0f, 1.0f};
   shape.boundingRadius = float(std::sqrt(hx * hx + hz * hz));
   std::uint32_t index =
-      m_impl->addBodies(shape, {BodyDesc{floor.center, {}, {}, {}, Motion::Static}}, false);
-  return BodyId{index, m_impl->generations[index]};
+      w.addBodies(shape, {BodyDesc{floor.center, {}, {}, {}, Motion::Static}}, false);
+  return BodyId{index, w.generations[index]};
 }
 
 BodyId World::addBody(const ParticleTemplate& shape, const BodyDesc& desc) {
-  require(!shape.offsets.empty(), "ParticleTemplate.offsets (count)", 0, "must not be empty");
-  requirePositive("ParticleTemplate.mass", shape.mass, "(kg)");
-  requirePositive("ParticleTemplate.principalInertia.x", shape.principalInertia.x, "(kg m^2)");
-  requirePositive("ParticleTemplate.principalInertia.y", shape.principalInertia.y, "(kg m^2)");
-  requirePositive("ParticleTemplate.principalInertia.z", shape.principalInertia.z, "(kg m^2)");
+  requireTemplate(shape);
   requireFiniteVec("BodyDesc.position", desc.position);
+  requireResolvable("BodyDesc.position", desc.position, shape.boundingRadius,
+                    impl().settings.particleDiameter);
   requireFiniteVec("BodyDesc.velocity", desc.velocity);
   requireFiniteVec("BodyDesc.angularVelocity", desc.angularVelocity);
   BodyDesc d = desc;
   d.orientation = normalised(desc.orientation, "BodyDesc.orientation");
-  std::uint32_t index = m_impl->addBodies(shape, {d}, false);
-  return BodyId{index, m_impl->generations[index]};
+  std::uint32_t index = impl().addBodies(shape, {d}, false);
+  return BodyId{index, impl().generations[index]};
 }
 
 BodyRange World::addGranules(const GranuleBlock& block) {
-  auto spawns = layoutGranuleBlock(block, m_impl->settings.particleDiameter);
+  Impl& w = impl();
+  const float d = w.settings.particleDiameter;
+  const double spacing = granuleBlockSpacing(block, d);
+  // Counted and placed before anything is built: a block too large for the World costs no
+  // memory.
+  const auto count =
+      std::uint64_t(std::min(double(block.countX) * block.countY * block.countZ, 0x1.0p60));
+  w.requireRoom(count, count * w.granule.offsets.size());
+  const auto halfExtent = [&](std::uint32_t n) {
+    return (0.5 * (n - 1.0) + double(block.jitter)) * spacing;
+  };
+  requireResolvable(
+      "GranuleBlock.center", block.center,
+      std::hypot(halfExtent(block.countX), halfExtent(block.countY), halfExtent(block.countZ)) +
+          w.granule.boundingRadius,
+      d);
+  auto spawns = layoutGranuleBlock(block, d);
   std::vector<BodyDesc> descs;
   descs.reserve(spawns.size());
   for (const auto& s : spawns)
     descs.push_back({s.position, s.orientation, s.velocity, {}, Motion::Dynamic});
-  std::uint32_t first = m_impl->addBodies(m_impl->granule, descs, true);
+  std::uint32_t first = w.addBodies(w.granule, descs, true);
   return {first, std::uint32_t(descs.size())};
 }
 
 EmitterId World::addEmitter(const EmitterSettings& emitter) {
-  m_impl->emitters.emplace_back(EmitterState(emitter, m_impl->settings.particleDiameter));
-  return EmitterId{std::uint32_t(m_impl->emitters.size() - 1)};
+  Impl& w = impl();
+  w.emitters.emplace_back(EmitterState(emitter, w.settings.particleDiameter, w.bodyCapacity));
+  return EmitterId{std::uint32_t(impl().emitters.size() - 1)};
 }
 
 void World::removeEmitter(EmitterId id) {
-  if (!id.isValid() || id.index >= m_impl->emitters.size() || !m_impl->emitters[id.index]) {
+  if (!id.isValid() || id.index >= impl().emitters.size() || !impl().emitters[id.index]) {
     throw InvalidId("EmitterId " + std::to_string(id.index) + " does not exist");
   }
-  m_impl->emitters[id.index].reset();
+  impl().emitters[id.index].reset();
 }
 
 void World::setBodyState(BodyId id, const BodyDesc& state) {
-  m_impl->requireBody(id);
+  impl().requireBody(id);
   requireFiniteVec("BodyDesc.position", state.position);
   requireFiniteVec("BodyDesc.velocity", state.velocity);
   requireFiniteVec("BodyDesc.angularVelocity", state.angularVelocity);
+  Impl& w = impl();
+  requireResolvable("BodyDesc.position", state.position, w.boundingRadii[id.index],
+                    w.settings.particleDiameter);
   BodyDesc d = state;
   d.orientation = normalised(state.orientation, "BodyDesc.orientation");
-  Impl& w = *m_impl;
   const Motion added = w.bodyMotions[id.index];
   if (state.motion != added) {
     throw InvalidArgument("BodyDesc.motion = " + std::to_string(unsigned(state.motion)) +
@@ -581,7 +600,8 @@ void World::setBodyState(BodyId id, const BodyDesc& state) {
 }
 
 void World::restoreSnapshot(const WorldSnapshot& snapshot) {
-  Impl& w = *m_impl;
+  Impl& w = impl();
+  requireRestorable(snapshot);
   const auto slots = static_cast<std::uint32_t>(snapshot.bodies.size());
   require(slots <= w.bodyCount, "WorldSnapshot.bodies.size()", slots,
           "must be <= the World's " + std::to_string(w.bodyCount) +
@@ -634,7 +654,7 @@ void World::restoreSnapshot(const WorldSnapshot& snapshot) {
 }
 
 void World::reserve(std::uint32_t maxBodies, std::uint32_t maxParticles) {
-  Impl& w = *m_impl;
+  Impl& w = impl();
   require(maxParticles <= kMaxParticles, "World::reserve maxParticles", maxParticles,
           "must be <= " + std::to_string(kMaxParticles) + " (GPU buffer limit)");
   w.gpu->makeCurrent();
@@ -650,27 +670,30 @@ void World::reserve(std::uint32_t maxBodies, std::uint32_t maxParticles) {
 }
 
 StepReport World::step(float frameDt) {
-  Impl& w = *m_impl;
+  Impl& w = impl();
   StepReport report;
   if (!std::isfinite(frameDt) || frameDt <= 0.0f) return report;
   w.gpu->makeCurrent();
   w.accumulator += frameDt;
   const double dt = w.model.timeStep;
-  auto due = std::uint64_t(std::floor(w.accumulator / dt));
-  if (due > w.settings.maxSubstepsPerFrame) {
-    report.droppedTime = float(double(due - w.settings.maxSubstepsPerFrame) * dt);
+  // Compared in double before any integer conversion: a frame of more substeps than an integer
+  // holds is dropped like any other beyond the cap, never wrapped to none.
+  const double needed = std::floor(w.accumulator / dt);
+  std::uint64_t due = 0;
+  if (needed > double(w.settings.maxSubstepsPerFrame)) {
+    report.droppedTime = float((needed - w.settings.maxSubstepsPerFrame) * dt);
     if (!w.warnedDroppedTime) {
       std::fprintf(stderr,
-                   "sandphys: a frame of %.4g s needs %llu substeps of %.3g s, more than "
+                   "sandphys: a frame of %.4g s needs %.4g substeps of %.3g s, more than "
                    "WorldSettings.maxSubstepsPerFrame = %u; the rest is dropped (slow motion). "
                    "This warning is printed once; StepReport::droppedTime has every frame's.\n",
-                   double(frameDt), static_cast<unsigned long long>(due), dt,
-                   w.settings.maxSubstepsPerFrame);
+                   double(frameDt), needed, dt, w.settings.maxSubstepsPerFrame);
       w.warnedDroppedTime = true;
     }
     due = w.settings.maxSubstepsPerFrame;
     w.accumulator = 0.0;
   } else {
+    due = std::uint64_t(needed);
     w.accumulator -= double(due) * dt;
   }
   if (w.profiler.enabled()) w.profiler.resetTotals();
@@ -690,7 +713,7 @@ StepReport World::step(float frameDt) {
 }
 
 void World::substep(std::uint32_t count) {
-  Impl& w = *m_impl;
+  Impl& w = impl();
   w.gpu->makeCurrent();
   if (w.profiler.enabled()) w.profiler.resetTotals();
   w.buffers.bindAll();
@@ -702,31 +725,31 @@ void World::substep(std::uint32_t count) {
 }
 
 std::uint32_t World::bodyCount() const {
-  return m_impl->bodyCount;
+  return impl().bodyCount;
 }
 std::uint32_t World::particleCount() const {
-  return m_impl->particleCount;
+  return impl().particleCount;
 }
 std::uint32_t World::granulesSpawned() const {
-  return m_impl->granulesSpawned;
+  return impl().granulesSpawned;
 }
 std::uint32_t World::bodyCapacity() const {
-  return m_impl->bodyCapacity;
+  return impl().bodyCapacity;
 }
 std::uint32_t World::particleCapacity() const {
-  return m_impl->particleCapacity;
+  return impl().particleCapacity;
 }
 std::uint64_t World::stepCount() const {
-  return m_impl->steps;
+  return impl().steps;
 }
 double World::simulatedTime() const {
-  return m_impl->simTime;
+  return impl().simTime;
 }
 std::uint64_t World::gpuMemoryBytes() const {
-  return m_impl->buffers.bytes();
+  return impl().buffers.bytes();
 }
 std::vector<ColliderShape> World::colliders() const {
-  return m_impl->colliderShapes;
+  return impl().colliderShapes;
 }
 
 }  // namespace sandphys

@@ -141,6 +141,8 @@ struct World::Impl {
   // Setup (world.cpp)
   std::uint32_t addBodies(const ParticleTemplate& shape, const std::vector<BodyDesc>& descs,
                           bool granule);
+  /// Throws CapacityExceeded naming the limit unless this many more bodies and particles fit.
+  void requireRoom(std::uint64_t bodies, std::uint64_t particles) const;
   /// The calm count of a body the CPU places (WorldSettings::sleep; 0 without it): only a
   /// kinematic one slower than the thresholds counts as calm.
   std::uint32_t placedCalm(const BodyDesc& desc) const;

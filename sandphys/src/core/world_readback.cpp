@@ -58,7 +58,7 @@ StoredBodies downloadBodies(const World::Impl& w, const char* call) {
 }  // namespace
 
 std::vector<BodyState> World::readBodies() const {
-  const Impl& w = *m_impl;
+  const Impl& w = impl();
   const StoredBodies stored = downloadBodies(w, "World::readBodies");
   std::vector<BodyState> out(w.bodyCount);
   for (std::uint32_t i = 0; i < w.bodyCount; ++i) {
@@ -75,7 +75,7 @@ std::vector<BodyState> World::readBodies() const {
 }
 
 WorldSnapshot World::readSnapshot() const {
-  const Impl& w = *m_impl;
+  const Impl& w = impl();
   const StoredBodies stored = downloadBodies(w, "World::readSnapshot");
   WorldSnapshot snapshot;
   snapshot.steps = w.steps;
@@ -100,7 +100,7 @@ WorldSnapshot World::readSnapshot() const {
 }
 
 std::uint64_t World::readStateHash() {
-  Impl& w = *m_impl;
+  Impl& w = impl();
   w.gpu->makeCurrent();
   if (w.paramsDirty) w.uploadParams();
   w.buffers.bindAll();
@@ -121,13 +121,13 @@ std::uint64_t World::readStateHash() {
 }
 
 BodyState World::readBody(BodyId id) const {
-  m_impl->requireBody(id);
+  impl().requireBody(id);
   // Small scenes only call this; reading one row of each buffer would be faster for huge ones.
   return readBodies()[id.index];
 }
 
 std::vector<ParticleState> World::readParticles() const {
-  const Impl& w = *m_impl;
+  const Impl& w = impl();
   w.gpu->makeCurrent();
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   auto owner = download<std::uint32_t>(w.buffers[kParticleBody], w.particleCount);
@@ -143,6 +143,7 @@ std::vector<ParticleState> World::readParticles() const {
 }
 
 std::vector<ContactRecord> World::readContacts() const {
+  impl();  // throws for a moved-from World; the contact pass below is GPU work, not a change
   Impl& w = *m_impl;
   w.gpu->makeCurrent();
   // Each particle has at most ~12 neighbours in a packing (tetrahedral granules a few more) plus
@@ -192,8 +193,8 @@ std::vector<ContactRecord> World::readContacts() const {
 }
 
 WorldStats World::readStats() {
-  m_impl->gpu->makeCurrent();
-  return m_impl->reduceStats();
+  impl().gpu->makeCurrent();
+  return impl().reduceStats();
 }
 
 Vec3 BodyForce::meanForce() const {
@@ -207,7 +208,7 @@ Vec3 BodyForce::meanTorque() const {
 }
 
 std::vector<BodyForce> World::takeBodyForces() {
-  Impl& w = *m_impl;
+  Impl& w = impl();
   std::vector<BodyForce> out;
   if (w.largeBodies.empty()) return out;
   w.gpu->makeCurrent();
@@ -225,15 +226,15 @@ std::vector<BodyForce> World::takeBodyForces() {
 
 std::vector<KernelTime> World::kernelTimes() const {
   std::vector<KernelTime> out;
-  for (const auto& t : m_impl->profiler.totals())
+  for (const auto& t : impl().profiler.totals())
     out.push_back({t.name, t.milliseconds, t.dispatches});
   return out;
 }
 
 void World::setProfileKernels(bool enabled) {
-  m_impl->settings.profileKernels = enabled;
-  m_impl->profiler.setEnabled(enabled);
-  if (!enabled) m_impl->profiler.resetTotals();
+  impl().settings.profileKernels = enabled;
+  impl().profiler.setEnabled(enabled);
+  if (!enabled) impl().profiler.resetTotals();
 }
 
 }  // namespace sandphys

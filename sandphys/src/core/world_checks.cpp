@@ -1,0 +1,135 @@
+#include "core/world_checks.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+
+#include "core/validation.h"
+#include "sandphys/settings.h"
+
+namespace sandphys::detail {
+namespace {
+
+// How far a unit quaternion's squared norm may stray: float rounding of a normalised one stays
+// far inside it.
+constexpr double kUnitTolerance = 1e-4;
+
+void requireUnit(const std::string& field, const float q[4]) {
+  double n2 = 0.0;
+  for (int i = 0; i < 4; ++i) n2 += double(q[i]) * q[i];
+  require(std::isfinite(n2) && std::abs(n2 - 1.0) <= kUnitTolerance, field + " (squared norm)", n2,
+          "must be a unit quaternion (finite, squared norm 1 within " +
+              formatValue(kUnitTolerance) + ")");
+}
+
+}  // namespace
+
+void requireFiniteVec(const std::string& field, Vec3 v) {
+  requireFinite(field + ".x", v.x);
+  requireFinite(field + ".y", v.y);
+  requireFinite(field + ".z", v.z);
+}
+
+Quat normalised(Quat q, const std::string& field) {
+  double n =
+      std::sqrt(double(q.w) * q.w + double(q.x) * q.x + double(q.y) * q.y + double(q.z) * q.z);
+  require(std::isfinite(n) && n > 1e-6, field, n, "must be a non-zero, finite quaternion");
+  return {float(q.w / n), float(q.x / n), float(q.y / n), float(q.z / n)};
+}
+
+void requireResolvable(const std::string& field, Vec3 position, double reach,
+                       float particleDiameter) {
+  const double largest = std::max({std::abs(double(position.x)), std::abs(double(position.y)),
+                                   std::abs(double(position.z))}) +
+                         std::max(reach, 0.0);
+  // A float's spacing at x is at most x · 2^-23; positions up to this many d apart are resolved.
+  const double limit = double(kMaxPositionSpacing) * particleDiameter * 0x1.0p23;
+  require(largest <= limit, field + " (farthest coordinate, m)", largest,
+          "must be <= " + formatValue(limit) + " m (" + formatValue(limit / particleDiameter) +
+              " particle diameters) from the origin: beyond it a float cannot tell positions " +
+              formatValue(kMaxPositionSpacing) +
+              " d apart, and contacts are resolved in smaller overlaps; move the scene nearer "
+              "the origin");
+}
+
+void requireTemplate(const ParticleTemplate& shape) {
+  require(!shape.offsets.empty(), "ParticleTemplate.offsets (count)", 0, "must not be empty");
+  requirePositive("ParticleTemplate.mass", shape.mass, "(kg)");
+  requirePositive("ParticleTemplate.principalInertia.x", shape.principalInertia.x, "(kg m^2)");
+  requirePositive("ParticleTemplate.principalInertia.y", shape.principalInertia.y, "(kg m^2)");
+  requirePositive("ParticleTemplate.principalInertia.z", shape.principalInertia.z, "(kg m^2)");
+  const Quat& q = shape.principalRotation;
+  const float rotation[4] = {q.w, q.x, q.y, q.z};
+  requireUnit("ParticleTemplate.principalRotation", rotation);
+  requireNonNegative("ParticleTemplate.boundingRadius", shape.boundingRadius, "(m)");
+  double farthest = 0.0;
+  for (std::size_t i = 0; i < shape.offsets.size(); ++i) {
+    const Vec3& o = shape.offsets[i];
+    requireFiniteVec("ParticleTemplate.offsets[" + std::to_string(i) + "]", o);
+    farthest =
+        std::max(farthest, std::sqrt(double(o.x) * o.x + double(o.y) * o.y + double(o.z) * o.z));
+  }
+  // The radius bounds where the body may touch (sleep, colliders' wake boxes): it must hold them.
+  require(farthest <= double(shape.boundingRadius) * (1.0 + 1e-5) + 1e-9,
+          "ParticleTemplate.boundingRadius", shape.boundingRadius,
+          "must be >= the farthest offset, " + formatValue(farthest) + " m");
+}
+
+void requireRestorable(const WorldSnapshot& snapshot) {
+  requireNonNegative("WorldSnapshot.simulatedTime", snapshot.simulatedTime, "(s)");
+  requireNonNegative("WorldSnapshot.unsteppedTime", snapshot.unsteppedTime, "(s)");
+  for (std::size_t i = 0; i < snapshot.bodies.size(); ++i) {
+    const StoredBody& b = snapshot.bodies[i];
+    const std::string slot = "WorldSnapshot.bodies[" + std::to_string(i) + "]";
+    for (int k = 0; k < 3; ++k) {
+      const std::string axis(1, "xyz"[k]);
+      requireFinite(slot + ".position." + axis, b.position[k]);
+      requireFinite(slot + ".velocity." + axis, b.velocity[k]);
+      requireFinite(slot + ".angularVelocity." + axis, b.angularVelocity[k]);
+    }
+    requireUnit(slot + ".orientation", b.orientation.data());
+    require(b.calm < (1u << 30), slot + ".calm", b.calm, "must be < 2^30");
+  }
+  for (std::size_t p = 0; p < snapshot.contacts.size(); ++p) {
+    const StoredContacts& c = snapshot.contacts[p];
+    const std::uint32_t used = std::min(c.pairs[3], kContactSlots);
+    for (std::uint32_t k = 0; k < used; ++k) {
+      for (int axis = 0; axis < 3; ++axis) {
+        const float spring = std::bit_cast<float>(c.slots[k][axis]);
+        requireFinite("WorldSnapshot.contacts[" + std::to_string(p) + "].slots[" +
+                          std::to_string(k) + "] spring." + std::string(1, "xyz"[axis]),
+                      spring);
+      }
+    }
+  }
+}
+
+std::uint64_t roughFloorParticles(double spacing, double hx, double hz, double radius,
+                                  std::uint64_t limit) {
+  // Every row holds its point at x = 0, so rows alone may already pass the limit.
+  const double rows = 2.0 * std::floor(hz / spacing) + 1.0;
+  const double columns = 2.0 * std::floor(hx / spacing) + 1.0;
+  if (!(rows <= double(limit)) || !(columns <= double(limit))) return limit + 1;
+  const auto nz = std::int64_t(std::floor(hz / spacing));
+  const auto nx = std::int64_t(std::floor(hx / spacing));
+  std::uint64_t count = 0;
+  for (std::int64_t z = -nz; z <= nz; ++z) {
+    std::int64_t reach = nx;
+    if (radius > 0.0) {
+      const double pz = double(z) * spacing;
+      // The widest x the builder's test keeps, found from the square root and then made exact.
+      reach = std::min(
+          nx,
+          std::int64_t(std::floor(std::sqrt(std::max(0.0, radius * radius - pz * pz)) / spacing)));
+      while (reach < nx && inRoughFloor(double(reach + 1) * spacing, pz, radius)) ++reach;
+      while (reach >= 0 && !inRoughFloor(double(reach) * spacing, pz, radius)) --reach;
+      if (reach < 0) continue;
+    }
+    count += std::uint64_t(2 * reach + 1);
+    if (count > limit) return limit + 1;
+  }
+  return count;
+}
+
+}  // namespace sandphys::detail

@@ -1,0 +1,44 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "sandphys/body.h"
+#include "sandphys/math.h"
+#include "sandphys/recording.h"
+
+namespace sandphys::detail {
+
+/// Throws InvalidArgument naming `field` unless every component of `v` is finite.
+void requireFiniteVec(const std::string& field, Vec3 v);
+
+/// `q` scaled to unit length; throws InvalidArgument naming `field` for a zero or non-finite q.
+Quat normalised(Quat q, const std::string& field);
+
+/// Throws InvalidArgument unless a body reaching `reach` m beyond `position` lies where a float
+/// still tells positions kMaxPositionSpacing particle diameters apart (`field` names it).
+void requireResolvable(const std::string& field, Vec3 position, double reach,
+                       float particleDiameter);
+
+/// Throws InvalidArgument naming the field of a template that cannot make a body: no particles,
+/// a non-finite offset, a mass, moment or bounding radius that is not finite and positive, a
+/// principal rotation that is not a unit quaternion, or offsets beyond the bounding radius.
+void requireTemplate(const ParticleTemplate& shape);
+
+/// Throws InvalidArgument naming the slot and field of a snapshot that cannot be restored: a
+/// non-finite position, velocity or spin, an orientation that is not a unit quaternion, a calm
+/// count at or above 2^30, a negative or non-finite time, or a non-finite spring in a slot in use.
+void requireRestorable(const WorldSnapshot& snapshot);
+
+/// Particles of a RoughFloor lattice of `spacing` (m) over half extents hx, hz (m), or within
+/// `radius` when it is > 0 (inRoughFloor): counted row by row before any is built, and only up
+/// to `limit` (a larger count returns limit + 1), so that a floor of any size costs no memory.
+std::uint64_t roughFloorParticles(double spacing, double hx, double hz, double radius,
+                                  std::uint64_t limit);
+
+/// Whether the lattice point (px, pz) of a round RoughFloor of `radius` (> 0) belongs to it.
+inline bool inRoughFloor(double px, double pz, double radius) {
+  return px * px + pz * pz <= radius * radius;
+}
+
+}  // namespace sandphys::detail

@@ -1,0 +1,182 @@
+// Inputs that a careless or hostile user gives a World (issue 18): each is refused with a
+// sandphys::Error naming the field, the value and the limit, before anything is allocated or
+// changed, or (a frame far too long) handled without losing the frame.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <string>
+#include <utility>
+
+#include "support/test_world.h"
+
+namespace sandphys {
+namespace {
+
+// The message of the sandphys::Error the call throws ("no error" when it throws none); any other
+// exception (std::bad_alloc, say) fails the test through GoogleTest.
+std::string messageOf(const std::function<void()>& call) {
+  try {
+    call();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+#define EXPECT_MESSAGE_HAS(message, text) \
+  EXPECT_NE((message).find(text), std::string::npos) << (message)
+
+TEST(CarelessInput, AMovedFromWorldRefusesEveryCallByName) {
+  testing::TestWorld w;
+  w.addGranule({0, 1, 0});
+  World moved = std::move(*w);
+  EXPECT_EQ(moved.bodyCount(), 1u);
+  World& old = *w;
+  EXPECT_MESSAGE_HAS(messageOf([&] { old.bodyCount(); }), "moved from");
+  EXPECT_MESSAGE_HAS(messageOf([&] { old.step(1.0f / 60.0f); }), "moved from");
+  EXPECT_MESSAGE_HAS(messageOf([&] { old.readBodies(); }), "moved from");
+  EXPECT_MESSAGE_HAS(messageOf([&] { old.readContacts(); }), "moved from");
+  EXPECT_MESSAGE_HAS(messageOf([&] { old.addCollider(Plane{}); }), "moved from");
+  EXPECT_MESSAGE_HAS(messageOf([&] { old.settings(); }), "moved from");
+  // Assigned again, it works.
+  old = std::move(moved);
+  EXPECT_EQ(old.bodyCount(), 1u);
+}
+
+TEST(CarelessInput, AFrameOfMoreSubstepsThanAnIntegerHoldsRunsTheCap) {
+  testing::TestWorld w;
+  // 1e30 s is about 1e35 substeps: the count must not wrap to nothing.
+  const StepReport report = w->step(1e30f);
+  EXPECT_EQ(report.substeps, w->settings().maxSubstepsPerFrame);
+  EXPECT_GT(report.droppedTime, 1e29f);
+  EXPECT_EQ(w->step(1.0f / 60.0f).substeps,
+            std::uint32_t(std::floor((1.0 / 60.0) / w->timeStep())));
+}
+
+TEST(CarelessInput, AHugeRoughFloorIsCountedBeforeItIsBuilt) {
+  testing::TestWorld w;
+  // 1000 m at 2 cm: about 7.9e9 particles, which would take hundreds of GB if built.
+  const std::string message = messageOf([&] { w->addRoughFloor(RoughFloor{.radius = 1000.0f}); });
+  EXPECT_MESSAGE_HAS(message, "exceeds WorldSettings.maxParticles = 1024");
+  // Half extents give the same, and a floor that fits still fits, to the particle.
+  EXPECT_THROW(w->addRoughFloor(RoughFloor{.halfExtentX = 1000.0f, .halfExtentZ = 1000.0f}),
+               CapacityExceeded);
+  EXPECT_THROW(w->addRoughFloor(RoughFloor{.halfExtentX = 1e30f, .halfExtentZ = 1e30f}),
+               InvalidArgument);  // beyond float resolution (below)
+  EXPECT_EQ(w->bodyCount(), 0u);
+  const BodyId floor = w->addRoughFloor(RoughFloor{.radius = 0.2f});
+  EXPECT_TRUE(floor.isValid());
+  // The lattice points within 10 spacings of the centre: counted by hand, 317.
+  EXPECT_EQ(w->particleCount(), 317u);
+}
+
+TEST(CarelessInput, HugeBlocksAndEmittersAreCountedBeforeTheyAreBuilt) {
+  testing::TestWorld w;
+  EXPECT_MESSAGE_HAS(messageOf([&] {
+                       w->addGranules(GranuleBlock{.countX = 1000, .countY = 1000, .countZ = 1000});
+                     }),
+                     "adding 1000000000 bodies to 0 exceeds WorldSettings.maxBodies = 256");
+  EXPECT_MESSAGE_HAS(messageOf([&] {
+                       w->addGranules(GranuleBlock{
+                           .countX = 0xffffffffu, .countY = 0xffffffffu, .countZ = 0xffffffffu});
+                     }),
+                     "exceeds WorldSettings.maxBodies = 256");
+  EXPECT_MESSAGE_HAS(
+      messageOf([&] { w->addEmitter(EmitterSettings{.halfExtentX = 1e6f, .halfExtentZ = 1e6f}); }),
+      "EmitterSettings.halfExtentX/Z (lattice slots)");
+  EXPECT_EQ(w->bodyCount(), 0u);
+}
+
+TEST(CarelessInput, ATemplateThatWouldPutNaNIntoTheWorldIsRefused) {
+  testing::TestWorld w;
+  const WorldSettings& s = w->settings();
+  const ParticleTemplate good = tetrahedronTemplate(s.particleDiameter, s.material.density);
+
+  ParticleTemplate nanOffset = good;
+  nanOffset.offsets[2].y = std::nanf("");
+  EXPECT_MESSAGE_HAS(messageOf([&] {
+                       w->addBody(nanOffset, BodyDesc{.position = {0, 1, 0}});
+                     }),
+                     "ParticleTemplate.offsets[2].y = nan");
+
+  ParticleTemplate zeroRotation = good;
+  zeroRotation.principalRotation = {0, 0, 0, 0};
+  EXPECT_MESSAGE_HAS(messageOf([&] {
+                       w->addBody(zeroRotation, BodyDesc{.position = {0, 1, 0}});
+                     }),
+                     "ParticleTemplate.principalRotation (squared norm) = 0");
+
+  ParticleTemplate shortRadius = good;
+  shortRadius.boundingRadius = 0.1f * good.boundingRadius;
+  EXPECT_MESSAGE_HAS(messageOf([&] {
+                       w->addBody(shortRadius, BodyDesc{.position = {0, 1, 0}});
+                     }),
+                     "ParticleTemplate.boundingRadius");
+  EXPECT_EQ(w->bodyCount(), 0u);
+  w->addBody(good, BodyDesc{.position = {0, 1, 0}});
+  EXPECT_EQ(w->bodyCount(), 1u);
+}
+
+TEST(CarelessInput, ASnapshotThatWouldPutNaNIntoTheWorldIsRefusedAndChangesNothing) {
+  testing::TestWorld w;
+  w.addFloor();
+  w.addGranule({0, 0.1f, 0});
+  w.simulate(0.01);
+  const WorldSnapshot good = w->readSnapshot();
+  const std::uint64_t hash = w->readStateHash();
+
+  const std::pair<std::function<void(WorldSnapshot&)>, std::string> cases[] = {
+      {[](WorldSnapshot& s) { s.bodies[0].position[1] = std::nanf(""); },
+       "WorldSnapshot.bodies[0].position.y = nan"},
+      {[](WorldSnapshot& s) {
+         s.bodies[0].orientation = {0, 0, 0, 0};
+       },
+       "WorldSnapshot.bodies[0].orientation (squared norm) = 0"},
+      {[](WorldSnapshot& s) { s.bodies[0].angularVelocity[2] = INFINITY; },
+       "WorldSnapshot.bodies[0].angularVelocity.z = inf"},
+      {[](WorldSnapshot& s) { s.simulatedTime = std::nan(""); },
+       "WorldSnapshot.simulatedTime = nan"},
+      {[](WorldSnapshot& s) { s.unsteppedTime = -1.0; }, "WorldSnapshot.unsteppedTime = -1"},
+      {[](WorldSnapshot& s) {
+         s.contacts[0].pairs[3] = 1;
+         s.contacts[0].slots[0][0] = std::bit_cast<std::uint32_t>(std::nanf(""));
+       },
+       "WorldSnapshot.contacts[0].slots[0] spring.x = nan"},
+  };
+  for (const auto& [damage, expected] : cases) {
+    WorldSnapshot bad = good;
+    damage(bad);
+    EXPECT_MESSAGE_HAS(messageOf([&] { w->restoreSnapshot(bad); }), expected);
+    EXPECT_EQ(w->readStateHash(), hash) << expected;
+  }
+}
+
+TEST(CarelessInput, PositionsBeyondFloatResolutionAreRefused) {
+  testing::TestWorld w;
+  const WorldSettings& s = w->settings();
+  const ParticleTemplate granule = tetrahedronTemplate(s.particleDiameter, s.material.density);
+  // d = 2 cm: a float tells 0.01 d apart up to 0.01 * 0.02 * 2^23 = 1678 m.
+  EXPECT_MESSAGE_HAS(messageOf([&] {
+                       w->addBody(granule, BodyDesc{.position = {1e7f, 0, 0}});
+                     }),
+                     "BodyDesc.position (farthest coordinate, m) = 1");
+  EXPECT_MESSAGE_HAS(messageOf([&] {
+                       w->addGranules(GranuleBlock{.center = {0, 0, -1e7f}, .countX = 2});
+                     }),
+                     "GranuleBlock.center");
+  EXPECT_MESSAGE_HAS(messageOf([&] {
+                       w->addRoughFloor(RoughFloor{.center = {0, 2000, 0}, .radius = 0.1f});
+                     }),
+                     "RoughFloor.center");
+  EXPECT_EQ(w->bodyCount(), 0u);
+  const BodyId id = w->addBody(granule, BodyDesc{.position = {1000, 0, 0}});
+  EXPECT_MESSAGE_HAS(messageOf([&] {
+                       w->setBodyState(id, BodyDesc{.position = {0, 5000, 0}});
+                     }),
+                     "must be <= 1677.722 m");
+}
+
+}  // namespace
+}  // namespace sandphys
