@@ -161,6 +161,60 @@ void refuseOtherFlags(const CLI::App& app, const std::string& flag, const std::s
   }
 }
 
+// CLI11 takes an empty string as a value, and for a number as the default: "--metrics ''" would
+// write nothing and "--frames ''" run no frame, without a word. Every option that takes a value
+// must get one.
+void refuseEmptyValues(const CLI::App& app) {
+  for (const CLI::Option* option : app.get_options()) {
+    if (option->count() == 0 || option->get_type_size() == 0) continue;  // not given, or a flag
+    for (const std::string& value : option->results()) {
+      if (value.empty()) {
+        throw UsageError(
+            option->get_name() + ": the value is empty (" +
+            (option->get_type_name().empty() ? std::string("a value") : option->get_type_name()) +
+            " expected)");
+      }
+    }
+  }
+}
+
+// The same file, whether or not it exists yet: compared by canonical path (symbolic links and
+// "." resolved), or as files when both exist (hard links).
+bool samePath(const std::filesystem::path& a, const std::filesystem::path& b) {
+  std::error_code error;
+  if (std::filesystem::equivalent(a, b, error) && !error) return true;
+  const std::filesystem::path ca = std::filesystem::weakly_canonical(a, error);
+  if (error) return false;
+  const std::filesystem::path cb = std::filesystem::weakly_canonical(b, error);
+  return !error && ca == cb;
+}
+
+// A flag and the file it names.
+struct NamedPath {
+  std::string flag;
+  std::filesystem::path path;
+};
+
+// Two outputs that are one file would overwrite each other, and an output that is an input
+// would destroy it: both are refused, naming the flags.
+void refuseClobbering(const std::vector<NamedPath>& outputs, const std::vector<NamedPath>& inputs) {
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    for (std::size_t j = i + 1; j < outputs.size(); ++j) {
+      if (samePath(outputs[i].path, outputs[j].path)) {
+        throw UsageError(outputs[i].flag + " " + outputs[i].path.string() + " and " +
+                         outputs[j].flag + " " + outputs[j].path.string() +
+                         ": the same file for two outputs; give each its own");
+      }
+    }
+    for (const NamedPath& input : inputs) {
+      if (samePath(outputs[i].path, input.path)) {
+        throw UsageError(outputs[i].flag + " " + outputs[i].path.string() + ": is the input of " +
+                         input.flag + "; writing it would destroy it");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) {
@@ -299,6 +353,7 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
   }
 
   try {
+    refuseEmptyValues(app);
     // A replay takes everything from its recording, and the goldens have fixed settings: nothing
     // else may shape those runs.
     if (!goldens.empty()) {
@@ -394,18 +449,49 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
         applyParameter(*options.scene, "--param", assignment.substr(0, equals),
                        assignment.substr(equals + 1));
       }
-      // Settings validate the parameters together (e.g. batches × batch against the limits).
+      // Settings validate the parameters together (e.g. batches × batch against the limits), and
+      // the World would refuse what they come to (a capacity beyond the GPU's, say): both before
+      // any simulation, naming the flags that set the scene's parameters.
       try {
-        (void)options.scene->settings();
+        World::checkSettings(options.scene->settings());
       } catch (const MeshError& error) {
         // Scenes load their mesh files here; name the flag that gave the file.
         throw UsageError((mesh ? "--mesh " + *mesh : std::string("scene parameters")) + ": " +
                          error.what());
       } catch (const Error& error) {
-        throw UsageError(std::string("scene parameters: ") + error.what());
+        // The flags that shaped the scene, as given.
+        std::string given;
+        for (const char* name : {"--batches", "--batch", "--seed", "--mesh", "--scale",
+                                 "--friction", "--outlet", "--granules", "--param"}) {
+          const CLI::Option* option = app.get_option(name);
+          if (option->count() == 0) continue;
+          given += given.empty() ? "" : ", ";
+          given += option->get_name();
+          for (const std::string& value : option->results()) given += " " + value;
+        }
+        throw UsageError("scene parameters" + (given.empty() ? "" : " (" + given + ")") + ": " +
+                         error.what());
       }
     }
 
+    std::vector<NamedPath> outputs;
+    if (!metrics.empty()) outputs.push_back({"--metrics", metrics});
+    for (const std::string& path : exports) outputs.push_back({"--export", path});
+    if (!screenshot.empty()) outputs.push_back({"--screenshot", screenshot});
+    if (!record.empty()) outputs.push_back({"--record", record});
+    if (!screenshots.empty()) outputs.push_back({"--screenshots", screenshots});
+    std::vector<NamedPath> inputs;
+    if (!play.empty()) inputs.push_back({"--play", play});
+    if (options.scene) {
+      for (const scenes::SceneParameter& parameter : options.scene->parameters()) {
+        if (const auto* file = std::get_if<std::string*>(&parameter.value);
+            file && !(*file)->empty()) {
+          inputs.push_back(
+              {mesh && parameter.name == "mesh" ? "--mesh" : "--param " + parameter.name, **file});
+        }
+      }
+    }
+    refuseClobbering(outputs, inputs);
     if (!metrics.empty()) {
       options.metricsPath = metrics;
       checkWritable("--metrics", options.metricsPath);

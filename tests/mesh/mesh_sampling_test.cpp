@@ -69,6 +69,22 @@ TEST(MeshSampling, SphereSurfaceIsCoveredWithinTheSpacingRule) {
   expectNeighboursWithinSpacing(sampled, kSpacing, kDiameter);
 }
 
+TEST(MeshSampling, AMeshFinerThanTheSpacingGetsTheParticlesTheSpacingAsksFor) {
+  // A 14 cm sphere of 81,920 triangles (edges about 1.2 mm, a fourteenth of h): one particle per
+  // vertex would be 40,962. The spacing asks for about 1.15 · area / h² on a lattice; thinning
+  // a far finer mesh greedily, in mesh order, leaves samples about 0.56 h apart at random, some
+  // 2.3 times the lattice's count (630 against 278).
+  const TriangleMesh sphere = namedIcosphere(0.07, 6, {}, "dense icosphere");
+  ASSERT_EQ(sphere.triangles.size(), 81920u);
+  const SampledMesh sampled = sampleMesh(sphere, kDiameter);
+  const double lattice = 2.0 / std::numbers::sqrt3 * sampled.surfaceArea / (kSpacing * kSpacing);
+  std::printf("dense icosphere: %zu particles, %.0f on a lattice of the spacing\n",
+              sampled.centres.size(), lattice);
+  EXPECT_LT(double(sampled.centres.size()), 2.5 * lattice);
+  EXPECT_GT(double(sampled.centres.size()), 0.8 * lattice);
+  expectCoveredWithinRule(sphere, sampled, kSpacing, true);
+}
+
 TEST(MeshSampling, CoarserSpacingStillKeepsItsRule) {
   const TriangleMesh sphere = namedIcosphere(0.1, 2, {}, "icosphere r 10 cm, coarse");
   const double spacing = 1.5 * kDiameter;
@@ -218,6 +234,19 @@ TEST(MeshSampling, ParticleLimitIsEnforcedAndNamed) {
         std::string::npos)
         << e.what();
   }
+}
+
+TEST(MeshSampling, ABodyOfManyParticlesIsWarnedAboutWithItsCount) {
+  // A 1 m cube at d = 2 cm: its faces cut into right triangles with hypotenuses <= h give
+  // 47,528 particles.
+  const SampledMesh big = sampleMesh(namedBox({0, 0, 0}, {1, 1, 1}, "metre cube"), kDiameter);
+  ASSERT_GT(big.centres.size(), kLargeBodyWarningParticles);
+  ASSERT_FALSE(big.warnings.empty());
+  EXPECT_NE(big.warnings.back().find(std::to_string(big.centres.size()) + " particles"),
+            std::string::npos)
+      << big.warnings.back();
+  const SampledMesh small = sampleMesh(namedBox({0, 0, 0}, {0.1f, 0.1f, 0.1f}, "cube"), kDiameter);
+  EXPECT_TRUE(small.warnings.empty());
 }
 
 TEST(MeshSampling, BadOptionsAreRefused) {

@@ -158,6 +158,43 @@ TEST(SamplesCli, RecordThenReplayAndADamagedRecording) {
       << result.output;
 }
 
+TEST(SamplesCli, EmptyValuesAreRefusedNotTakenAsNothing) {
+  expectUsageError("--headless --frames ''", {"--frames", "empty"});
+  expectUsageError("--headless --metrics ''", {"--metrics", "empty"});
+  expectUsageError("--headless --record ''", {"--record", "empty"});
+  expectUsageError("--headless --screenshot ''", {"--screenshot", "empty"});
+  // Not a window opened on no recording.
+  expectUsageError("--replay ''", {"--replay", "empty"});
+}
+
+TEST(SamplesCli, AWorldTheParametersWouldMakeIsRefusedNamingTheFlag) {
+  expectUsageError(
+      "--headless --scene box-drop --param block=1000,1000,1000",
+      {"--param block=1000,1000,1000", "WorldSettings.maxParticles = 4000000000", "2097152"});
+}
+
+TEST(SamplesCli, OutputsNeitherOverwriteEachOtherNorAnInput) {
+  const TemporaryFile out("same.out", "");
+  expectUsageError("--headless --metrics " + out.path() + " --record " + out.path(),
+                   {"--metrics", "--record", "the same file"});
+  expectUsageError("--headless --export " + out.path() + ".csv --screenshot " + out.path() +
+                       ".png --export " + out.path() + ".csv",
+                   {"--export", "the same file"});
+  // The rock's own mesh, named by --mesh or --param mesh=, is never an output.
+  const TemporaryFile victim("victim.obj",
+                             "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                             "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  expectUsageError(
+      "--headless --scene rock-drop --mesh " + victim.path() + " --record " + victim.path(),
+      {"--record", "is the input of --mesh"});
+  expectUsageError(
+      "--headless --scene rock-drop --param mesh=" + victim.path() + " --metrics " + victim.path(),
+      {"--metrics", "is the input of --param mesh"});
+  std::ifstream in(victim.path());
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  EXPECT_EQ(text.substr(0, 6), "v 0 0 ");
+}
+
 TEST(SamplesCli, ListPrintsTheRegistry) {
   const ProcessResult result = runSamples("--list");
   EXPECT_EQ(result.exitCode, 0) << result.output;

@@ -218,6 +218,43 @@ TEST(RecordingFile, AChangedByteIsReportedAsDamagedByTheChecksum) {
   }
 }
 
+TEST(RecordingFile, ADirectoryIsNamedAsOne) {
+  const std::filesystem::path folder = tempFile("folder.sprec");
+  std::filesystem::create_directories(folder);
+  const std::string message = readError(folder);
+  EXPECT_NE(message.find("folder.sprec"), std::string::npos) << message;
+  EXPECT_NE(message.find("it is a directory"), std::string::npos) << message;
+}
+
+TEST(RecordingFile, ASettingGivenTwiceIsMalformedNotADifference) {
+  const std::filesystem::path file = tempFile("twice.sprec");
+  {
+    RecordingWriter writer(file, {{"scene", "box-drop"}, {"param:seed", "7"}, {"param:seed", "8"}});
+    writer.finish(0.0);
+  }
+  const std::string message = readError(file);
+  EXPECT_NE(message.find("give 'param:seed' twice"), std::string::npos) << message;
+  EXPECT_NE(message.find("twice.sprec"), std::string::npos) << message;
+}
+
+TEST(RecordingFile, AFrameDurationNoWorldCouldHaveHadIsMalformed) {
+  for (const float frameDt :
+       {std::numeric_limits<float>::quiet_NaN(), -0.5f, std::numeric_limits<float>::infinity()}) {
+    const std::filesystem::path file = tempFile("duration.sprec");
+    {
+      RecordingWriter writer(file, {{"scene", "box-drop"}});
+      writer.addFrame(frameOf(1));
+      RecordedFrame bad = frameOf(2);
+      bad.frameDt = frameDt;
+      writer.addFrame(bad);
+      writer.finish(0.0);
+    }
+    const std::string message = readError(file);
+    EXPECT_NE(message.find("is malformed: frame 1 has frame duration"), std::string::npos)
+        << message;
+  }
+}
+
 TEST(RecordingFile, AnUnwritableFileIsNamed) {
   try {
     RecordingWriter writer(std::filesystem::path("/nonexistent-folder/run.sprec"), {});

@@ -51,6 +51,10 @@ class World {
   World(const World&) = delete;
   World& operator=(const World&) = delete;
 
+  /// Every check the constructor makes of `settings`, without a GPU: throws InvalidArgument
+  /// naming the field, value and limit (a tool can vet settings before it creates a World).
+  static void checkSettings(const WorldSettings& settings);
+
   const WorldSettings& settings() const;
   /// The resolved contact law (stiffness, damping, time step).
   const ContactModel& contactModel() const;

@@ -132,20 +132,11 @@ GpuCollider toGpu(const Funnel& f) {
 }  // namespace
 
 World::Impl::Impl(const GpuContext& context, const WorldSettings& s) : gpu(&context), settings(s) {
+  World::checkSettings(settings);
   model = ContactModel::fromSettings(settings);
   sleep = SleepModel::fromSettings(settings, model.timeStep);
-  require(settings.maxSubstepsPerFrame > 0, "WorldSettings.maxSubstepsPerFrame",
-          settings.maxSubstepsPerFrame, "must be > 0");
-  require(settings.maxBodies > 0, "WorldSettings.maxBodies", settings.maxBodies, "must be > 0");
-  require(settings.maxColliders > 0 && settings.maxColliders <= kMaxColliders,
-          "WorldSettings.maxColliders", settings.maxColliders,
-          "must be in [1, " + std::to_string(kMaxColliders) + "]");
   bodyCapacity = settings.maxBodies;
-  std::uint64_t particles =
-      settings.maxParticles ? settings.maxParticles : 4ull * settings.maxBodies;
-  require(particles <= kMaxParticles, "WorldSettings.maxParticles", double(particles),
-          "must be <= " + std::to_string(kMaxParticles) + " (GPU buffer limit)");
-  particleCapacity = std::uint32_t(particles);
+  particleCapacity = settings.maxParticles ? settings.maxParticles : 4u * settings.maxBodies;
   tableCapacity = HashTable::sizeFor(particleCapacity);
   table = HashTable::forParticles(0);
   granule = tetrahedronTemplate(settings.particleDiameter, settings.material.density);
@@ -330,6 +321,21 @@ void World::Impl::requireBody(BodyId id) const {
 }
 
 // --- World ------------------------------------------------------------------------------------
+
+void World::checkSettings(const WorldSettings& settings) {
+  const ContactModel model = ContactModel::fromSettings(settings);
+  (void)SleepModel::fromSettings(settings, model.timeStep);
+  require(settings.maxSubstepsPerFrame > 0, "WorldSettings.maxSubstepsPerFrame",
+          settings.maxSubstepsPerFrame, "must be > 0");
+  require(settings.maxBodies > 0, "WorldSettings.maxBodies", settings.maxBodies, "must be > 0");
+  require(settings.maxColliders > 0 && settings.maxColliders <= kMaxColliders,
+          "WorldSettings.maxColliders", settings.maxColliders,
+          "must be in [1, " + std::to_string(kMaxColliders) + "]");
+  const std::uint64_t particles =
+      settings.maxParticles ? settings.maxParticles : 4ull * settings.maxBodies;
+  require(particles <= kMaxParticles, "WorldSettings.maxParticles", double(particles),
+          "must be <= " + std::to_string(kMaxParticles) + " (GPU buffer limit)");
+}
 
 World::World(const GpuContext& gpu, const WorldSettings& settings)
     : m_impl(std::make_unique<Impl>(gpu, settings)) {}
@@ -601,11 +607,11 @@ void World::setBodyState(BodyId id, const BodyDesc& state) {
 
 void World::restoreSnapshot(const WorldSnapshot& snapshot) {
   Impl& w = impl();
-  requireRestorable(snapshot);
   const auto slots = static_cast<std::uint32_t>(snapshot.bodies.size());
   require(slots <= w.bodyCount, "WorldSnapshot.bodies.size()", slots,
           "must be <= the World's " + std::to_string(w.bodyCount) +
               " body slots (restore a snapshot into the World that reached its frame, or later)");
+  requireRestorable(snapshot);
   // The snapshot's bodies own the first particles; their contact history must come with them.
   const std::uint32_t particles = slots == 0 ? 0u : w.particleEnd(slots - 1);
   const std::size_t expected = w.keepsHistory() ? particles : 0u;

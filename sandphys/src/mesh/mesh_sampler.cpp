@@ -117,6 +117,15 @@ SampledMesh sampleMesh(const TriangleMesh& mesh, float particleDiameter,
         std::to_string(result.centres.size()) + " particles as solid spheres of diameter " +
         detail::formatValue(particleDiameter) + " m, " + massRule);
   }
+  if (result.centres.size() > kLargeBodyWarningParticles) {
+    result.warnings.push_back(
+        mesh_detail::meshName(mesh) + ": " + std::to_string(result.centres.size()) +
+        " particles (more than " + std::to_string(kLargeBodyWarningParticles) +
+        "): every substep one workgroup (one CPU core on llvmpipe) sums and moves them all, so "
+        "the body may cost more than the sand around it; a larger MeshSampling.spacing (below " +
+        detail::formatValue(std::numbers::sqrt3 * particleDiameter) +
+        " m), fillVolume off, a larger particle diameter or a smaller mesh lowers it");
+  }
   for (const std::string& warning : result.warnings) {
     std::fprintf(stderr, "sandphys: warning: %s\n", warning.c_str());
   }

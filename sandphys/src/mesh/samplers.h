@@ -14,9 +14,11 @@ namespace sandphys::mesh_detail {
 /// Samples of the surface of a validated mesh: each triangle with an area, first halved along its
 /// longest edge until no piece is more elongated than a right isosceles triangle, is cut into
 /// equal sub-triangles with edges <= `spacing` (m), whose corners are the samples; a corner
-/// within spacing/1000 of an earlier sample is the same sample. Triangle by triangle, in mesh
-/// order.
-/// The grid's cells are spacing/2 wide. Throws CapacityExceeded past `maxParticles`.
+/// within spacing/1000 of an earlier sample is the same sample, and so is one within
+/// spacing/√3 - c of an earlier sample, c the covering radius of its sub-triangles (so that every
+/// point of the surface stays within spacing/√3 of a sample, and a mesh finer than the spacing
+/// is not sampled at every vertex). Triangle by triangle, in mesh order.
+/// The grid's cells are spacing/√3 wide. Throws CapacityExceeded past `maxParticles`.
 PointGrid sampleSurface(const TriangleMesh& mesh, double spacing, std::size_t maxParticles);
 
 /// Points of a cubic lattice of `spacing` (m), centred on the mesh's bounding box, that lie

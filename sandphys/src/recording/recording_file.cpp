@@ -4,10 +4,12 @@
 #include <bit>
 #include <cerrno>
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string>
 #include <system_error>
 
@@ -144,11 +146,25 @@ BodyDesc getBodyDesc(Reader& in) {
   return d;
 }
 
-RecordedFrame readFrame(Reader& in) {
+// A frame's values that no World could have written are refused here, naming the frame, so
+// that a replay never reports them as a difference of the simulation.
+RecordedFrame readFrame(Reader& in, const std::string& context, std::size_t index) {
   RecordedFrame frame;
   frame.frameDt = in.get<float>();
   frame.steps = in.get<std::uint64_t>();
   frame.simulatedTime = in.get<double>();
+  const auto invalid = [&](const std::string& field, double value, const char* limit) {
+    std::ostringstream text;
+    text << context << " is malformed: frame " << index << " has " << field << " = " << value
+         << " (" << limit << ")";
+    throw RecordingError(text.str());
+  };
+  if (!std::isfinite(frame.frameDt) || frame.frameDt < 0.0f) {
+    invalid("frame duration", frame.frameDt, "must be finite and >= 0 s");
+  }
+  if (!std::isfinite(frame.simulatedTime) || frame.simulatedTime < 0.0) {
+    invalid("simulated time", frame.simulatedTime, "must be finite and >= 0 s");
+  }
   frame.stateHash = in.get<std::uint64_t>();
   const std::uint32_t inputs = in.get<std::uint32_t>();
   for (std::uint32_t i = 0; i < inputs; ++i) {
@@ -342,6 +358,10 @@ std::uint64_t RecordingWriter::finish(double wallSeconds) {
 
 Recording readRecording(const std::filesystem::path& file) {
   const std::string name = "recording '" + file.string() + "'";
+  std::error_code ignored;
+  if (std::filesystem::is_directory(file, ignored)) {
+    throw RecordingError("cannot read " + name + ": it is a directory");
+  }
   errno = 0;
   std::ifstream in(file, std::ios::binary);
   if (!in) {
@@ -439,11 +459,14 @@ Recording readRecording(const std::filesystem::path& file) {
       for (std::uint32_t i = 0; i < count; ++i) {
         std::string key = payload.getText();
         std::string value = payload.getText();
+        if (recording.setting(key)) {
+          throw RecordingError(name + " is malformed: its settings give '" + key + "' twice");
+        }
         recording.settings.emplace_back(std::move(key), std::move(value));
       }
       settingsSeen = true;
     } else if (recordTag == kFrameTag) {
-      recording.frames.push_back(readFrame(payload));
+      recording.frames.push_back(readFrame(payload, name, recording.frames.size()));
     } else if (recordTag == kSnapshotTag) {
       recording.snapshots.push_back(readSnapshot(payload, name));
     } else {
