@@ -24,8 +24,8 @@ inline constexpr double kMaxFrameBudgetMs = 10000.0;
 
 /// Width and height of an image or a window, px.
 struct ImageSize {
-  int width = 1280;  ///< px, in 1..16384
-  int height = 720;  ///< px, in 1..16384
+  int width = 1280;  ///< px, in 1..8192
+  int height = 720;  ///< px, in 1..8192
 };
 
 /// What the command line asked for, validated.

@@ -104,8 +104,16 @@ bool colliderMoves(Collider c) {
 }
 
 #ifdef CONTACT_LIST
+// What World::readContacts lists (first particle 0, every overlap, each pair once) and what the
+// check of newly placed bodies lists (their particles only, overlaps beyond a tolerance, every
+// pair from their side).
+layout(location = 0) uniform uint listFirst;
+layout(location = 1) uniform float listMinOverlap;
+layout(location = 2) uniform uint listBothSides;
+
 void record(uint a, uint b, uint bodyA, uint bodyB, uint collider, vec3 point, vec3 n, float xi,
             float normalForce, vec3 tangentialForce, vec3 spring) {
+  if (xi <= listMinOverlap) return;
   uint slot = atomicAdd(contactListCount, 1u);
   if (slot >= contactListCapacity) return;
   contactList[slot * 5u + 0u] = vec4(uintBitsToFloat(a), uintBitsToFloat(b), uintBitsToFloat(bodyA),
@@ -254,7 +262,8 @@ void pairContact(Particle self, uint otherId) {
                                    grainContact.z);
 #ifdef CONTACT_LIST
   // Each pair once, from the side that keeps its history (static particles keep none).
-  if (self.velocity.w >= 0.0 && (otherVelocity.w < 0.0 || self.id < otherId)) {
+  if (listBothSides != 0u ||
+      (self.velocity.w >= 0.0 && (otherVelocity.w < 0.0 || self.id < otherId))) {
     record(self.id, otherId, self.body, floatBitsToUint(other.w), 0xffffffffu,
            self.position.xyz - n * (particleGeom.x - 0.5 * xi), n, xi, r.normalForce,
            r.tangentialForce, r.spring);
@@ -283,7 +292,8 @@ void pairContact(Particle self, uint otherId) {
   uint otherBody = floatBitsToUint(other.w);
 #ifdef CONTACT_LIST
   // Each pair once, from the side that keeps its history (static particles keep none).
-  bool listed = self.velocity.w >= 0.0 && (otherVelocity.w < 0.0 || self.id < otherId);
+  bool listed = listBothSides != 0u ||
+                (self.velocity.w >= 0.0 && (otherVelocity.w < 0.0 || self.id < otherId));
 #endif
   float appliedXi = xi;
   if (appliedXi > particleGeom.w) {
@@ -461,6 +471,9 @@ void main() {
   uint t = threadIndex();
   if (t >= activeListLength(ACTIVE_PASS_CONTACTS)) return;
   uint i = activeParticles[t];
+#elif defined(CONTACT_LIST)
+  uint i = threadIndex() + listFirst;
+  if (i >= counts.x) return;
 #else
   uint i = threadIndex();
   if (i >= counts.x) return;

@@ -178,5 +178,73 @@ TEST(CarelessInput, PositionsBeyondFloatResolutionAreRefused) {
                      "must be <= 1677.722 m");
 }
 
+TEST(CarelessInput, AThinWallMovingFastEnoughToBeTunnelledIsRefused) {
+  testing::TestWorld w;
+  // At rest or slow, a cylinder is accepted; at 20 m/s a granule's particle meeting it would
+  // overlap it by more than half a diameter.
+  const ColliderId id = w->addCollider(Cylinder{.radius = 0.2f, .height = 0.3f});
+  w->setCollider(id, Cylinder{.radius = 0.2f, .height = 0.3f, .motion = {.velocity = {1, 0, 0}}});
+  EXPECT_MESSAGE_HAS(
+      messageOf([&] {
+        w->setCollider(
+            id, Cylinder{.radius = 0.2f, .height = 0.3f, .motion = {.velocity = {20, 0, 0}}});
+      }),
+      "ColliderMotion (surface speed, m/s) = 20");
+  EXPECT_MESSAGE_HAS(messageOf([&] {
+                       w->addCollider(Funnel{.motion = {.angularVelocity = {0, 0, 50}}});
+                     }),
+                     "thin wall (cylinder, funnel)");
+  EXPECT_EQ(w->colliders().size(), 1u);
+}
+
+TEST(CarelessInput, BodiesPlacedInsideSomethingAreReportedAtTheFirstStep) {
+  const float d = testing::smallSettings().particleDiameter;
+  const GranuleBlock block{.center = {0, 0.1f, 0}, .countX = 3, .countY = 2, .countZ = 3};
+  // Well placed, above the floor: nothing to report, before or after a second step.
+  {
+    testing::TestWorld w;
+    w.addFloor();
+    w->addGranules(block);
+    const StepReport report = w->step(1.0f / 60.0f);
+    EXPECT_EQ(report.initialOverlaps.particles, 0u);
+    EXPECT_FALSE(report.initialOverlaps.body.isValid());
+  }
+  // Half below the floor.
+  {
+    testing::TestWorld w;
+    const ColliderId floor = w.addFloor(0.12f);
+    w->addGranules(block);
+    const InitialOverlaps found = w->step(1.0f / 60.0f).initialOverlaps;
+    EXPECT_GT(found.particles, 20u);
+    EXPECT_GT(found.worstOverlap, 0.5f * d);
+    EXPECT_EQ(found.collider.index, floor.index);
+    EXPECT_FALSE(found.otherBody.isValid());
+    // Reported once: the next step checks nothing.
+    EXPECT_EQ(w->step(1.0f / 60.0f).initialOverlaps.particles, 0u);
+  }
+  // Inside a solid box, and a second block on top of the first.
+  {
+    testing::TestWorld w;
+    w.addFloor();
+    w->addCollider(
+        Box{.center = {0.5f, 0.1f, 0}, .halfExtents = {0.05f, 0.05f, 0.05f}, .inside = false});
+    const BodyId inBox = w.addGranule({0.5f, 0.1f, 0});
+    const InitialOverlaps boxed = w->step(1.0f / 60.0f).initialOverlaps;
+    EXPECT_EQ(boxed.particles, 4u);
+    EXPECT_EQ(boxed.body.index, inBox.index);
+    EXPECT_EQ(boxed.collider.index, 1u);
+    const BodyRange first = w->addGranules(block);
+    w->step(1.0f / 60.0f);
+    GranuleBlock onTop = block;
+    onTop.center.x += 0.01f;
+    const BodyRange second = w->addGranules(onTop);
+    const InitialOverlaps stacked = w->step(1.0f / 60.0f).initialOverlaps;
+    EXPECT_GT(stacked.particles, 20u);
+    EXPECT_GE(stacked.body.index, second.first);
+    EXPECT_LT(stacked.otherBody.index, first.first + first.count);
+    EXPECT_FALSE(stacked.collider.isValid());
+  }
+}
+
 }  // namespace
 }  // namespace sandphys

@@ -2,6 +2,7 @@
 // pushing along the surface normal; and the contact list reports those contacts.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -156,6 +157,47 @@ TEST(ContactList, ListsEachParticlePairOnceWithOppositeForces) {
   EXPECT_NEAR(particles[0].force.x, -c.normalForce, 1e-6 * c.normalForce);
   EXPECT_NEAR(c.normalForce, w->contactModel().stiffnessGrain * std::pow(0.1 * d, 1.5),
               1e-4 * c.normalForce);
+}
+
+}  // namespace
+}  // namespace sandphys
+
+namespace sandphys {
+namespace {
+
+// The stiffness check of a thin wall (ContactModel::peakOverlapWall): a granule at the speed
+// guard that also spins at the guard's rim speed brings its leading particle to the wall at
+// twice maxSpeed. At the largest maxSpeed the check accepts for the default material, such a
+// granule thrown at a thin cylinder wall bounces off it; a maxSpeed a little above is refused.
+TEST(ThinWall, AGranuleAtTheFastestTheGuardAllowsDoesNotPassThroughIt) {
+  WorldSettings s = testing::smallSettings();
+  s.gravity = {0, 0, 0};
+  // The peak overlaps grow as speed^(4/5): the largest maxSpeed both checks (grain on grain,
+  // grain on a thin wall) accept.
+  const ContactModel defaults = ContactModel::fromSettings(s);
+  const double d = s.particleDiameter;
+  const float limit =
+      s.maxSpeed *
+      float(std::min(std::pow(kThinWallPassOverlap * d / defaults.peakOverlapWall, 1.25),
+                     std::pow(kGrainPassOverlap * d / defaults.peakOverlapGrain, 1.25)));
+  s.maxSpeed = 0.99f * limit;
+  testing::TestWorld w(s);
+  const float radius = 0.2f;
+  w->addCollider(Cylinder{.base = {0, -0.5f, 0}, .radius = radius, .height = 1.0f});
+  // Moving along +x and spinning about -z, so that the particles on its +y side move towards the
+  // wall at the body's speed plus up to the rim speed (both at the guard).
+  const float bounding = tetrahedronTemplate(s.particleDiameter, s.material.density).boundingRadius;
+  const float v = 0.999f * s.maxSpeed;
+  const BodyId g = w.addGranule({radius - 0.06f, 0, 0}, {}, {v, 0, 0}, {0, 0, -v / bounding});
+  w.simulate(0.1);
+  const BodyState after = w->readBody(g);
+  const double distance = std::hypot(double(after.position.x), double(after.position.z));
+  EXPECT_LT(distance, radius) << "the granule went through the wall";
+  EXPECT_LT(after.velocity.x, 0.0f) << "it should have bounced back";
+
+  WorldSettings faster = s;
+  faster.maxSpeed = 1.02f * limit;
+  EXPECT_THROW(ContactModel::fromSettings(faster), InvalidArgument);
 }
 
 }  // namespace

@@ -167,6 +167,10 @@ TEST(SamplesCli, EmptyValuesAreRefusedNotTakenAsNothing) {
   expectUsageError("--replay ''", {"--replay", "empty"});
 }
 
+TEST(SamplesCli, AnImageTooLargeToRenderInReasonableTimeIsRefused) {
+  expectUsageError("--headless --size 16384x16384", {"--size 16384x16384", "1..8192"});
+}
+
 TEST(SamplesCli, AWorldTheParametersWouldMakeIsRefusedNamingTheFlag) {
   expectUsageError(
       "--headless --scene box-drop --param block=1000,1000,1000",

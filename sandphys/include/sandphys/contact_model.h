@@ -27,8 +27,9 @@ struct ContactModel {
   /// PaperViscous: the overlap cap ξ_max = d/10, m. HertzMindlin has no cap (infinity).
   float maxOverlap = 0.0f;
   /// Closed-form peak overlap (undamped Hertz) of a granule meeting another granule head-on
-  /// (m* = half a granule), and a rigid wall or a static particle (m* = a granule), at maxSpeed,
-  /// m. HertzMindlin refuses settings where these let a grain pass through.
+  /// (m* = half a granule) and a static particle (m* = a granule) at maxSpeed, and a rigid wall
+  /// (m* = a granule) at the fastest a particle moves, kGuardParticleSpeed · maxSpeed, m.
+  /// HertzMindlin refuses settings where these let a grain pass through.
   float peakOverlapGrain = 0.0f;
   float peakOverlapWall = 0.0f;
   float peakOverlapFixedParticle = 0.0f;
@@ -48,6 +49,9 @@ struct ContactModel {
 /// square lattice of static particles of spacing s, whose four particles resist together, when it
 /// has four times the energy of one contact at 1 - s/(d sqrt(2)): 4^{2/5} (1 - s/(d sqrt(2))).
 inline constexpr double kGrainPassOverlap = 0.42264973;  // 1 - 1/sqrt(3)
+/// The speed guard bounds a body's speed and the speed of its rim about its centre each by
+/// maxSpeed, so a particle may move at up to twice maxSpeed: the speed a thin wall is checked at.
+inline constexpr double kGuardParticleSpeed = 2.0;
 inline constexpr double kThinWallPassOverlap = 0.5;
 double floorPassOverlap(double spacingOverDiameter);
 

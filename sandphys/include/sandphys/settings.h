@@ -126,6 +126,11 @@ struct WorldSettings {
   SleepSettings sleep{};
 };
 
+/// Most particles a World may hold (WorldSettings::maxParticles, World::reserve): more would
+/// exceed the 128 MiB a single GL storage buffer may hold on Mesa (64 bytes per particle in each
+/// group of contact slots).
+inline constexpr std::uint32_t kMaxParticleCapacity = 1u << 21;
+
 /// Fewest substeps per contact duration t_n a World accepts; fewer is refused as unstable.
 inline constexpr float kMinStepsPerContact = 8.0f;
 /// Most substeps per contact duration t_n a World accepts. A contact is resolved long before

@@ -2,9 +2,30 @@
 
 #include <cstdint>
 
+#include "sandphys/ids.h"
 #include "sandphys/readback.h"
 
 namespace sandphys {
+
+/// Overlap, in particle diameters, beyond which a body placed by the CPU counts as placed inside
+/// something (the paper's penetration guard, d/10): far beyond the overlaps of sand at rest.
+inline constexpr float kInitialOverlapTolerance = 0.1f;
+
+/// Bodies added from the CPU (World::addBody, addGranules, addRoughFloor) that start inside
+/// another body or a collider: checked once, at the first step or substep after they were added
+/// (a sync point then: the deep contacts of their particles are listed on the GPU and read back),
+/// and printed as a warning when any are found.
+struct InitialOverlaps {
+  /// Particles of the added bodies overlapping something by more than kInitialOverlapTolerance d.
+  std::uint32_t particles = 0;
+  /// The deepest of those overlaps, m; 0 when there is none.
+  float worstOverlap = 0.0f;
+  /// The added body of the deepest overlap, and what it overlaps: another body or a collider
+  /// (the other id is invalid).
+  BodyId body{};
+  BodyId otherBody{};
+  ColliderId collider{};
+};
 
 /// What one World::step did. `stats` is filled only when WorldSettings::statsEachFrame is on.
 struct StepReport {
@@ -15,6 +36,9 @@ struct StepReport {
   bool emitterBlocked = false;  ///< an emitter wanted to add granules but capacity was full
   bool hasStats = false;
   WorldStats stats{};
+  /// Bodies added since the previous step that start overlapping (all zero when none were added
+  /// or none overlap).
+  InitialOverlaps initialOverlaps{};
 };
 
 }  // namespace sandphys

@@ -123,10 +123,9 @@ void requireNoPassThrough(const WorldSettings& s, double peakOverlap, double pas
   throw InvalidArgument(
       "WorldSettings.material.youngsModulus = " + formatValue(s.material.youngsModulus) +
       " Pa is too soft for WorldSettings.maxSpeed = " + formatValue(s.maxSpeed) + " m/s: " + what +
-      " at maxSpeed would overlap by " + formatValue(peakOverlap / d) +
-      " d (closed-form Hertz peak), past " + formatValue(passOverlap) +
-      " d where it passes through; raise youngsModulus to at least " + formatValue(youngs) +
-      " Pa or lower maxSpeed to " + formatValue(speed) +
+      " would overlap by " + formatValue(peakOverlap / d) + " d (closed-form Hertz peak), past " +
+      formatValue(passOverlap) + " d where it passes through; raise youngsModulus to at least " +
+      formatValue(youngs) + " Pa or lower maxSpeed to " + formatValue(speed) +
       " m/s (ContactLaw::PaperViscous caps the overlap instead)");
 }
 
@@ -195,14 +194,31 @@ ContactModel ContactModel::fromSettings(const WorldSettings& s) {
   const double granule = 4.0 * mass;
   m.peakOverlapGrain =
       static_cast<float>(hertzPeakOverlap(0.5 * granule, m.stiffnessGrain, s.maxSpeed));
-  m.peakOverlapWall = static_cast<float>(hertzPeakOverlap(granule, m.stiffnessWall, s.maxSpeed));
+  m.peakOverlapWall = static_cast<float>(
+      hertzPeakOverlap(granule, m.stiffnessWall, kGuardParticleSpeed * s.maxSpeed));
   m.peakOverlapFixedParticle =
       static_cast<float>(hertzPeakOverlap(granule, m.stiffnessGrain, s.maxSpeed));
   if (!paper) {
-    detail::requireNoPassThrough(s, m.peakOverlapGrain, kGrainPassOverlap,
-                                 "a granule meeting another head-on");
-    detail::requireNoPassThrough(s, m.peakOverlapWall, kThinWallPassOverlap,
-                                 "a granule meeting a thin wall (cylinder, funnel)");
+    // The check that asks the most first, so that the E (or speed) it names passes both.
+    const bool grainFirst =
+        m.peakOverlapGrain / kGrainPassOverlap >= m.peakOverlapWall / kThinWallPassOverlap;
+    const auto grain = [&] {
+      detail::requireNoPassThrough(s, m.peakOverlapGrain, kGrainPassOverlap,
+                                   "a granule meeting another head-on at maxSpeed");
+    };
+    const auto wall = [&] {
+      detail::requireNoPassThrough(
+          s, m.peakOverlapWall, kThinWallPassOverlap,
+          "a granule's particle meeting a thin wall (cylinder, funnel) at twice maxSpeed (the "
+          "guard's limit for a spinning granule)");
+    };
+    if (grainFirst) {
+      grain();
+      wall();
+    } else {
+      wall();
+      grain();
+    }
   }
 
   // t_n: the shorter of a grain-grain (m* = m/2) and a grain-wall (m* = m) impact at maxSpeed.

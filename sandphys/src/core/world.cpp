@@ -23,9 +23,6 @@ using namespace detail;
 
 namespace {
 
-// Particle counts above this would exceed the 128 MiB a single GL storage buffer may hold on
-// Mesa (64 bytes per particle in each group of contact slots).
-constexpr std::uint32_t kMaxParticles = 1u << 21;
 // Collider keys of contact slots hold collider * 8 + face in 23 bits (contact_slots.glsl); the
 // contact kernel loops over every collider, so far fewer are practical.
 constexpr std::uint32_t kMaxColliders = 1u << 16;
@@ -238,6 +235,13 @@ void World::Impl::requireRoom(std::uint64_t bodies, std::uint64_t particles) con
   }
 }
 
+void World::Impl::checkOverlapsFrom(std::uint32_t firstBody) {
+  const std::uint32_t first = firstBody == 0 ? 0u : particleEnd(firstBody - 1);
+  if (overlapCheckEnd <= overlapCheckBegin) overlapCheckBegin = first;
+  overlapCheckBegin = std::min(overlapCheckBegin, first);
+  overlapCheckEnd = particleCount;
+}
+
 std::uint32_t World::Impl::placedCalm(const BodyDesc& d) const {
   // A dynamic body placed at rest may be about to fall: it starts moving.
   if (!sleep.enabled || d.motion != Motion::Kinematic) return 0;
@@ -271,8 +275,35 @@ void World::Impl::uploadBodyStates(std::uint32_t first, const std::vector<BodyDe
   buffers[kBodyAngularVelocity].upload(first * 16ull, n * 16, spin.data());
 }
 
+void World::Impl::requireUntunnelledWall(const ColliderShape& shape) const {
+  const ColliderMotion* motion = nullptr;
+  double reach = 0.0;  // farthest point of the wall from the point its motion refers to, m
+  if (const auto* c = std::get_if<Cylinder>(&shape)) {
+    motion = &c->motion;
+    reach = std::hypot(double(c->radius), double(c->height));
+  } else if (const auto* f = std::get_if<Funnel>(&shape)) {
+    motion = &f->motion;
+    reach = std::hypot(f->outletRadius + f->height * std::tan(double(f->halfAngle)), f->height);
+  }
+  if (!motion || !keepsHistory()) return;
+  const auto length = [](Vec3 v) { return std::hypot(double(v.x), double(v.y), double(v.z)); };
+  const double wallSpeed = length(motion->velocity) + length(motion->angularVelocity) * reach;
+  if (wallSpeed == 0.0) return;  // ContactModel::fromSettings checked the wall at rest
+  // A particle meets a moving thin wall at up to its own fastest speed plus the wall's.
+  const double speed = kGuardParticleSpeed * settings.maxSpeed + wallSpeed;
+  const double peak = hertzPeakOverlap(model.granuleMass, model.stiffnessWall, speed);
+  const double d = settings.particleDiameter;
+  require(peak <= kThinWallPassOverlap * d, "ColliderMotion (surface speed, m/s)", wallSpeed,
+          "a thin wall (cylinder, funnel) moving this fast meets a granule's particle at up to " +
+              formatValue(speed) + " m/s, where it would overlap by " + formatValue(peak / d) +
+              " d (closed-form Hertz peak), past " + formatValue(kThinWallPassOverlap) +
+              " d where the particle passes through; move it slower, or raise "
+              "WorldSettings.material.youngsModulus");
+}
+
 ColliderId World::Impl::putCollider(std::optional<std::uint32_t> slot, const GpuCollider& collider,
                                     const ColliderShape& shape) {
+  requireUntunnelledWall(shape);
   gpu->makeCurrent();
   std::uint32_t index = slot ? *slot : std::uint32_t(colliders.size());
   if (!slot) {
@@ -333,8 +364,8 @@ void World::checkSettings(const WorldSettings& settings) {
           "must be in [1, " + std::to_string(kMaxColliders) + "]");
   const std::uint64_t particles =
       settings.maxParticles ? settings.maxParticles : 4ull * settings.maxBodies;
-  require(particles <= kMaxParticles, "WorldSettings.maxParticles", double(particles),
-          "must be <= " + std::to_string(kMaxParticles) + " (GPU buffer limit)");
+  require(particles <= kMaxParticleCapacity, "WorldSettings.maxParticles", double(particles),
+          "must be <= " + std::to_string(kMaxParticleCapacity) + " (GPU buffer limit)");
 }
 
 World::World(const GpuContext& gpu, const WorldSettings& settings)
@@ -495,7 +526,7 @@ BodyId World::addRoughFloor(const RoughFloor& floor) {
     // A granule landing on the floor at maxSpeed must not slip between its particles.
     requireNoPassThrough(
         impl().settings, impl().model.peakOverlapFixedParticle, floorPassOverlap(spacing / d),
-        "a granule meeting a RoughFloor of spacing " + formatValue(spacing / d) + " d");
+        "a granule meeting a RoughFloor of spacing " + formatValue(spacing / d) + " d at maxSpeed");
   }
   requireResolvable("RoughFloor.center", floor.center, std::sqrt(hx * hx + hz * hz), d);
   // Counted before anything is built: a floor too large for the World costs no memory.
@@ -521,6 +552,7 @@ BodyId World::addRoughFloor(const RoughFloor& floor) {
   shape.boundingRadius = float(std::sqrt(hx * hx + hz * hz));
   std::uint32_t index =
       w.addBodies(shape, {BodyDesc{floor.center, {}, {}, {}, Motion::Static}}, false);
+  w.checkOverlapsFrom(index);
   return BodyId{index, w.generations[index]};
 }
 
@@ -534,6 +566,7 @@ BodyId World::addBody(const ParticleTemplate& shape, const BodyDesc& desc) {
   BodyDesc d = desc;
   d.orientation = normalised(desc.orientation, "BodyDesc.orientation");
   std::uint32_t index = impl().addBodies(shape, {d}, false);
+  impl().checkOverlapsFrom(index);
   return BodyId{index, impl().generations[index]};
 }
 
@@ -560,6 +593,7 @@ BodyRange World::addGranules(const GranuleBlock& block) {
   for (const auto& s : spawns)
     descs.push_back({s.position, s.orientation, s.velocity, {}, Motion::Dynamic});
   std::uint32_t first = w.addBodies(w.granule, descs, true);
+  w.checkOverlapsFrom(first);
   return {first, std::uint32_t(descs.size())};
 }
 
@@ -661,8 +695,8 @@ void World::restoreSnapshot(const WorldSnapshot& snapshot) {
 
 void World::reserve(std::uint32_t maxBodies, std::uint32_t maxParticles) {
   Impl& w = impl();
-  require(maxParticles <= kMaxParticles, "World::reserve maxParticles", maxParticles,
-          "must be <= " + std::to_string(kMaxParticles) + " (GPU buffer limit)");
+  require(maxParticles <= kMaxParticleCapacity, "World::reserve maxParticles", maxParticles,
+          "must be <= " + std::to_string(kMaxParticleCapacity) + " (GPU buffer limit)");
   w.gpu->makeCurrent();
   w.bodyCapacity = std::max(w.bodyCapacity, maxBodies);
   w.particleCapacity = std::max(w.particleCapacity, maxParticles);
@@ -702,6 +736,7 @@ StepReport World::step(float frameDt) {
     due = std::uint64_t(needed);
     w.accumulator -= double(due) * dt;
   }
+  report.initialOverlaps = w.checkInitialOverlaps();
   if (w.profiler.enabled()) w.profiler.resetTotals();
   w.buffers.bindAll();
   for (std::uint64_t i = 0; i < due; ++i) {
@@ -721,6 +756,7 @@ StepReport World::step(float frameDt) {
 void World::substep(std::uint32_t count) {
   Impl& w = impl();
   w.gpu->makeCurrent();
+  if (count > 0) w.checkInitialOverlaps();
   if (w.profiler.enabled()) w.profiler.resetTotals();
   w.buffers.bindAll();
   for (std::uint32_t i = 0; i < count; ++i) {

@@ -124,6 +124,10 @@ struct World::Impl {
   // added, set or restored by the CPU): [dirtyBegin, dirtyEnd).
   std::uint32_t dirtyBegin = 0;
   std::uint32_t dirtyEnd = 0;
+  // Particles of bodies the CPU added since the last step, checked for deep initial overlaps at
+  // its start: [overlapCheckBegin, overlapCheckEnd).
+  std::uint32_t overlapCheckBegin = 0;
+  std::uint32_t overlapCheckEnd = 0;
 
   detail::WorldBuffers buffers;
   detail::WorldKernels kernels;
@@ -153,10 +157,23 @@ struct World::Impl {
   void wakeBox(const detail::Bounds& box);
   ColliderId putCollider(std::optional<std::uint32_t> slot, const detail::GpuCollider& collider,
                          const ColliderShape& shape);
+  /// Throws InvalidArgument for a thin wall (cylinder, funnel) moving so fast that a granule's
+  /// particle meeting it would pass through (HertzMindlin; the paper's law caps the overlap).
+  void requireUntunnelledWall(const ColliderShape& shape) const;
   void requireBody(BodyId id) const;
 
   /// Particles [first, end) take their state from their bodies before the next contacts.
   void markParticlesDirty(std::uint32_t first, std::uint32_t end);
+  /// The particles of the bodies from slot `firstBody` on, just added from the CPU, are checked
+  /// for deep initial overlaps at the next step.
+  void checkOverlapsFrom(std::uint32_t firstBody);
+  /// The contacts of particles [first, end) deeper than `minOverlap` (m), each pair once or, with
+  /// `bothSides`, from each listed particle's side (contacts.comp compiled for CONTACT_LIST);
+  /// sorted. Sync point.
+  std::vector<ContactRecord> listContacts(std::uint32_t first, std::uint32_t end, float minOverlap,
+                                          bool bothSides);
+  /// The check of checkOverlapsFrom, then forgotten; prints a warning when something overlaps.
+  InitialOverlaps checkInitialOverlaps();
 
   // GPU work (world_kernels.cpp)
   void uploadParams();

@@ -142,23 +142,27 @@ std::vector<ParticleState> World::readParticles() const {
   return out;
 }
 
-std::vector<ContactRecord> World::readContacts() const {
-  impl();  // throws for a moved-from World; the contact pass below is GPU work, not a change
-  Impl& w = *m_impl;
-  w.gpu->makeCurrent();
+std::vector<ContactRecord> World::Impl::listContacts(std::uint32_t first, std::uint32_t end,
+                                                     float minOverlap, bool bothSides) {
+  gpu->makeCurrent();
   // Each particle has at most ~12 neighbours in a packing (tetrahedral granules a few more) plus
-  // a few walls; grow and retry if a pile ever has more.
-  std::uint32_t capacity = std::max<std::uint32_t>(1024u, w.particleCount * 8u);
+  // a few walls; grow and retry if a pile ever has more. A tolerance keeps only a few.
+  std::uint32_t capacity =
+      std::max<std::uint32_t>(1024u, (minOverlap > 0.0f ? 1u : 8u) * (end - first));
   for (;;) {
-    gl::Buffer& list = w.buffers[kContactList];
+    gl::Buffer& list = buffers[kContactList];
     const std::size_t bytes = 16 + std::size_t(capacity) * sizeof(GpuContactRecord);
     if (list.size() < bytes) list = gl::Buffer(bytes, "contactList");
     std::uint32_t header[4] = {0u, capacity, 0u, 0u};
     list.upload(0, sizeof header, header);
-    w.buffers.bindAll();
+    buffers.bindAll();
     // What the next substep does first: lists built if due (that changes nothing it computes).
-    w.prepareContacts();
-    w.dispatch(w.kernels.contactList, "contact_list", w.particleCount, kWorkgroupSize);
+    prepareContacts();
+    glUseProgram(kernels.contactList);
+    glUniform1ui(0, first);
+    glUniform1f(1, minOverlap);
+    glUniform1ui(2, bothSides ? 1u : 0u);
+    dispatch(kernels.contactList, "contact_list", end - first, kWorkgroupSize);
     std::uint32_t count = 0;
     list.download(0, 4, &count);
     if (count > capacity) {
@@ -167,7 +171,7 @@ std::vector<ContactRecord> World::readContacts() const {
     }
     std::vector<GpuContactRecord> raw(count);
     list.download(16, count * sizeof(GpuContactRecord), raw.data());
-    gl::check("World::readContacts");
+    gl::check("listing contacts");
     std::vector<ContactRecord> out(count);
     for (std::uint32_t i = 0; i < count; ++i) {
       const auto& r = raw[i];
@@ -190,6 +194,45 @@ std::vector<ContactRecord> World::readContacts() const {
     });
     return out;
   }
+}
+
+std::vector<ContactRecord> World::readContacts() const {
+  impl();  // throws for a moved-from World; the contact pass is GPU work, not a change
+  return m_impl->listContacts(0, m_impl->particleCount, 0.0f, false);
+}
+
+InitialOverlaps World::Impl::checkInitialOverlaps() {
+  InitialOverlaps result;
+  if (overlapCheckEnd <= overlapCheckBegin) return result;
+  const float tolerance = kInitialOverlapTolerance * settings.particleDiameter;
+  const std::vector<ContactRecord> deep =
+      listContacts(overlapCheckBegin, overlapCheckEnd, tolerance, true);
+  overlapCheckBegin = overlapCheckEnd = 0;
+  std::vector<std::uint32_t> particles;
+  for (const ContactRecord& c : deep) {
+    particles.push_back(c.particleA);
+    if (c.overlap > result.worstOverlap) {
+      result.worstOverlap = c.overlap;
+      result.body = BodyId{c.bodyA, generations[c.bodyA]};
+      result.otherBody =
+          c.bodyB == ContactRecord::kNone ? BodyId{} : BodyId{c.bodyB, generations[c.bodyB]};
+      result.collider = c.collider == ContactRecord::kNone ? ColliderId{} : ColliderId{c.collider};
+    }
+  }
+  particles.erase(std::unique(particles.begin(), particles.end()), particles.end());
+  result.particles = std::uint32_t(particles.size());
+  if (result.particles > 0) {
+    const double d = settings.particleDiameter;
+    std::fprintf(stderr,
+                 "sandphys: warning: %u particles of the bodies added before this step start "
+                 "overlapping by more than %.3g d (worst %.3g d: body %u with %s %u); contacts "
+                 "push them apart at once, with the energy of the overlap. Place them apart "
+                 "(StepReport::initialOverlaps has the numbers).\n",
+                 result.particles, double(kInitialOverlapTolerance), result.worstOverlap / d,
+                 result.body.index, result.collider.isValid() ? "collider" : "body",
+                 result.collider.isValid() ? result.collider.index : result.otherBody.index);
+  }
+  return result;
 }
 
 WorldStats World::readStats() {

@@ -46,7 +46,20 @@ void mergeNode(const aiScene& scene, const aiNode& node, const aiMatrix4x4& pare
   // A mirroring transform turns outward winding inward: swap two corners to undo it.
   const bool mirrored = transform.Determinant() < 0.0f;
   for (unsigned m = 0; m < node.mNumMeshes; ++m) {
-    const aiMesh& mesh = *scene.mMeshes[node.mMeshes[m]];
+    // An importer's scene is trusted no further than it is checked: a node naming a mesh that is
+    // not there, or a mesh without the arrays its counts promise, is the file's fault.
+    const unsigned index = node.mMeshes[m];
+    if (index >= scene.mNumMeshes || scene.mMeshes[index] == nullptr) {
+      throwMeshError(source, "node '" + std::string(node.mName.C_Str()) + "' names mesh " +
+                                 std::to_string(index) + ", but the scene has " +
+                                 std::to_string(scene.mNumMeshes) + " meshes");
+    }
+    const aiMesh& mesh = *scene.mMeshes[index];
+    if ((mesh.mNumVertices > 0 && mesh.mVertices == nullptr) ||
+        (mesh.mNumFaces > 0 && mesh.mFaces == nullptr)) {
+      throwMeshError(source, "mesh " + std::to_string(index) + " ('" + mesh.mName.C_Str() +
+                                 "') lacks the vertices or faces it counts");
+    }
     ++counts.meshes;
     std::vector<std::uint32_t> welded(mesh.mNumVertices);
     for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
@@ -76,6 +89,7 @@ void mergeNode(const aiScene& scene, const aiNode& node, const aiMatrix4x4& pare
     }
   }
   for (unsigned c = 0; c < node.mNumChildren; ++c) {
+    if (node.mChildren[c] == nullptr) continue;
     mergeNode(scene, *node.mChildren[c], transform, source, welder, out, counts);
   }
 }
@@ -102,6 +116,7 @@ TriangleMesh loadMesh(const std::filesystem::path& path) {
     throwMeshError(source, std::string("assimp could not read it: ") + importer.GetErrorString());
   }
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    if (scene->mMeshes[m] == nullptr || scene->mMeshes[m]->mVertices == nullptr) continue;
     const aiMesh& mesh = *scene->mMeshes[m];
     for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
       const aiVector3D& p = mesh.mVertices[v];

@@ -20,6 +20,7 @@
 
 #include "sandphys/error.h"
 #include "sandphys/recording.h"
+#include "sandphys/settings.h"
 
 namespace sandphys {
 
@@ -186,6 +187,14 @@ WorldSnapshot readSnapshot(Reader& in, const std::string& context) {
   snapshot.simulatedTime = in.get<double>();
   const std::uint32_t bodies = in.get<std::uint32_t>();
   const std::uint32_t particles = in.get<std::uint32_t>();
+  // No World holds more (its particle limit, and a body has at least one particle): a larger
+  // count is damage, refused before anything is allocated for it.
+  if (bodies > kMaxParticleCapacity || particles > kMaxParticleCapacity) {
+    throw RecordingError(
+        context + " is malformed: the snapshot of frame " + std::to_string(snapshot.frame) +
+        " claims " + std::to_string(bodies) + " bodies and " + std::to_string(particles) +
+        " particles, more than a World holds (" + std::to_string(kMaxParticleCapacity) + ")");
+  }
   const std::size_t compressedSize = in.remaining();
   const std::uint8_t* compressed = in.take(compressedSize);
   const std::size_t rawSize =
