@@ -32,7 +32,11 @@ struct TriangleMesh {
 /// an STL file, or the parts of a file split by material, share their corners). A mesh referenced
 /// by several nodes appears once per node. The result has passed validateMesh. Throws MeshError
 /// naming the file: missing or unreadable file, assimp's own failure (with its message), no
-/// triangles, non-finite vertices, indices out of range, no triangle with an area.
+/// triangles, non-finite vertices, indices out of range, no triangle with an area. assimp's
+/// importers trust the sizes a file states: a damaged file may make them allocate what it claims
+/// (assimp's own test file invalid/OutOfMemory.off asks for 16 GB, and assimp aborts when that
+/// succeeds); load files you do not trust in a process with a memory limit, as the corpus tests
+/// do (a failed allocation there is an assimp failure, a MeshError).
 TriangleMesh loadMesh(const std::filesystem::path& path);
 
 /// The checks every mesh must pass before it makes a body; loadMesh and sampleMesh run them, so a
