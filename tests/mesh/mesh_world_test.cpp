@@ -82,3 +82,33 @@ TEST(MeshBody, BodyBeyondTheParticleCapacityIsRefusedAndNothingChanges) {
 
 }  // namespace
 }  // namespace sandphys
+
+namespace sandphys {
+namespace {
+
+// A sampled surface holds a granule meeting it at maxSpeed out while the impact's overlap stays
+// under surfacePassOverlap(h / d): at the default spacing (0.8 d) with a wide margin; at 1.6 d a
+// granule slips into a hole at 0.08 d of overlap with each of three samples, and the body is
+// refused. A cluster of particles that is not a sampled surface is not checked.
+TEST(MeshBody, ASurfaceWhoseHolesAGranuleAtTheGuardGetsThroughIsRefused) {
+  testing::TestWorld w;
+  const float d = w->settings().particleDiameter;
+  const TriangleMesh box = boxMesh({-0.05f, -0.05f, -0.05f}, {0.05f, 0.05f, 0.05f});
+  const SampledMesh fine = sampleMesh(box, d);
+  EXPECT_FLOAT_EQ(fine.shape.surfaceSpacing, kDefaultMeshSpacing * d);
+  EXPECT_TRUE(w->addBody(fine.shape, BodyDesc{.position = {0, 0.5f, 0}}).isValid());
+  const SampledMesh coarse = sampleMesh(box, d, {.spacing = 1.6f * d});
+  try {
+    w->addBody(coarse.shape, BodyDesc{.position = {1, 0.5f, 0}});
+    FAIL() << "a surface sampled at 1.6 d was accepted";
+  } catch (const InvalidArgument& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("sampled at a spacing of 1.6 d"), std::string::npos) << message;
+    EXPECT_NE(message.find("raise youngsModulus to at least"), std::string::npos) << message;
+  }
+  EXPECT_EQ(w->bodyCount(), 1u);
+  EXPECT_GT(surfacePassOverlap(0.8), 2.0 * w->contactModel().peakOverlapFixedParticle / d);
+}
+
+}  // namespace
+}  // namespace sandphys

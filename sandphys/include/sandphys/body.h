@@ -29,6 +29,10 @@ struct ParticleTemplate {
   Quat principalRotation{};
   /// Largest distance of a particle centre from the centre of mass, m.
   float boundingRadius = 0.0f;
+  /// For a surface sampled into particles (sampleMesh): the sampling spacing h, m, so that
+  /// World::addBody can check that a granule meeting it does not get between the samples
+  /// (surfacePassOverlap). 0 for a cluster of particles that is not a sampled surface.
+  float surfaceSpacing = 0.0f;
 };
 
 /// Builds a template from particle centres (m, any frame) of diameter `particleDiameter` (m):

@@ -47,13 +47,18 @@ struct ContactModel {
 /// triangle of a granule's face at 1 - 1/sqrt(3) (counted as one contact: conservative), through
 /// a thin wall (cylinder, funnel) once its centre crosses it at 1/2, and into the hole of a
 /// square lattice of static particles of spacing s, whose four particles resist together, when it
-/// has four times the energy of one contact at 1 - s/(d sqrt(2)): 4^{2/5} (1 - s/(d sqrt(2))).
+/// has four times the energy of one contact at 1 - s/(d sqrt(2)): 4^{2/5} (1 - s/(d sqrt(2))); into
+/// the hole of a sampled surface (sampleMesh at spacing h: no point farther than h/sqrt(3) from a
+/// sample) when it has three times the energy of one contact at 1 - h/(d sqrt(3)):
+/// 3^{2/5} (1 - h/(d sqrt(3))).
 inline constexpr double kGrainPassOverlap = 0.42264973;  // 1 - 1/sqrt(3)
+inline constexpr double kThinWallPassOverlap = 0.5;
+double floorPassOverlap(double spacingOverDiameter);
+double surfacePassOverlap(double gapOverDiameter);
+
 /// The speed guard bounds a body's speed and the speed of its rim about its centre each by
 /// maxSpeed, so a particle may move at up to twice maxSpeed: the speed a thin wall is checked at.
 inline constexpr double kGuardParticleSpeed = 2.0;
-inline constexpr double kThinWallPassOverlap = 0.5;
-double floorPassOverlap(double spacingOverDiameter);
 
 /// The Young's modulus (Pa) at which two granules meeting head-on at maxSpeed
 /// (ContactModel::peakOverlapGrain) overlap by `peakOverlap` (m), the other settings as given:

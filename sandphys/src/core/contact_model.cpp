@@ -96,6 +96,11 @@ double hertzPeakOverlap(double effectiveMass, double stiffness, double speed) {
   return std::pow(1.25 * effectiveMass * speed * speed / stiffness, 0.4);
 }
 
+double surfacePassOverlap(double gapOverDiameter) {
+  // ½ m* v² = 3 · 2/5 k ξ_hole^{5/2} is a single contact's energy at 3^{2/5} ξ_hole.
+  return std::pow(3.0, 0.4) * (1.0 - gapOverDiameter / std::numbers::sqrt3);
+}
+
 double floorPassOverlap(double spacingOverDiameter) {
   // ½ m* v² = 4 · 2/5 k ξ_hole^{5/2} is a single contact's energy at 4^{2/5} ξ_hole.
   return std::pow(4.0, 0.4) * (1.0 - spacingOverDiameter / std::numbers::sqrt2);

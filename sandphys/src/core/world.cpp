@@ -275,6 +275,16 @@ void World::Impl::uploadBodyStates(std::uint32_t first, const std::vector<BodyDe
   buffers[kBodyAngularVelocity].upload(first * 16ull, n * 16, spin.data());
 }
 
+void World::Impl::requireImpenetrableSurface(const ParticleTemplate& shape) const {
+  if (!keepsHistory() || shape.surfaceSpacing <= 0.0f) return;
+  // A granule meeting the sampled surface at maxSpeed, as a RoughFloor is checked.
+  const double d = settings.particleDiameter;
+  requireNoPassThrough(settings, model.peakOverlapFixedParticle,
+                       surfacePassOverlap(shape.surfaceSpacing / d),
+                       "a granule meeting a surface sampled at a spacing of " +
+                           formatValue(shape.surfaceSpacing / d) + " d at maxSpeed");
+}
+
 void World::Impl::requireUntunnelledWall(const ColliderShape& shape) const {
   const ColliderMotion* motion = nullptr;
   double reach = 0.0;  // farthest point of the wall from the point its motion refers to, m
@@ -558,6 +568,7 @@ BodyId World::addRoughFloor(const RoughFloor& floor) {
 
 BodyId World::addBody(const ParticleTemplate& shape, const BodyDesc& desc) {
   requireTemplate(shape);
+  impl().requireImpenetrableSurface(shape);
   requireFiniteVec("BodyDesc.position", desc.position);
   requireResolvable("BodyDesc.position", desc.position, shape.boundingRadius,
                     impl().settings.particleDiameter);

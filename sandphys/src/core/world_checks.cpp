@@ -63,6 +63,7 @@ void requireTemplate(const ParticleTemplate& shape) {
   const float rotation[4] = {q.w, q.x, q.y, q.z};
   requireUnit("ParticleTemplate.principalRotation", rotation);
   requireNonNegative("ParticleTemplate.boundingRadius", shape.boundingRadius, "(m)");
+  requireNonNegative("ParticleTemplate.surfaceSpacing", shape.surfaceSpacing, "(m)");
   double farthest = 0.0;
   for (std::size_t i = 0; i < shape.offsets.size(); ++i) {
     const Vec3& o = shape.offsets[i];

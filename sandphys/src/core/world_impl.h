@@ -160,6 +160,10 @@ struct World::Impl {
   /// Throws InvalidArgument for a thin wall (cylinder, funnel) moving so fast that a granule's
   /// particle meeting it would pass through (HertzMindlin; the paper's law caps the overlap).
   void requireUntunnelledWall(const ColliderShape& shape) const;
+  /// Throws InvalidArgument when a granule meeting a sampled surface (ParticleTemplate::
+  /// surfaceSpacing) at maxSpeed would get between its samples (HertzMindlin;
+  /// surfacePassOverlap).
+  void requireImpenetrableSurface(const ParticleTemplate& shape) const;
   void requireBody(BodyId id) const;
 
   /// Particles [first, end) take their state from their bodies before the next contacts.

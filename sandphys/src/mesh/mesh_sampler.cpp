@@ -117,6 +117,7 @@ SampledMesh sampleMesh(const TriangleMesh& mesh, float particleDiameter,
         std::to_string(result.centres.size()) + " particles as solid spheres of diameter " +
         detail::formatValue(particleDiameter) + " m, " + massRule);
   }
+  result.shape.surfaceSpacing = float(spacing);
   if (result.centres.size() > kLargeBodyWarningParticles) {
     result.warnings.push_back(
         mesh_detail::meshName(mesh) + ": " + std::to_string(result.centres.size()) +
