@@ -14,16 +14,7 @@
 namespace sandphys {
 namespace {
 
-// The message of the sandphys::Error the call throws ("no error" when it throws none); any other
-// exception (std::bad_alloc, say) fails the test through GoogleTest.
-std::string messageOf(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using testing::errorMessageOf;
 
 #define EXPECT_MESSAGE_HAS(message, text) \
   EXPECT_NE((message).find(text), std::string::npos) << (message)
@@ -34,12 +25,12 @@ TEST(CarelessInput, AMovedFromWorldRefusesEveryCallByName) {
   World moved = std::move(*w);
   EXPECT_EQ(moved.bodyCount(), 1u);
   World& old = *w;
-  EXPECT_MESSAGE_HAS(messageOf([&] { old.bodyCount(); }), "moved from");
-  EXPECT_MESSAGE_HAS(messageOf([&] { old.step(1.0f / 60.0f); }), "moved from");
-  EXPECT_MESSAGE_HAS(messageOf([&] { old.readBodies(); }), "moved from");
-  EXPECT_MESSAGE_HAS(messageOf([&] { old.readContacts(); }), "moved from");
-  EXPECT_MESSAGE_HAS(messageOf([&] { old.addCollider(Plane{}); }), "moved from");
-  EXPECT_MESSAGE_HAS(messageOf([&] { old.settings(); }), "moved from");
+  EXPECT_MESSAGE_HAS(errorMessageOf([&] { old.bodyCount(); }), "moved from");
+  EXPECT_MESSAGE_HAS(errorMessageOf([&] { old.step(1.0f / 60.0f); }), "moved from");
+  EXPECT_MESSAGE_HAS(errorMessageOf([&] { old.readBodies(); }), "moved from");
+  EXPECT_MESSAGE_HAS(errorMessageOf([&] { old.readContacts(); }), "moved from");
+  EXPECT_MESSAGE_HAS(errorMessageOf([&] { old.addCollider(Plane{}); }), "moved from");
+  EXPECT_MESSAGE_HAS(errorMessageOf([&] { old.settings(); }), "moved from");
   // Assigned again, it works.
   old = std::move(moved);
   EXPECT_EQ(old.bodyCount(), 1u);
@@ -58,7 +49,8 @@ TEST(CarelessInput, AFrameOfMoreSubstepsThanAnIntegerHoldsRunsTheCap) {
 TEST(CarelessInput, AHugeRoughFloorIsCountedBeforeItIsBuilt) {
   testing::TestWorld w;
   // 1000 m at 2 cm: about 7.9e9 particles, which would take hundreds of GB if built.
-  const std::string message = messageOf([&] { w->addRoughFloor(RoughFloor{.radius = 1000.0f}); });
+  const std::string message =
+      errorMessageOf([&] { w->addRoughFloor(RoughFloor{.radius = 1000.0f}); });
   EXPECT_MESSAGE_HAS(message, "exceeds WorldSettings.maxParticles = 1024");
   // Half extents give the same, and a floor that fits still fits, to the particle.
   EXPECT_THROW(w->addRoughFloor(RoughFloor{.halfExtentX = 1000.0f, .halfExtentZ = 1000.0f}),
@@ -74,18 +66,19 @@ TEST(CarelessInput, AHugeRoughFloorIsCountedBeforeItIsBuilt) {
 
 TEST(CarelessInput, HugeBlocksAndEmittersAreCountedBeforeTheyAreBuilt) {
   testing::TestWorld w;
-  EXPECT_MESSAGE_HAS(messageOf([&] {
+  EXPECT_MESSAGE_HAS(errorMessageOf([&] {
                        w->addGranules(GranuleBlock{.countX = 1000, .countY = 1000, .countZ = 1000});
                      }),
                      "adding 1000000000 bodies to 0 exceeds WorldSettings.maxBodies = 256");
-  EXPECT_MESSAGE_HAS(messageOf([&] {
+  EXPECT_MESSAGE_HAS(errorMessageOf([&] {
                        w->addGranules(GranuleBlock{
                            .countX = 0xffffffffu, .countY = 0xffffffffu, .countZ = 0xffffffffu});
                      }),
                      "exceeds WorldSettings.maxBodies = 256");
-  EXPECT_MESSAGE_HAS(
-      messageOf([&] { w->addEmitter(EmitterSettings{.halfExtentX = 1e6f, .halfExtentZ = 1e6f}); }),
-      "EmitterSettings.halfExtentX/Z (lattice slots)");
+  EXPECT_MESSAGE_HAS(errorMessageOf([&] {
+                       w->addEmitter(EmitterSettings{.halfExtentX = 1e6f, .halfExtentZ = 1e6f});
+                     }),
+                     "EmitterSettings.halfExtentX/Z (lattice slots)");
   EXPECT_EQ(w->bodyCount(), 0u);
 }
 
@@ -96,21 +89,21 @@ TEST(CarelessInput, ATemplateThatWouldPutNaNIntoTheWorldIsRefused) {
 
   ParticleTemplate nanOffset = good;
   nanOffset.offsets[2].y = std::nanf("");
-  EXPECT_MESSAGE_HAS(messageOf([&] {
+  EXPECT_MESSAGE_HAS(errorMessageOf([&] {
                        w->addBody(nanOffset, BodyDesc{.position = {0, 1, 0}});
                      }),
                      "ParticleTemplate.offsets[2].y = nan");
 
   ParticleTemplate zeroRotation = good;
   zeroRotation.principalRotation = {0, 0, 0, 0};
-  EXPECT_MESSAGE_HAS(messageOf([&] {
+  EXPECT_MESSAGE_HAS(errorMessageOf([&] {
                        w->addBody(zeroRotation, BodyDesc{.position = {0, 1, 0}});
                      }),
                      "ParticleTemplate.principalRotation (squared norm) = 0");
 
   ParticleTemplate shortRadius = good;
   shortRadius.boundingRadius = 0.1f * good.boundingRadius;
-  EXPECT_MESSAGE_HAS(messageOf([&] {
+  EXPECT_MESSAGE_HAS(errorMessageOf([&] {
                        w->addBody(shortRadius, BodyDesc{.position = {0, 1, 0}});
                      }),
                      "ParticleTemplate.boundingRadius");
@@ -148,7 +141,7 @@ TEST(CarelessInput, ASnapshotThatWouldPutNaNIntoTheWorldIsRefusedAndChangesNothi
   for (const auto& [damage, expected] : cases) {
     WorldSnapshot bad = good;
     damage(bad);
-    EXPECT_MESSAGE_HAS(messageOf([&] { w->restoreSnapshot(bad); }), expected);
+    EXPECT_MESSAGE_HAS(errorMessageOf([&] { w->restoreSnapshot(bad); }), expected);
     EXPECT_EQ(w->readStateHash(), hash) << expected;
   }
 }
@@ -158,21 +151,21 @@ TEST(CarelessInput, PositionsBeyondFloatResolutionAreRefused) {
   const WorldSettings& s = w->settings();
   const ParticleTemplate granule = tetrahedronTemplate(s.particleDiameter, s.material.density);
   // d = 2 cm: a float tells 0.01 d apart up to 0.01 * 0.02 * 2^23 = 1678 m.
-  EXPECT_MESSAGE_HAS(messageOf([&] {
+  EXPECT_MESSAGE_HAS(errorMessageOf([&] {
                        w->addBody(granule, BodyDesc{.position = {1e7f, 0, 0}});
                      }),
                      "BodyDesc.position (farthest coordinate, m) = 1");
-  EXPECT_MESSAGE_HAS(messageOf([&] {
+  EXPECT_MESSAGE_HAS(errorMessageOf([&] {
                        w->addGranules(GranuleBlock{.center = {0, 0, -1e7f}, .countX = 2});
                      }),
                      "GranuleBlock.center");
-  EXPECT_MESSAGE_HAS(messageOf([&] {
+  EXPECT_MESSAGE_HAS(errorMessageOf([&] {
                        w->addRoughFloor(RoughFloor{.center = {0, 2000, 0}, .radius = 0.1f});
                      }),
                      "RoughFloor.center");
   EXPECT_EQ(w->bodyCount(), 0u);
   const BodyId id = w->addBody(granule, BodyDesc{.position = {1000, 0, 0}});
-  EXPECT_MESSAGE_HAS(messageOf([&] {
+  EXPECT_MESSAGE_HAS(errorMessageOf([&] {
                        w->setBodyState(id, BodyDesc{.position = {0, 5000, 0}});
                      }),
                      "must be <= 1677.722 m");
@@ -185,12 +178,12 @@ TEST(CarelessInput, AThinWallMovingFastEnoughToBeTunnelledIsRefused) {
   const ColliderId id = w->addCollider(Cylinder{.radius = 0.2f, .height = 0.3f});
   w->setCollider(id, Cylinder{.radius = 0.2f, .height = 0.3f, .motion = {.velocity = {1, 0, 0}}});
   EXPECT_MESSAGE_HAS(
-      messageOf([&] {
+      errorMessageOf([&] {
         w->setCollider(
             id, Cylinder{.radius = 0.2f, .height = 0.3f, .motion = {.velocity = {20, 0, 0}}});
       }),
       "ColliderMotion (surface speed, m/s) = 20");
-  EXPECT_MESSAGE_HAS(messageOf([&] {
+  EXPECT_MESSAGE_HAS(errorMessageOf([&] {
                        w->addCollider(Funnel{.motion = {.angularVelocity = {0, 0, 50}}});
                      }),
                      "thin wall (cylinder, funnel)");

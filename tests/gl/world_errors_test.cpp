@@ -10,19 +10,12 @@
 namespace sandphys {
 namespace {
 
-std::string messageOf(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using testing::errorMessageOf;
 
 TEST(WorldErrors, CapacityExceededAddsNothing) {
   testing::TestWorld w(testing::smallSettings(10));
   w->addGranules(GranuleBlock{.center = {0, 1, 0}, .countX = 2, .countY = 2, .countZ = 2});
-  std::string message = messageOf([&] {
+  std::string message = errorMessageOf([&] {
     w->addGranules(GranuleBlock{.center = {0, 2, 0}, .countX = 2, .countY = 2, .countZ = 1});
   });
   EXPECT_NE(message.find("maxBodies = 10"), std::string::npos) << message;
@@ -43,55 +36,59 @@ TEST(WorldErrors, CapacityExceededAddsNothing) {
 TEST(WorldErrors, TooManyParticlesNamesTheLimit) {
   WorldSettings s = testing::smallSettings();
   s.maxParticles = 1u << 30;
-  std::string message = messageOf([&] { World w(testing::gpu(), s); });
+  std::string message = errorMessageOf([&] { World w(testing::gpu(), s); });
   EXPECT_NE(message.find("WorldSettings.maxParticles = 1073741824"), std::string::npos) << message;
   EXPECT_NE(message.find("<= 2097152"), std::string::npos) << message;
 }
 
 TEST(WorldErrors, BadDescriptorsNameTheirField) {
   testing::TestWorld w;
-  EXPECT_NE(
-      messageOf([&] { w->addCollider(Cylinder{.radius = -1.0f}); }).find("Cylinder.radius = -1"),
-      std::string::npos);
-  EXPECT_NE(messageOf([&] {
+  EXPECT_NE(errorMessageOf([&] {
+              w->addCollider(Cylinder{.radius = -1.0f});
+            }).find("Cylinder.radius = -1"),
+            std::string::npos);
+  EXPECT_NE(errorMessageOf([&] {
               w->addCollider(Plane{.normal = {0, 0, 0}});
             }).find("Plane.normal"),
             std::string::npos);
-  EXPECT_NE(
-      messageOf([&] { w->addCollider(Funnel{.halfAngle = 2.0f}); }).find("Funnel.halfAngle = 2"),
-      std::string::npos);
-  EXPECT_NE(messageOf([&] {
+  EXPECT_NE(errorMessageOf([&] {
+              w->addCollider(Funnel{.halfAngle = 2.0f});
+            }).find("Funnel.halfAngle = 2"),
+            std::string::npos);
+  EXPECT_NE(errorMessageOf([&] {
               w->addCollider(Box{.material = {.friction = -1.0f}});
             }).find("Box.material.friction"),
             std::string::npos);
-  EXPECT_NE(
-      messageOf([&] { w->addCollider(Box{.material = {.restitution = 0.0f}}); }).find("(0, 1]"),
-      std::string::npos);
-  EXPECT_NE(
-      messageOf([&] { w->addGranules(GranuleBlock{.countX = 0}); }).find("GranuleBlock.countX = 0"),
-      std::string::npos);
-  EXPECT_NE(messageOf([&] {
+  EXPECT_NE(errorMessageOf([&] {
+              w->addCollider(Box{.material = {.restitution = 0.0f}});
+            }).find("(0, 1]"),
+            std::string::npos);
+  EXPECT_NE(errorMessageOf([&] {
+              w->addGranules(GranuleBlock{.countX = 0});
+            }).find("GranuleBlock.countX = 0"),
+            std::string::npos);
+  EXPECT_NE(errorMessageOf([&] {
               w->addGranules(GranuleBlock{.spacing = 0.03f});
             }).find("GranuleBlock.spacing = 0.03"),
             std::string::npos);
-  EXPECT_NE(messageOf([&] {
+  EXPECT_NE(errorMessageOf([&] {
               w->addGranules(GranuleBlock{.center = {0, std::nanf(""), 0}});
             }).find("GranuleBlock.center.y = nan"),
             std::string::npos);
-  EXPECT_NE(messageOf([&] {
+  EXPECT_NE(errorMessageOf([&] {
               w->addEmitter(EmitterSettings{.rate = 0.0f});
             }).find("EmitterSettings.rate = 0"),
             std::string::npos);
-  EXPECT_NE(messageOf([&] {
+  EXPECT_NE(errorMessageOf([&] {
               w->addSink(Sink{.min = {1, 1, 1}, .max = {0, 0, 0}});
             }).find("Sink.max"),
             std::string::npos);
-  EXPECT_NE(messageOf([&] {
+  EXPECT_NE(errorMessageOf([&] {
               w->addCollider(Plane{.motion = {.velocity = {0, std::nanf(""), 0}}});
             }).find("Plane.motion.velocity.y = nan"),
             std::string::npos);
   // A floor so sparse that a granule landing at maxSpeed would slip between its particles.
-  EXPECT_NE(messageOf([&] {
+  EXPECT_NE(errorMessageOf([&] {
               w->addRoughFloor(RoughFloor{.radius = 0.1f, .spacing = 0.03f});
             }).find("RoughFloor of spacing 1.5 d"),
             std::string::npos);
@@ -104,7 +101,7 @@ TEST(WorldErrors, ASnapshotWithoutItsContactHistoryIsRefused) {
   WorldSnapshot snapshot = w->readSnapshot();
   ASSERT_EQ(snapshot.contacts.size(), 4u);
   snapshot.contacts.pop_back();
-  const std::string message = messageOf([&] { w->restoreSnapshot(snapshot); });
+  const std::string message = errorMessageOf([&] { w->restoreSnapshot(snapshot); });
   EXPECT_NE(message.find("WorldSnapshot.contacts.size() = 3"), std::string::npos) << message;
   EXPECT_NE(message.find("must be 4"), std::string::npos) << message;
 }

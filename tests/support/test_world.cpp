@@ -4,6 +4,15 @@
 
 namespace sandphys::testing {
 
+std::string errorMessageOf(const std::function<void()>& call) {
+  try {
+    call();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
 const GpuContext& gpu() {
   static GpuContext context = GpuContext::headless();
   return context;

@@ -3,8 +3,14 @@
 #include <sandphys/sandphys.h>
 
 #include <cstdint>
+#include <functional>
+#include <string>
 
 namespace sandphys::testing {
+
+/// The message of the sandphys::Error that `call` throws, or "no error" when it throws none; any
+/// other exception (std::bad_alloc, say) reaches GoogleTest and fails the test.
+std::string errorMessageOf(const std::function<void()>& call);
 
 /// The one headless GL context of a test process (created on first use).
 const GpuContext& gpu();
