@@ -75,7 +75,7 @@ struct OracleModel {
 };
 
 /// One implicit collider, converted from the public descriptor the way World converts it
-/// (world.cpp, toGpu): unit plane normal, funnel top radius from its angle, c(e) from the
+/// (world_colliders.cpp, toGpu): unit plane normal, funnel top radius from its angle, c(e) from the
 /// restitution, the surface motion as v0 + ω × x.
 struct OracleCollider {
   enum class Kind { Plane, BoxInside, BoxOutside, Revolution };

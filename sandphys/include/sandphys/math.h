@@ -17,4 +17,11 @@ struct Quat {
   float z = 0.0f;
 };
 
+/// Quaternion product a · b: the rotation b, then a.
+inline Quat operator*(Quat a, Quat b) {
+  return {
+      a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z, a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
+      a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x, a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w};
+}
+
 }  // namespace sandphys

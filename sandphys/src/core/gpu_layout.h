@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "sandphys/math.h"
+
 #include "sandphys/recording.h"
 
 namespace sandphys::detail {
@@ -136,6 +138,10 @@ inline constexpr std::uint32_t kMaxLargeBodies = 4096;
 struct alignas(16) GpuVec4 {
   float x, y, z, w;
 };
+/// A vector and the value packed into its w.
+inline GpuVec4 toGpu(Vec3 v, float w) {
+  return {v.x, v.y, v.z, w};
+}
 struct alignas(16) GpuUVec4 {
   std::uint32_t x, y, z, w;
 };

@@ -142,7 +142,7 @@ struct World::Impl {
   /// One past the last particle of body slot `body`.
   std::uint32_t particleEnd(std::uint32_t body) const { return particleEnds[body]; }
 
-  // Setup (world.cpp)
+  // Bodies (world_bodies.cpp)
   std::uint32_t addBodies(const ParticleTemplate& shape, const std::vector<BodyDesc>& descs,
                           bool granule);
   /// Throws CapacityExceeded naming the limit unless this many more bodies and particles fit.
@@ -152,6 +152,16 @@ struct World::Impl {
   std::uint32_t placedCalm(const BodyDesc& desc) const;
   void uploadBodyStates(std::uint32_t first, const std::vector<BodyDesc>& descs,
                         const ParticleTemplate& shape);
+  /// Throws InvalidArgument when a granule meeting a sampled surface (ParticleTemplate::
+  /// surfaceSpacing) at maxSpeed would get between its samples (HertzMindlin;
+  /// surfacePassOverlap).
+  void requireImpenetrableSurface(const ParticleTemplate& shape) const;
+  void requireBody(BodyId id) const;
+  /// The particles of the bodies from slot `firstBody` on, just added from the CPU, are checked
+  /// for deep initial overlaps at the next step.
+  void checkOverlapsFrom(std::uint32_t firstBody);
+
+  // Colliders (world_colliders.cpp)
   // Wakes the sleeping granules whose centres lie in `box` (wake_region.comp); nothing without
   // sleep.
   void wakeBox(const detail::Bounds& box);
@@ -160,17 +170,9 @@ struct World::Impl {
   /// Throws InvalidArgument for a thin wall (cylinder, funnel) moving so fast that a granule's
   /// particle meeting it would pass through (HertzMindlin; the paper's law caps the overlap).
   void requireUntunnelledWall(const ColliderShape& shape) const;
-  /// Throws InvalidArgument when a granule meeting a sampled surface (ParticleTemplate::
-  /// surfaceSpacing) at maxSpeed would get between its samples (HertzMindlin;
-  /// surfacePassOverlap).
-  void requireImpenetrableSurface(const ParticleTemplate& shape) const;
-  void requireBody(BodyId id) const;
 
   /// Particles [first, end) take their state from their bodies before the next contacts.
   void markParticlesDirty(std::uint32_t first, std::uint32_t end);
-  /// The particles of the bodies from slot `firstBody` on, just added from the CPU, are checked
-  /// for deep initial overlaps at the next step.
-  void checkOverlapsFrom(std::uint32_t firstBody);
   /// The contacts of particles [first, end) deeper than `minOverlap` (m), each pair once or, with
   /// `bothSides`, from each listed particle's side (contacts.comp compiled for CONTACT_LIST);
   /// sorted. Sync point.

@@ -1,0 +1,71 @@
+// The frame: World::step's accumulator of fixed substeps, and World::substep.
+#include "sandphys/world.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+
+#include "core/world_impl.h"
+
+namespace sandphys {
+
+using namespace detail;
+
+StepReport World::step(float frameDt) {
+  Impl& w = impl();
+  StepReport report;
+  if (!std::isfinite(frameDt) || frameDt <= 0.0f) return report;
+  w.gpu->makeCurrent();
+  w.accumulator += frameDt;
+  const double dt = w.model.timeStep;
+  // Compared in double before any integer conversion: a frame of more substeps than an integer
+  // holds is dropped like any other beyond the cap, never wrapped to none.
+  const double needed = std::floor(w.accumulator / dt);
+  std::uint64_t due = 0;
+  if (needed > double(w.settings.maxSubstepsPerFrame)) {
+    report.droppedTime = float((needed - w.settings.maxSubstepsPerFrame) * dt);
+    if (!w.warnedDroppedTime) {
+      std::fprintf(stderr,
+                   "sandphys: a frame of %.4g s needs %.4g substeps of %.3g s, more than "
+                   "WorldSettings.maxSubstepsPerFrame = %u; the rest is dropped (slow motion). "
+                   "This warning is printed once; StepReport::droppedTime has every frame's.\n",
+                   double(frameDt), needed, dt, w.settings.maxSubstepsPerFrame);
+      w.warnedDroppedTime = true;
+    }
+    due = w.settings.maxSubstepsPerFrame;
+    w.accumulator = 0.0;
+  } else {
+    due = std::uint64_t(needed);
+    w.accumulator -= double(due) * dt;
+  }
+  report.initialOverlaps = w.checkInitialOverlaps();
+  if (w.profiler.enabled()) w.profiler.resetTotals();
+  w.buffers.bindAll();
+  for (std::uint64_t i = 0; i < due; ++i) {
+    w.emit(dt, &report);
+    w.runSubstep();
+  }
+  report.substeps = std::uint32_t(due);
+  report.simulatedTime = float(double(due) * dt);
+  if (w.profiler.enabled()) w.profiler.collect();
+  if (w.settings.statsEachFrame) {
+    report.stats = w.reduceStats();
+    report.hasStats = true;
+  }
+  return report;
+}
+
+void World::substep(std::uint32_t count) {
+  Impl& w = impl();
+  w.gpu->makeCurrent();
+  if (count > 0) w.checkInitialOverlaps();
+  if (w.profiler.enabled()) w.profiler.resetTotals();
+  w.buffers.bindAll();
+  for (std::uint32_t i = 0; i < count; ++i) {
+    w.emit(w.model.timeStep, nullptr);
+    w.runSubstep();
+  }
+  if (w.profiler.enabled()) w.profiler.collect();
+}
+
+}  // namespace sandphys
