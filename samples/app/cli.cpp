@@ -231,6 +231,7 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
   std::optional<std::string> seed;
   std::optional<std::string> mesh;
   std::optional<std::string> scale;
+  std::optional<std::string> fit;
   std::optional<std::string> friction;
   std::optional<std::string> outlet;
   std::optional<std::string> granules;
@@ -276,6 +277,10 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
   app.add_option("--mesh", mesh, "rock-drop: the mesh file to drop (OBJ, STL, PLY, glTF/GLB)")
       ->type_name("FILE");
   app.add_option("--scale", scale, "rock-drop: scale factor applied to the mesh")->type_name("S");
+  app.add_option("--fit", fit,
+                 "rock-drop: scale the mesh so that its largest extent is M metres (in place of "
+                 "--scale); the bed grows to fit the rock")
+      ->type_name("M");
   app.add_option(
          "--friction", friction,
          "friction coefficient (hourglass: of the grains, the wall's is --param wall-friction; "
@@ -433,6 +438,7 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
       if (seed) applyParameter(*options.scene, "--seed", "seed", *seed);
       if (mesh) applyParameter(*options.scene, "--mesh", "mesh", *mesh);
       if (scale) applyParameter(*options.scene, "--scale", "scale", *scale);
+      if (fit) applyParameter(*options.scene, "--fit", "fit", *fit);
       if (friction) applyParameter(*options.scene, "--friction", "friction", *friction);
       if (outlet) applyParameter(*options.scene, "--outlet", "outlet", *outlet);
       if (granules) applyParameter(*options.scene, "--granules", "granules", *granules);
@@ -465,7 +471,7 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
       } catch (const Error& error) {
         // The flags that shaped the scene, as given.
         std::string given;
-        for (const char* name : {"--batches", "--batch", "--seed", "--mesh", "--scale",
+        for (const char* name : {"--batches", "--batch", "--seed", "--mesh", "--scale", "--fit",
                                  "--friction", "--outlet", "--granules", "--param"}) {
           const CLI::Option* option = app.get_option(name);
           if (option->count() == 0) continue;

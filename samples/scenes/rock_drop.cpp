@@ -64,11 +64,16 @@ float radians(float degrees) {
 struct RockDrop::LoadedRock {
   std::string path;
   float scale = 0.0f;
+  float fit = 0.0f;
   float diameter = 0.0f;
+  float meshScale = 0.0f;  // the factor applied: fit's or scale
   float density = 0.0f;
   TriangleMesh mesh;  // scaled to metres
   SampledMesh sampled;
   Vec3 centreOfMass{};  // in the mesh's frame, m
+  // The extent turned as the rock is let go, for the tilt it was computed at (dropExtent).
+  mutable float extentTilt = std::numeric_limits<float>::quiet_NaN();
+  mutable Extent dropExtent{};
 };
 
 RockDrop::RockDrop() : RockDrop(Config{}) {}
@@ -79,8 +84,8 @@ RockDrop::RockDrop(const Config& config) : m_config(config) {
 
 const RockDrop::LoadedRock& RockDrop::loadedRock() const {
   const LoadedRock* old = m_loaded.get();
-  if (old && old->path == m_config.mesh && old->scale == m_config.scale && old->diameter == d() &&
-      old->density == m_config.density) {
+  if (old && old->path == m_config.mesh && old->scale == m_config.scale &&
+      old->fit == m_config.fit && old->diameter == d() && old->density == m_config.density) {
     return *old;
   }
   // The parameter ranges are checked when they are set from text; a Config set in code is
@@ -89,6 +94,10 @@ const RockDrop::LoadedRock& RockDrop::loadedRock() const {
     throw InvalidArgument("rock-drop: scale = " + numberText(m_config.scale) +
                           " must be finite and > 0 (m per mesh unit)");
   }
+  if (!(m_config.fit >= 0.0f) || !std::isfinite(m_config.fit)) {
+    throw InvalidArgument("rock-drop: fit = " + numberText(m_config.fit) +
+                          " must be finite and >= 0 (m; 0: scale applies)");
+  }
   if (!(m_config.density > 0.0f) || !std::isfinite(m_config.density)) {
     throw InvalidArgument("rock-drop: density = " + numberText(m_config.density) +
                           " must be finite and > 0 (kg/m^3)");
@@ -96,13 +105,24 @@ const RockDrop::LoadedRock& RockDrop::loadedRock() const {
   auto rock = std::make_shared<LoadedRock>();
   rock->path = m_config.mesh;
   rock->scale = m_config.scale;
+  rock->fit = m_config.fit;
   rock->diameter = d();
   rock->density = m_config.density;
   // loadMesh and sampleMesh name the file in every MeshError.
   rock->mesh = loadMesh(m_config.mesh);
-  for (Vec3& v : rock->mesh.vertices) {
-    v = {v.x * m_config.scale, v.y * m_config.scale, v.z * m_config.scale};
+  rock->meshScale = m_config.scale;
+  if (m_config.fit > 0.0f) {
+    Eigen::Vector3f lo = Eigen::Vector3f::Constant(std::numeric_limits<float>::infinity());
+    Eigen::Vector3f hi = -lo;
+    for (const Vec3& v : rock->mesh.vertices) {
+      lo = lo.cwiseMin(toEigen(v));
+      hi = hi.cwiseMax(toEigen(v));
+    }
+    // validateMesh guarantees a triangle with an area, so the extent is not zero.
+    rock->meshScale = m_config.fit / (hi - lo).maxCoeff();
   }
+  const float scale = rock->meshScale;
+  for (Vec3& v : rock->mesh.vertices) v = {v.x * scale, v.y * scale, v.z * scale};
   // A closed mesh is filled as well: a grain that gets through the surface layer in a hard
   // landing still meets particles inside instead of an empty shell. An open one has no inside.
   const bool closed = analyseEdges(rock->mesh).closed();
@@ -116,10 +136,11 @@ const RockDrop::LoadedRock& RockDrop::loadedRock() const {
   const float lightest = tetrahedronTemplate(d(), Material{}.density).mass / 4.0f;
   if (rock->sampled.shape.mass < lightest) {
     throw InvalidArgument(
-        "rock-drop: the rock from '" + m_config.mesh + "' at scale " + numberText(m_config.scale) +
+        "rock-drop: the rock from '" + m_config.mesh + "' at scale " + numberText(scale) +
         " and density " + numberText(m_config.density) + " kg/m^3 weighs " +
         numberText(rock->sampled.shape.mass) + " kg, less than one sand particle (" +
-        numberText(lightest) + " kg), which the time step cannot resolve: raise scale or density");
+        numberText(lightest) +
+        " kg), which the time step cannot resolve: raise scale (or fit) or density");
   }
   m_loaded = std::move(rock);
   return *m_loaded;
@@ -133,12 +154,32 @@ std::uint32_t RockDrop::rockParticles() const {
   return static_cast<std::uint32_t>(loadedRock().sampled.centres.size());
 }
 
+float RockDrop::meshScale() const {
+  return loadedRock().meshScale;
+}
+
+Count3 RockDrop::bedCounts() const {
+  // The rock, turned as it is let go, must land on sand, not on a wall: the box's inner half
+  // width (kWallGap beyond the lattice's outer centres) holds everything it covers.
+  const Extent& turned = dropExtent();
+  Count3 counts = m_config.bed;
+  for (const auto& [axis, reach] : {std::pair{0, std::max(-turned.min.x(), turned.max.x())},
+                                    std::pair{2, std::max(-turned.min.z(), turned.max.z())}}) {
+    const float needed = (reach + 0.5f * d()) / d() - kWallGap;  // lattice half width, d
+    const auto fitting = static_cast<std::uint32_t>(
+        std::ceil(std::max(0.0f, 2.0f * needed / kDefaultGranuleSpacing - 1e-4f)) + 1.0f);
+    counts[std::size_t(axis)] = std::max(counts[std::size_t(axis)], fitting);
+  }
+  return counts;
+}
+
 std::uint32_t RockDrop::bedGranules() const {
-  return m_config.bed[0] * m_config.bed[1] * m_config.bed[2];
+  const Count3 bed = bedCounts();
+  return bed[0] * bed[1] * bed[2];
 }
 
 float RockDrop::halfWidth(int axis) const {
-  const float count = static_cast<float>(m_config.bed[axis] - 1);
+  const float count = static_cast<float>(bedCounts()[std::size_t(axis)] - 1);
   return (0.5f * count * kDefaultGranuleSpacing + kWallGap) * d();
 }
 
@@ -160,12 +201,21 @@ RockDrop::Extent RockDrop::turnedExtent(const Quat& orientation) const {
   return extent;
 }
 
+const RockDrop::Extent& RockDrop::dropExtent() const {
+  const LoadedRock& rock = loadedRock();
+  if (rock.extentTilt != m_config.tilt) {
+    rock.dropExtent = turnedExtent(dropOrientation());
+    rock.extentTilt = m_config.tilt;
+  }
+  return rock.dropExtent;
+}
+
 float RockDrop::rockBelow() const {
-  return -turnedExtent(dropOrientation()).min.y();
+  return -dropExtent().min.y();
 }
 
 float RockDrop::rockAbove() const {
-  return turnedExtent(dropOrientation()).max.y();
+  return dropExtent().max.y();
 }
 
 float RockDrop::boxHeight() const {
@@ -195,23 +245,6 @@ WorldSettings RockDrop::worldSettings() const {
   settings.maxBodies = static_cast<std::uint32_t>(granules + 1);
   settings.maxParticles = static_cast<std::uint32_t>(particles);
 
-  // The rock must land on sand, not on a wall: everything it covers, turned as it is let go,
-  // stays inside the box.
-  const Extent turned = turnedExtent(dropOrientation());
-  const float reachX = std::max(-turned.min.x(), turned.max.x());
-  const float reachZ = std::max(-turned.min.z(), turned.max.z());
-  const float radius = 0.5f * d();
-  for (const auto& [axis, reach] : {std::pair{0, reachX}, std::pair{2, reachZ}}) {
-    if (reach + radius > halfWidth(axis)) {
-      throw InvalidArgument("rock-drop: the rock from '" + m_config.mesh + "' at scale " +
-                            numberText(m_config.scale) + " reaches " + numberText(reach + radius) +
-                            " m from the box's centre along " + (axis == 0 ? "x" : "z") +
-                            ", beyond the box's inner half width " + numberText(halfWidth(axis)) +
-                            " m (a bed of " + std::to_string(m_config.bed[axis]) +
-                            " granules along it): lower scale or widen bed");
-    }
-  }
-
   const float lowestAtDrop = boxHeight() - kHeadroom * d() - rockAbove() - rockBelow();
   settings.maxSpeed = std::max(
       kMinGuardSpeed, kGuardMargin * std::sqrt(2.0f * gravityMagnitude(settings) * lowestAtDrop));
@@ -236,11 +269,12 @@ void RockDrop::build(World& world) {
                         .halfExtents = {halfWidth(0), 0.5f * height, halfWidth(2)},
                         .inside = true});
   const float spacing = kDefaultGranuleSpacing * d();
-  const float bedHeight = static_cast<float>(m_config.bed[1] - 1) * spacing;
+  const Count3 bed = bedCounts();
+  const float bedHeight = static_cast<float>(bed[1] - 1) * spacing;
   world.addGranules(GranuleBlock{.center = {0.0f, kBedClearance * d() + 0.5f * bedHeight, 0.0f},
-                                 .countX = m_config.bed[0],
-                                 .countY = m_config.bed[1],
-                                 .countZ = m_config.bed[2],
+                                 .countX = bed[0],
+                                 .countY = bed[1],
+                                 .countZ = bed[2],
                                  .spacing = spacing,
                                  .seed = m_config.seed});
 }
@@ -393,8 +427,11 @@ std::vector<SceneParameter> RockDrop::parameters() {
   return {
       {"mesh", "mesh file of the rock (OBJ, STL, PLY, glTF/GLB)", &m_config.mesh},
       {"scale", "factor on the mesh's coordinates, m per mesh unit", &m_config.scale, 1e-6, 1e6},
+      {"fit", "largest extent of the rock, m (scales the mesh to it in place of scale; 0: off)",
+       &m_config.fit, 0.0, 1e3},
       {"density", "density of the rock, kg/m^3", &m_config.density, 1.0, 1e5},
-      {"bed", "granules of the sand bed along x, y (layers), z", &m_config.bed, 1, 1024},
+      {"bed", "granules of the sand bed along x, y (layers), z (x and z grow to fit the rock)",
+       &m_config.bed, 1, 1024},
       {"drop-height", "gap between the settled bed's top and the rock when let go, d",
        &m_config.dropHeight, 0.0, 1e4},
       {"tilt", "tilt of the rock when let go, degrees", &m_config.tilt, 0.0, 90.0},

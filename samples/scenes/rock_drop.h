@@ -32,6 +32,9 @@ class RockDrop final : public Scene {
     /// Factor applied to the mesh's coordinates, m per mesh unit; > 0. The default turns the
     /// 1-unit assets/rock.obj into a rock 0.14 m (7 d) long.
     float scale = 0.14f;
+    /// Largest extent of the rock along x, y or z, m; > 0 scales the mesh to it (in place of
+    /// `scale`), so that a mesh in any unit makes a rock of this size. 0: `scale` applies.
+    float fit = 0.0f;
     /// Density of the rock, kg/m³. The default is a light stone (pumice is 400 to 1200), about
     /// the settled bed's bulk density (1100 kg/m³: granules of 0.044 kg, 4 particles of 2600
     /// kg/m³, loosely packed). The contact model's friction has no static part: below the
@@ -40,7 +43,8 @@ class RockDrop final : public Scene {
     /// at about 1 cm/s until it reaches the floor; one about as dense as the bed slows to a few
     /// mm/s within a second of landing, sunk in by about 1 d.
     float density = 1000.0f;
-    /// Granules of the bed along x, y (layers) and z.
+    /// Granules of the bed along x, y (layers) and z; along x and z at least, grown so that the
+    /// rock, turned as it is let go, lands on sand inside the box (bedCounts()).
     Count3 bed{12, 5, 12};
     /// Gap between the settled bed's top and the rock's lowest particle when it is let go, d.
     float dropHeight = 8.0f;
@@ -103,6 +107,11 @@ class RockDrop final : public Scene {
 
   /// Granules in the bed.
   std::uint32_t bedGranules() const;
+  /// Granules of the bed along x, y and z: Config::bed, grown along x and z where the rock would
+  /// reach beyond the box's inside.
+  Count3 bedCounts() const;
+  /// The factor from the mesh file's units to metres (Config::fit or Config::scale).
+  float meshScale() const;
   /// Particles the rock is sampled into (loads the mesh if needed).
   std::uint32_t rockParticles() const;
   /// The rock's mesh, scaled to metres, in its file's frame (loads it if needed).
@@ -134,6 +143,8 @@ class RockDrop final : public Scene {
     Eigen::Vector3f max;
   };
   Extent turnedExtent(const Quat& orientation) const;
+  // turnedExtent(dropOrientation()), kept with the loaded rock: the box and the bed follow it.
+  const Extent& dropExtent() const;
   // Below and above the centre of mass of the tilted rock, m (both >= 0).
   float rockBelow() const;
   float rockAbove() const;

@@ -103,12 +103,24 @@ TEST(SamplesCli, MeshThatCannotMakeABodyIsNamedWithItsProblem) {
                    {"--mesh", points.path().c_str(), "no triangles"});
 }
 
-TEST(SamplesCli, MeshScaleMustBeAPositiveNumberThatFitsTheBox) {
+TEST(SamplesCli, MeshScaleAndFitMustBePositiveNumbers) {
   expectUsageError("--headless --scene rock-drop --scale -1", {"--scale", "-1", "range"});
   expectUsageError("--headless --scene rock-drop --scale 0", {"--scale", "0", "range"});
   expectUsageError("--headless --scene rock-drop --scale nan", {"--scale", "nan", "not finite"});
-  // 1 m across: wider than the box around the default bed.
-  expectUsageError("--headless --scene rock-drop --scale 1", {"scale 1", "half width"});
+  expectUsageError("--headless --scene rock-drop --fit -0.2", {"--fit", "-0.2", "range"});
+  expectUsageError("--headless --scene rock-drop --fit inf", {"--fit", "inf"});
+}
+
+// Any model of assimp's test set, in whatever unit it was made, becomes a rock of the size asked
+// for, on a bed grown to hold it: no scale to compute by hand.
+TEST(SamplesCli, AnyMeshFitsTheRockDrop) {
+  for (const char* model :
+       {"/usr/share/assimp/models/PLY/Wuson.ply", "/usr/share/assimp/models/OBJ/spider.obj",
+        "/usr/share/assimp/models/STL/Spider_binary.stl"}) {
+    const ProcessResult result = runSamples(
+        std::string("--headless --quiet --scene rock-drop --fit 0.2 --frames 2 --mesh ") + model);
+    EXPECT_EQ(result.exitCode, 0) << model << "\n" << result.output;
+  }
 }
 
 TEST(SamplesCli, MeshOnASceneWithoutOne) {

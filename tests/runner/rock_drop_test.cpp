@@ -6,6 +6,7 @@
 // would fail.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -45,6 +46,33 @@ double windingNumber(const TriangleMesh& mesh, const Vec3& p) {
     total += 2.0 * std::atan2(det, denominator);
   }
   return total / (4.0 * std::numbers::pi);
+}
+
+// fit scales the mesh to a largest extent of that many metres, and a rock wider than the bed
+// grows the bed (along x and z only) until the box holds the rock as it is let go.
+TEST(RockDrop, FitSizesTheRockAndTheBedGrowsToHoldIt) {
+  RockDrop fitted;
+  fitted.config().fit = 0.3f;
+  Vec3 lo{1e9f, 1e9f, 1e9f}, hi{-1e9f, -1e9f, -1e9f};
+  for (const Vec3& v : fitted.rockMesh().vertices) {
+    lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
+    hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
+  }
+  EXPECT_NEAR(std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}), 0.3f, 1e-6f);
+
+  RockDrop wide;
+  wide.config().scale = 1.0f;  // 1 m across: the default 12 x 12 bed is 0.6 m wide
+  const Count3 bed = wide.bedCounts();
+  EXPECT_GT(bed[0], 12u);
+  EXPECT_GT(bed[2], 12u);
+  EXPECT_EQ(bed[1], wide.config().bed[1]);
+  EXPECT_EQ(wide.settings().maxBodies, bed[0] * bed[1] * bed[2] + 1u);
+  // The box is at least as wide as the rock (1 m along its longest axis, turned as it is let
+  // go: at least half of that on each side of its centre along x or z).
+  const SceneBounds box = wide.bounds();
+  EXPECT_GT(std::max(box.max.x, box.max.z), 0.5f);
+  // The default rock fits the default bed, which stays as it was.
+  EXPECT_EQ(RockDrop{}.bedCounts(), (Count3{12, 5, 12}));
 }
 
 TEST(RockDrop, RockSinksIntoTheBedAndComesToRestOnSand) {
