@@ -164,8 +164,8 @@ struct SampledMesh {
   /// Mass, centre of mass (in the mesh's frame) and inertia that the shape was built from.
   MassProperties massProperties;
   /// What the caller should know: an open mesh and its fallback, inward winding, more particles
-  /// than kLargeBodyWarningParticles. Each is also printed to stderr once, when sampleMesh finds
-  /// it.
+  /// than kLargeBodyWarningParticles. Each is also logged once (setLogHandler), when sampleMesh
+  /// finds it.
   std::vector<std::string> warnings;
 };
 

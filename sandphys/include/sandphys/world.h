@@ -11,9 +11,9 @@
 #include "sandphys/gpu_context.h"
 #include "sandphys/ids.h"
 #include "sandphys/readback.h"
-#include "sandphys/recording.h"
 #include "sandphys/settings.h"
 #include "sandphys/sleep_model.h"
+#include "sandphys/snapshot.h"
 #include "sandphys/spawn.h"
 #include "sandphys/step_report.h"
 
@@ -113,7 +113,8 @@ class World {
   // --- Simulation --------------------------------------------------------------------------
   /// Advances by `frameDt` seconds in whole fixed substeps: an accumulator carries the remainder
   /// to the next call; at most maxSubstepsPerFrame run and the rest is dropped (reported, and a
-  /// warning is printed once). Does not throw; non-finite or negative frameDt runs nothing.
+  /// warning is logged once, setLogHandler). Does not throw; non-finite or negative frameDt runs
+  /// nothing.
   StepReport step(float frameDt);
   /// Runs exactly `count` substeps, bypassing the accumulator (tests, single stepping).
   void substep(std::uint32_t count = 1);

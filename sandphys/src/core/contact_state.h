@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "core/world_impl.h"
-#include "sandphys/recording.h"
+#include "sandphys/snapshot.h"
 
 namespace sandphys::detail {
 

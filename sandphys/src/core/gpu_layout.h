@@ -8,7 +8,7 @@
 
 #include "sandphys/math.h"
 
-#include "sandphys/recording.h"
+#include "sandphys/snapshot.h"
 
 namespace sandphys::detail {
 

@@ -5,7 +5,7 @@
 
 #include "sandphys/body.h"
 #include "sandphys/math.h"
-#include "sandphys/recording.h"
+#include "sandphys/snapshot.h"
 
 namespace sandphys::detail {
 

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/contact_state.h"
+#include "core/log.h"
 #include "core/world_impl.h"
 #include "gl/gl_check.h"
 
@@ -223,14 +224,16 @@ InitialOverlaps World::Impl::checkInitialOverlaps() {
   result.particles = std::uint32_t(particles.size());
   if (result.particles > 0) {
     const double d = settings.particleDiameter;
-    std::fprintf(stderr,
-                 "sandphys: warning: %u particles of the bodies added before this step start "
-                 "overlapping by more than %.3g d (worst %.3g d: body %u with %s %u); contacts "
-                 "push them apart at once, with the energy of the overlap. Place them apart "
-                 "(StepReport::initialOverlaps has the numbers).\n",
-                 result.particles, double(kInitialOverlapTolerance), result.worstOverlap / d,
-                 result.body.index, result.collider.isValid() ? "collider" : "body",
-                 result.collider.isValid() ? result.collider.index : result.otherBody.index);
+    char message[400];
+    std::snprintf(message, sizeof message,
+                  "%u particles of the bodies added before this step start overlapping by more "
+                  "than %.3g d (worst %.3g d: body %u with %s %u); contacts push them apart at "
+                  "once, with the energy of the overlap. Place them apart "
+                  "(StepReport::initialOverlaps has the numbers).",
+                  result.particles, double(kInitialOverlapTolerance), result.worstOverlap / d,
+                  result.body.index, result.collider.isValid() ? "collider" : "body",
+                  result.collider.isValid() ? result.collider.index : result.otherBody.index);
+    log(LogLevel::Warning, message);
   }
   return result;
 }

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 
+#include "core/log.h"
 #include "core/world_impl.h"
 
 namespace sandphys {
@@ -25,11 +26,13 @@ StepReport World::step(float frameDt) {
   if (needed > double(w.settings.maxSubstepsPerFrame)) {
     report.droppedTime = float((needed - w.settings.maxSubstepsPerFrame) * dt);
     if (!w.warnedDroppedTime) {
-      std::fprintf(stderr,
-                   "sandphys: a frame of %.4g s needs %.4g substeps of %.3g s, more than "
-                   "WorldSettings.maxSubstepsPerFrame = %u; the rest is dropped (slow motion). "
-                   "This warning is printed once; StepReport::droppedTime has every frame's.\n",
-                   double(frameDt), needed, dt, w.settings.maxSubstepsPerFrame);
+      char message[320];
+      std::snprintf(message, sizeof message,
+                    "a frame of %.4g s needs %.4g substeps of %.3g s, more than "
+                    "WorldSettings.maxSubstepsPerFrame = %u; the rest is dropped (slow motion). "
+                    "This warning is given once; StepReport::droppedTime has every frame's.",
+                    double(frameDt), needed, dt, w.settings.maxSubstepsPerFrame);
+      log(LogLevel::Warning, message);
       w.warnedDroppedTime = true;
     }
     due = w.settings.maxSubstepsPerFrame;

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <numbers>
 
+#include "core/log.h"
 #include "core/validation.h"
 #include "mesh/mesh_checks.h"
 #include "mesh/samplers.h"
@@ -128,7 +129,7 @@ SampledMesh sampleMesh(const TriangleMesh& mesh, float particleDiameter,
         " m), fillVolume off, a larger particle diameter or a smaller mesh lowers it");
   }
   for (const std::string& warning : result.warnings) {
-    std::fprintf(stderr, "sandphys: warning: %s\n", warning.c_str());
+    detail::log(LogLevel::Warning, warning);
   }
   return result;
 }
