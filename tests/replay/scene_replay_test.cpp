@@ -12,7 +12,6 @@
 #include "app/recording.h"
 #include "app/replay.h"
 #include "app/run.h"
-#include "core/world_impl.h"
 #include "replay/recorded_scene.h"
 #include "scenes/registry.h"
 #include "support/test_world.h"
@@ -110,16 +109,6 @@ TEST_P(SleepingSceneReplay, ReplaysBitIdentically) {
 INSTANTIATE_TEST_SUITE_P(EveryScene, SleepingSceneReplay, ::testing::ValuesIn(sceneNames()),
                          testName);
 
-// One unit in the last place of granule `body`'s velocity y, in the GPU's own buffer.
-void nudgeVelocity(World& world, std::uint32_t body) {
-  testing::gpu().makeCurrent();
-  const std::size_t offset = 16 * std::size_t(body) + 4;
-  std::uint32_t bits = 0;
-  world.impl().buffers[detail::kBodyVelocity].download(offset, sizeof bits, &bits);
-  bits += 1u;
-  world.impl().buffers[detail::kBodyVelocity].upload(offset, sizeof bits, &bits);
-}
-
 TEST(PerturbedReplay, IsCaughtAtTheFrameAndNamesTheGranule) {
   constexpr std::uint32_t kGranule = 21;
   constexpr std::uint64_t kFrame = 10;
@@ -129,7 +118,7 @@ TEST(PerturbedReplay, IsCaughtAtTheFrameAndNamesTheGranule) {
   Recording recording = readRecording(file);
   std::filesystem::remove(file);
   const ReplayHook nudge = [&](World& world, std::uint64_t frame) {
-    if (frame == kFrame) nudgeVelocity(world, kGranule);
+    if (frame == kFrame) testing::flipVelocityBit(world, kGranule, 1);
   };
   // With the frame's own snapshot: the granule, the field and both values one bit apart.
   ReplayResult replay = replayRecording(testing::gpu(), recording, nudge);

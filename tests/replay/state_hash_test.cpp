@@ -6,22 +6,10 @@
 #include <cstring>
 #include <vector>
 
-#include "core/world_impl.h"
 #include "support/test_world.h"
 
 namespace sandphys {
 namespace {
-
-// Flips the lowest bit of body `body`'s velocity component `axis` in the GPU's own buffer: a
-// change of one unit in the last place that no public call could make without rounding.
-void flipVelocityBit(World& world, std::uint32_t body, int axis) {
-  testing::gpu().makeCurrent();
-  const std::size_t offset = 16 * std::size_t(body) + 4 * std::size_t(axis);
-  std::uint32_t bits = 0;
-  world.impl().buffers[detail::kBodyVelocity].download(offset, sizeof bits, &bits);
-  bits ^= 1u;
-  world.impl().buffers[detail::kBodyVelocity].upload(offset, sizeof bits, &bits);
-}
 
 void addPile(World& world, std::uint32_t countX, std::uint32_t countY, std::uint32_t countZ) {
   world.addCollider(Plane{});
@@ -43,7 +31,7 @@ TEST(StateHash, TheGpuHashIsItsCpuTwinAndFollowsOneBitOfOneBody) {
   EXPECT_EQ(hash, stateHash(before));
   EXPECT_EQ(w->readStateHash(), hash) << "reading the hash changed the state";
 
-  flipVelocityBit(*w, 17, 1);
+  testing::flipVelocityBit(*w, 17, 1);
   const WorldSnapshot after = w->readSnapshot();
   const std::uint64_t changed = w->readStateHash();
   EXPECT_NE(changed, hash);
@@ -68,7 +56,7 @@ TEST(StateHash, CoversBodiesBeyondOneStrideOfTheReduction) {
   addPile(*w, 30, 10, 30);
   const std::uint64_t hash = w->readStateHash();
   EXPECT_EQ(hash, stateHash(w->readSnapshot()));
-  flipVelocityBit(*w, 8999, 2);
+  testing::flipVelocityBit(*w, 8999, 2);
   EXPECT_NE(w->readStateHash(), hash);
   EXPECT_EQ(w->readStateHash(), stateHash(w->readSnapshot()));
 }

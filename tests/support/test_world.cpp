@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/world_access.h"
+
 namespace sandphys::testing {
 
 std::string errorMessageOf(const std::function<void()>& call) {
@@ -16,6 +18,16 @@ std::string errorMessageOf(const std::function<void()>& call) {
 const GpuContext& gpu() {
   static GpuContext context = GpuContext::headless();
   return context;
+}
+
+void flipVelocityBit(World& world, std::uint32_t body, int axis) {
+  gpu().makeCurrent();
+  const std::size_t offset = 16 * std::size_t(body) + 4 * std::size_t(axis);
+  gl::Buffer& velocity = detail::WorldAccess::impl(world).buffers[detail::kBodyVelocity];
+  std::uint32_t bits = 0;
+  velocity.download(offset, sizeof bits, &bits);
+  bits ^= 1u;
+  velocity.upload(offset, sizeof bits, &bits);
 }
 
 WorldSettings smallSettings(std::uint32_t maxBodies) {

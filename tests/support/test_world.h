@@ -15,6 +15,10 @@ std::string errorMessageOf(const std::function<void()>& call);
 /// The one headless GL context of a test process (created on first use).
 const GpuContext& gpu();
 
+/// Flips the lowest bit of body slot `body`'s velocity component `axis` in the GPU's own buffer:
+/// a change of one unit in the last place that no public call could make without rounding.
+void flipVelocityBit(World& world, std::uint32_t body, int axis);
+
 /// Settings for small test scenes: default material, capacity for `maxBodies` bodies.
 WorldSettings smallSettings(std::uint32_t maxBodies = 256);
 

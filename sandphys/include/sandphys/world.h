@@ -19,6 +19,10 @@
 
 namespace sandphys {
 
+namespace detail {
+struct WorldAccess;
+}
+
 /// A contiguous run of body slots, as returned by World::addGranules.
 struct BodyRange {
   std::uint32_t first = 0;
@@ -159,12 +163,14 @@ class World {
   /// without the queries' cost and then profile another. Off, kernelTimes() is empty.
   void setProfileKernels(bool enabled);
 
+  /// Internal; opaque outside the library.
   struct Impl;
-  /// Internal: for gl_interop.h and the test suite.
+
+ private:
+  friend struct detail::WorldAccess;  // gl_interop.h and the test suite
   Impl& impl();
   const Impl& impl() const;
 
- private:
   std::unique_ptr<Impl> m_impl;
 };
 

@@ -1,6 +1,6 @@
 #include "sandphys/gl_interop.h"
 
-#include "core/world_impl.h"
+#include "core/world_access.h"
 
 namespace sandphys {
 
@@ -10,7 +10,7 @@ static_assert(kBodyFlagGranule == detail::kBodyGranule);
 static_assert(kBodyMotionShift == detail::kBodyMotionShift);
 
 RenderBuffers renderBuffers(const World& world) {
-  const World::Impl& w = world.impl();
+  const World::Impl& w = detail::WorldAccess::impl(world);
   RenderBuffers b;
   b.bodyPosition = w.buffers[detail::kBodyPosition].id();
   b.bodyOrientation = w.buffers[detail::kBodyOrientation].id();
