@@ -80,15 +80,6 @@ std::vector<Vec3> granuleCorners(float d) {
   return {{h, h, h}, {h, -h, -h}, {-h, h, -h}, {-h, -h, h}};
 }
 
-// Rotates `v` by the unit quaternion `q`.
-Vec3 rotate(const Quat& q, const Vec3& v) {
-  // v' = v + 2w (u × v) + 2 u × (u × v), u = (q.x, q.y, q.z).
-  const Vec3 t{2.0f * (q.y * v.z - q.z * v.y), 2.0f * (q.z * v.x - q.x * v.z),
-               2.0f * (q.x * v.y - q.y * v.x)};
-  return {v.x + q.w * t.x + (q.y * t.z - q.z * t.y), v.y + q.w * t.y + (q.z * t.x - q.x * t.z),
-          v.z + q.w * t.z + (q.x * t.y - q.y * t.x)};
-}
-
 // Crystal packing: every granule turned 45° about y. In the template's frame the particle
 // centres lie in two layers d/√2 apart (y = ±d/(2√2)), and the granules of a cubic lattice of
 // spacing √2 d fill each such layer as a square lattice of spacing d, diagonal to the cube axes.

@@ -27,22 +27,6 @@ struct ContactSet {
   std::vector<Vec3> directions;    // unit normals
 };
 
-Vec3 operator+(Vec3 a, Vec3 b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-Vec3 operator-(Vec3 a, Vec3 b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-Vec3 operator*(float s, Vec3 a) {
-  return {s * a.x, s * a.y, s * a.z};
-}
-float dot(Vec3 a, Vec3 b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-float length(Vec3 a) {
-  return std::sqrt(dot(a, a));
-}
-
 std::map<std::uint32_t, const BodyState*> granulesByIndex(const scenes::Compression::Snapshot& s) {
   std::map<std::uint32_t, const BodyState*> granules;
   for (const BodyState& body : s.bodies) {

@@ -20,29 +20,9 @@ using testing::TestWorld;
 
 constexpr double kPi = std::numbers::pi;
 
-Vec3 operator+(Vec3 a, Vec3 b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-Vec3 operator-(Vec3 a, Vec3 b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-Vec3 operator*(float s, Vec3 v) {
-  return {s * v.x, s * v.y, s * v.z};
-}
-double dot(Vec3 a, Vec3 b) {
-  return double(a.x) * b.x + double(a.y) * b.y + double(a.z) * b.z;
-}
-Vec3 cross(Vec3 a, Vec3 b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
+// In double: the drift and spin the tests bound are far below a float's step at the pile's size.
 double norm(Vec3 v) {
-  return std::sqrt(dot(v, v));
-}
-
-Quat multiply(Quat a, Quat b) {
-  return {
-      a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z, a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
-      a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x, a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w};
+  return std::sqrt(double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z);
 }
 
 // Rotation by `angle` (rad) about the unit `axis`.
@@ -88,7 +68,7 @@ BodyId granuleOnSlope(TestWorld& w, double theta, float along = 0.0f) {
   const Quat tilt = aboutAxis({0.0f, 0.0f, 1.0f}, theta);
   const Vec3 normal{float(-std::sin(theta)), float(std::cos(theta)), 0.0f};
   const Vec3 position = (restingHeight(d) + 1e-5f) * normal + along * downhill(theta);
-  return w.addGranule(position, multiply(tilt, faceDown()));
+  return w.addGranule(position, tilt * faceDown());
 }
 
 TEST(ContactMechanics, GranuleRestsOnASlopeBelowAtanMu) {

@@ -12,7 +12,8 @@
 namespace sandphys {
 namespace {
 
-double length(Vec3 v) {
+// In double, so that the 1e-6 m checks measure the template, not the rounding of a float norm.
+double norm(Vec3 v) {
   return std::sqrt(double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z);
 }
 
@@ -24,10 +25,10 @@ TEST(ParticleTemplate, TetrahedronHasTouchingParticlesAndIsotropicInertia) {
   EXPECT_NEAR(t.mass, 4.0 * m, 1e-6 * m);
   const double circumradius = d * std::sqrt(6.0) / 4.0;
   for (std::size_t i = 0; i < 4; ++i) {
-    EXPECT_NEAR(length(t.offsets[i]), circumradius, 1e-6);
+    EXPECT_NEAR(norm(t.offsets[i]), circumradius, 1e-6);
     for (std::size_t j = i + 1; j < 4; ++j) {
       Vec3 a = t.offsets[i], b = t.offsets[j];
-      EXPECT_NEAR(length({a.x - b.x, a.y - b.y, a.z - b.z}), d, 1e-6) << "edge " << i << j;
+      EXPECT_NEAR(norm(a - b), d, 1e-6) << "edge " << i << j;
     }
   }
   // Spheres: 4 (2/5 m r²) plus point masses at the corners: Σ m (|p|² - p_x²) = 8/3 m R².
@@ -96,7 +97,7 @@ TEST(BodyTemplate, TakesMassAndInertiaAsGiven) {
   EXPECT_NEAR(std::abs(t.offsets[0].x), 0.1, 1e-6);
   EXPECT_NEAR(t.offsets[0].y, 0.0, 1e-6);
   EXPECT_NEAR(t.offsets[0].z, 0.0, 1e-6);
-  EXPECT_NEAR(length(t.offsets[1]), 0.0, 1e-6);
+  EXPECT_NEAR(norm(t.offsets[1]), 0.0, 1e-6);
   EXPECT_NEAR(t.boundingRadius, 0.1, 1e-6);
   // The rotation takes the principal axes back to the given frame: x onto the turned long axis,
   // z onto z (each up to its sign, which an eigenvector does not have).

@@ -211,7 +211,7 @@ void World::setCollider(ColliderId id, const Funnel& f) {
 namespace {
 
 Vec3 displacementRate(Vec3 from, Vec3 to, float seconds) {
-  return {(to.x - from.x) / seconds, (to.y - from.y) / seconds, (to.z - from.z) / seconds};
+  return (to - from) / seconds;
 }
 
 // The plane's point nearest the origin (its motion's reference point).
@@ -226,7 +226,7 @@ Vec3 planePoint(const Plane& p) {
 Vec3 rotationRate(Quat from, Quat to, float seconds) {
   from = normalised(from, "Box.orientation");
   to = normalised(to, "Box.orientation");
-  Quat d = to * Quat{from.w, -from.x, -from.y, -from.z};
+  Quat d = to * conjugate(from);
   if (d.w < 0.0f) d = {-d.w, -d.x, -d.y, -d.z};
   const double s = std::sqrt(double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z);
   if (s == 0.0) return {};

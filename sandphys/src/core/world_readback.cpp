@@ -23,14 +23,6 @@ Vec3 xyz(const GpuVec4& v) {
   return {v.x, v.y, v.z};
 }
 
-// a · conj(b), both (w, x, y, z) and unit.
-Quat multiplyConjugate(Quat a, Quat b) {
-  Quat c{b.w, -b.x, -b.y, -b.z};
-  return {
-      a.w * c.w - a.x * c.x - a.y * c.y - a.z * c.z, a.w * c.x + a.x * c.w + a.y * c.z - a.z * c.y,
-      a.w * c.y - a.x * c.z + a.y * c.w + a.z * c.x, a.w * c.z + a.x * c.y - a.y * c.x + a.z * c.w};
-}
-
 template <typename T>
 std::vector<T> download(const gl::Buffer& buffer, std::uint32_t count) {
   std::vector<T> out(count);
@@ -66,7 +58,7 @@ std::vector<BodyState> World::readBodies() const {
     BodyState& s = out[i];
     s.index = i;
     s.position = xyz(stored.position[i]);
-    s.orientation = multiplyConjugate(fromGpu(stored.orientation[i]), w.principalRotations[i]);
+    s.orientation = fromGpu(stored.orientation[i]) * conjugate(w.principalRotations[i]);
     s.velocity = xyz(stored.velocity[i]);
     s.angularVelocity = xyz(stored.spin[i]);
     s.alive = (stored.info[i].z & kBodyAlive) != 0;
