@@ -78,16 +78,22 @@ class KeyScript {
   /// Parses `text` (the format above).
   static KeyScript parse(const std::string& text);
 
+  /// A key going down or up at the start of a frame.
+  struct Event {
+    std::uint64_t frame = 0;  ///< counted from 0
+    int key = 0;              ///< GLFW key code (GLFW_KEY_*)
+    bool press = true;        ///< true: down (GLFW_PRESS); false: up (GLFW_RELEASE)
+    bool operator==(const Event&) const = default;
+  };
+
   bool empty() const { return m_events.empty(); }
+  /// Each entry's press and then its release, in the order of the entries: "F@5" is F down at
+  /// frame 5 and up at 6, "P@2-9" P down at 2 and up at 10.
+  const std::vector<Event>& events() const { return m_events; }
   /// Feeds the presses and releases due at `frame` to `input`.
   void apply(std::uint64_t frame, Input& input) const;
 
  private:
-  struct Event {
-    std::uint64_t frame = 0;
-    int key = 0;
-    bool press = true;
-  };
   std::vector<Event> m_events;
 };
 

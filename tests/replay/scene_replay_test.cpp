@@ -14,15 +14,16 @@
 #include "app/run.h"
 #include "replay/recorded_scene.h"
 #include "scenes/registry.h"
+#include "support/every_scene.h"
 #include "support/test_world.h"
 
 namespace sandphys::samples {
 namespace {
 
-class SceneReplay : public ::testing::TestWithParam<std::string> {};
+class SceneReplay : public ::testing::TestWithParam<const scenes::SceneEntry*> {};
 
 TEST_P(SceneReplay, ReplaysBitIdenticallyAndKeepsToItsGolden) {
-  const std::string name = GetParam();
+  const std::string name(GetParam()->name);
   const std::filesystem::path file = tempRecording(name);
   std::unique_ptr<scenes::Scene> scene = goldenScene(name);
   const RunSummary run = recordScene(*scene, file, kGoldenFrames, 5);
@@ -56,31 +57,15 @@ TEST_P(SceneReplay, ReplaysBitIdenticallyAndKeepsToItsGolden) {
   EXPECT_TRUE(outside.empty()) << name << " left its golden " << goldenFile << ":" << text;
 }
 
-std::vector<std::string> sceneNames() {
-  std::vector<std::string> names;
-  for (const scenes::SceneEntry& entry : scenes::sceneRegistry()) {
-    names.emplace_back(entry.name);
-  }
-  return names;
-}
-
-// A scene's name as a test name ("rock-drop" -> "rock_drop").
-std::string testName(const ::testing::TestParamInfo<std::string>& param) {
-  std::string id = param.param;
-  for (char& c : id) {
-    if (c == '-') c = '_';
-  }
-  return id;
-}
-
-INSTANTIATE_TEST_SUITE_P(EveryScene, SceneReplay, ::testing::ValuesIn(sceneNames()), testName);
+INSTANTIATE_TEST_SUITE_P(EveryScene, SceneReplay, ::testing::ValuesIn(testing::registeredScenes()),
+                         testing::sceneTestName);
 
 // The same with sleeping sand (--sleep): the sleep code path records and replays bit for bit.
 // The paper's law has no static friction and refuses sleep, by name.
-class SleepingSceneReplay : public ::testing::TestWithParam<std::string> {};
+class SleepingSceneReplay : public ::testing::TestWithParam<const scenes::SceneEntry*> {};
 
 TEST_P(SleepingSceneReplay, ReplaysBitIdentically) {
-  const std::string name = GetParam();
+  const std::string name(GetParam()->name);
   std::unique_ptr<scenes::Scene> scene = goldenScene(name);
   scene->setSleep(true);
   if (scene->contactLaw() == ContactLaw::PaperViscous) {
@@ -106,8 +91,8 @@ TEST_P(SleepingSceneReplay, ReplaysBitIdentically) {
   std::filesystem::remove(file);
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryScene, SleepingSceneReplay, ::testing::ValuesIn(sceneNames()),
-                         testName);
+INSTANTIATE_TEST_SUITE_P(EveryScene, SleepingSceneReplay,
+                         ::testing::ValuesIn(testing::registeredScenes()), testing::sceneTestName);
 
 TEST(PerturbedReplay, IsCaughtAtTheFrameAndNamesTheGranule) {
   constexpr std::uint32_t kGranule = 21;

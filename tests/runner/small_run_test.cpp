@@ -109,7 +109,8 @@ TEST(SmallRun, GranulesLandedInsideTheCylinderWithoutDeepOverlap) {
   const nlohmann::json m = metrics();
   // The batch starts 2 d above the floor and has fallen onto it after 0.2 s.
   EXPECT_GT(m["contacts"].get<double>(), kGranules) << "granules should rest on the floor";
-  EXPECT_GE(m["max_overlap_d"].get<double>(), 0.0);
+  // Granules resting on the floor and on each other press in: some overlap, and not deep.
+  EXPECT_GT(m["max_overlap_d"].get<double>(), 0.0);
   EXPECT_LT(m["max_overlap_d"].get<double>(), 0.1);  // the paper's guard is d/10
   EXPECT_EQ(m["granules_lost"], 0);
   const double energy = m["kinetic_energy"];

@@ -1,11 +1,14 @@
 // The viewer's pieces that need no window: key scripts, camera control, tool capacities, plots,
 // the frame pacer and the viewer's command-line flags.
+#include <GLFW/glfw3.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
+#include <ostream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app/cli.h"
@@ -16,14 +19,53 @@
 #include "viewer/input.h"
 
 namespace sandphys::viewer {
+
+// How GoogleTest prints a scripted key event when a comparison fails (found by argument-dependent
+// lookup, so outside the unnamed namespace).
+void PrintTo(const KeyScript::Event& event, std::ostream* out) {
+  *out << "{frame " << event.frame << ", key " << event.key << (event.press ? ", down}" : ", up}");
+}
+
 namespace {
 
 using scenes::SandTools;
 
-TEST(KeyScript, AcceptsPressesAndHolds) {
+using KeyEvent = KeyScript::Event;
+using KeyEvents = std::vector<KeyEvent>;
+
+// What a script parses into: each entry's key down and key up, in the order of the entries.
+TEST(KeyScript, ParsesPressesAndHoldsIntoKeysDownAndUp) {
+  // A press is down at its frame and up at the next.
+  EXPECT_EQ(KeyScript::parse("F@5").events(),
+            (KeyEvents{{5, GLFW_KEY_F, true}, {6, GLFW_KEY_F, false}}));
+  // A hold is down from its first frame and up after its last; a hold of one frame is a press.
+  EXPECT_EQ(KeyScript::parse("P@2-9").events(),
+            (KeyEvents{{2, GLFW_KEY_P, true}, {10, GLFW_KEY_P, false}}));
+  EXPECT_EQ(KeyScript::parse("S@4-4").events(),
+            (KeyEvents{{4, GLFW_KEY_S, true}, {5, GLFW_KEY_S, false}}));
+  // Entries keep their order; letters in either case, digits and named keys; empty entries are
+  // skipped.
+  EXPECT_EQ(KeyScript::parse("P@2-9,b@3,,ESC@12,SPACE@0,7@1,").events(),
+            (KeyEvents{{2, GLFW_KEY_P, true},
+                       {10, GLFW_KEY_P, false},
+                       {3, GLFW_KEY_B, true},
+                       {4, GLFW_KEY_B, false},
+                       {12, GLFW_KEY_ESCAPE, true},
+                       {13, GLFW_KEY_ESCAPE, false},
+                       {0, GLFW_KEY_SPACE, true},
+                       {1, GLFW_KEY_SPACE, false},
+                       {1, GLFW_KEY_7, true},
+                       {2, GLFW_KEY_7, false}}));
+  const std::pair<const char*, int> named[] = {
+      {"A@0", GLFW_KEY_A},       {"z@0", GLFW_KEY_Z},         {"0@0", GLFW_KEY_0},
+      {"9@0", GLFW_KEY_9},       {"ENTER@0", GLFW_KEY_ENTER}, {"ESCAPE@0", GLFW_KEY_ESCAPE},
+      {"LEFT@0", GLFW_KEY_LEFT}, {"RIGHT@0", GLFW_KEY_RIGHT}};
+  for (const auto& [entry, key] : named) {
+    EXPECT_EQ(KeyScript::parse(entry).events(), (KeyEvents{{0, key, true}, {1, key, false}}))
+        << entry;
+  }
   EXPECT_TRUE(KeyScript::parse("").empty());
-  EXPECT_FALSE(KeyScript::parse("F@5").empty());
-  EXPECT_FALSE(KeyScript::parse("P@2-9,b@3,ESC@12,SPACE@0,7@1").empty());
+  EXPECT_TRUE(KeyScript::parse(",,").empty());
 }
 
 TEST(KeyScript, RefusesBadEntriesNamingThem) {

@@ -17,6 +17,7 @@
 
 #include "runner/process.h"
 #include "scenes/registry.h"
+#include "support/every_scene.h"
 
 namespace sandphys {
 namespace {
@@ -118,20 +119,8 @@ TEST_P(ViewerScene, RunsAndTakesAKeyScreenshot) {
   expectPicture(dir / "last.png", 320, 240);
 }
 
-std::vector<const scenes::SceneEntry*> registeredScenes() {
-  std::vector<const scenes::SceneEntry*> entries;
-  for (const scenes::SceneEntry& entry : scenes::sceneRegistry()) entries.push_back(&entry);
-  return entries;
-}
-
-std::string sceneTestName(const ::testing::TestParamInfo<const scenes::SceneEntry*>& info) {
-  std::string name(info.param->name);
-  std::replace(name.begin(), name.end(), '-', '_');
-  return name;
-}
-
-INSTANTIATE_TEST_SUITE_P(AllScenes, ViewerScene, ::testing::ValuesIn(registeredScenes()),
-                         sceneTestName);
+INSTANTIATE_TEST_SUITE_P(AllScenes, ViewerScene, ::testing::ValuesIn(testing::registeredScenes()),
+                         testing::sceneTestName);
 
 // The sand tools run while their keys are held (pour with P, push with B), pause, step and
 // restart keep the loop going, --screenshots/--every writes its sequence, and Esc ends the run

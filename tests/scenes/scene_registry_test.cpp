@@ -1,8 +1,10 @@
 // The scene registry, scene parameters and the capacities scenes ask for (CPU only).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "scenes/box_drop.h"
 #include "scenes/cylinder_pile.h"
@@ -148,11 +150,11 @@ TEST(SceneParameters, SetFromTextWithinTheRange) {
   setSceneParameter(pile, "settle-speed", "0.125");
   EXPECT_FLOAT_EQ(pile.config().settleSpeed, 0.125f);
 
-  for (const SceneParameter& parameter : pile.parameters()) {
-    if (parameter.name == "batch") {
-      EXPECT_EQ(formatSceneParameter(parameter), "2,3,5");
-    }
-  }
+  const std::vector<SceneParameter> parameters = pile.parameters();
+  const auto batch = std::find_if(parameters.begin(), parameters.end(),
+                                  [](const SceneParameter& p) { return p.name == "batch"; });
+  ASSERT_NE(batch, parameters.end()) << "the cylinder pile has no parameter 'batch'";
+  EXPECT_EQ(formatSceneParameter(*batch), "2,3,5");
 }
 
 TEST(SceneParameters, BadTextIsRefusedNamingParameterAndValue) {
