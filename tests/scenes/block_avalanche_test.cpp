@@ -61,6 +61,7 @@ Outcome run(float releaseTime, double seconds) {
   }
   const std::vector<SceneBody> end = scene.bodies(world);
   EXPECT_EQ(end.size(), 2u);
+  if (end.size() < 2u) return outcome;  // the checks on the outcome then fail, not a crash
   outcome.low = end[0];
   outcome.plank = end[1];
   outcome.lowMoved = distance(start[0].position, end[0].position);
