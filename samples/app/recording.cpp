@@ -21,59 +21,28 @@ std::string exactText(double value) {
   return std::string(text, result.ptr);
 }
 
-// The fields of WorldSettings as a recording names them ("world:NAME").
-
-struct FloatField {
-  const char* name;
-  float& (*of)(WorldSettings&);
-};
-constexpr FloatField kFloatFields[] = {
-    {"particle_diameter", [](WorldSettings& s) -> float& { return s.particleDiameter; }},
-    {"gravity_x", [](WorldSettings& s) -> float& { return s.gravity.x; }},
-    {"gravity_y", [](WorldSettings& s) -> float& { return s.gravity.y; }},
-    {"gravity_z", [](WorldSettings& s) -> float& { return s.gravity.z; }},
-    {"density", [](WorldSettings& s) -> float& { return s.material.density; }},
-    {"youngs_modulus", [](WorldSettings& s) -> float& { return s.material.youngsModulus; }},
-    {"poisson_ratio", [](WorldSettings& s) -> float& { return s.material.poissonRatio; }},
-    {"restitution", [](WorldSettings& s) -> float& { return s.material.restitution; }},
-    {"friction", [](WorldSettings& s) -> float& { return s.material.friction; }},
-    {"tangential_damping", [](WorldSettings& s) -> float& { return s.material.tangentialDamping; }},
-    {"time_step", [](WorldSettings& s) -> float& { return s.timeStep; }},
-    {"steps_per_contact", [](WorldSettings& s) -> float& { return s.stepsPerContact; }},
-    {"max_speed", [](WorldSettings& s) -> float& { return s.maxSpeed; }},
-    {"list_skin", [](WorldSettings& s) -> float& { return s.listSkin; }},
-    {"sleep_linear_speed", [](WorldSettings& s) -> float& { return s.sleep.linearSpeed; }},
-    {"sleep_angular_speed", [](WorldSettings& s) -> float& { return s.sleep.angularSpeed; }},
-    {"sleep_time", [](WorldSettings& s) -> float& { return s.sleep.time; }},
-    {"sleep_wake_acceleration",
-     [](WorldSettings& s) -> float& { return s.sleep.wakeAcceleration; }},
-};
-
-struct CountField {
-  const char* name;
-  std::uint32_t& (*of)(WorldSettings&);
-};
-constexpr CountField kCountFields[] = {
-    {"max_substeps_per_frame",
-     [](WorldSettings& s) -> std::uint32_t& { return s.maxSubstepsPerFrame; }},
-    {"max_bodies", [](WorldSettings& s) -> std::uint32_t& { return s.maxBodies; }},
-    {"max_particles", [](WorldSettings& s) -> std::uint32_t& { return s.maxParticles; }},
-    {"max_colliders", [](WorldSettings& s) -> std::uint32_t& { return s.maxColliders; }},
-};
-
+// Every field of WorldSettings as a recording names it ("world:KEY"), from the library's table:
+// reals exactly (shortest text that reads back to the same float), flags 0/1, the law by name.
 void appendWorldSettingsImpl(WorldSettings settings,
                              std::vector<std::pair<std::string, std::string>>& out) {
-  for (const FloatField& field : kFloatFields) {
-    out.emplace_back(std::string(kWorldPrefix) + field.name, exactText(field.of(settings)));
+  for (const SettingField& field : worldSettingFields()) {
+    std::string text;
+    switch (field.kind) {
+      case SettingField::Kind::Real:
+        text = exactText(*field.real(settings));
+        break;
+      case SettingField::Kind::Count:
+        text = std::to_string(*field.count(settings));
+        break;
+      case SettingField::Kind::Flag:
+        text.push_back(*field.flag(settings) ? '1' : '0');
+        break;
+      case SettingField::Kind::Law:
+        text = std::string(scenes::contactLawName(*field.law(settings)));
+        break;
+    }
+    out.emplace_back(std::string(kWorldPrefix) + field.key, std::move(text));
   }
-  for (const CountField& field : kCountFields) {
-    out.emplace_back(std::string(kWorldPrefix) + field.name, std::to_string(field.of(settings)));
-  }
-  out.emplace_back(std::string(kWorldPrefix) + "stats_each_frame",
-                   settings.statsEachFrame ? "1" : "0");
-  out.emplace_back(std::string(kWorldPrefix) + "sleep", settings.sleep.enabled ? "1" : "0");
-  out.emplace_back(std::string(kWorldPrefix) + "contact_law",
-                   std::string(scenes::contactLawName(settings.contactLaw)));
 }
 
 }  // namespace
@@ -91,30 +60,26 @@ WorldSettings worldSettingsFrom(const Recording& recording, WorldSettings settin
       const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
       if (result.ec != std::errc() || result.ptr != text.data() + text.size()) throw refuse();
     };
-    bool known = false;
-    for (const FloatField& field : kFloatFields) {
-      if (name == field.name) parse(field.of(settings)), known = true;
+    const SettingField* field = findWorldSettingField(name);
+    if (!field) throw refuse();
+    switch (field->kind) {
+      case SettingField::Kind::Real:
+        parse(*field->real(settings));
+        break;
+      case SettingField::Kind::Count:
+        parse(*field->count(settings));
+        break;
+      case SettingField::Kind::Flag:
+        if (text != "0" && text != "1") throw refuse();
+        *field->flag(settings) = text == "1";
+        break;
+      case SettingField::Kind::Law: {
+        const std::optional<ContactLaw> law = scenes::contactLawFromName(text);
+        if (!law) throw refuse();
+        *field->law(settings) = *law;
+        break;
+      }
     }
-    for (const CountField& field : kCountFields) {
-      if (name == field.name) parse(field.of(settings)), known = true;
-    }
-    if (name == "stats_each_frame") {
-      if (text != "0" && text != "1") throw refuse();
-      settings.statsEachFrame = text == "1";
-      known = true;
-    }
-    if (name == "sleep") {
-      if (text != "0" && text != "1") throw refuse();
-      settings.sleep.enabled = text == "1";
-      known = true;
-    }
-    if (name == "contact_law") {
-      const std::optional<ContactLaw> law = scenes::contactLawFromName(text);
-      if (!law) throw refuse();
-      settings.contactLaw = *law;
-      known = true;
-    }
-    if (!known) throw refuse();
   }
   return settings;
 }

@@ -7,13 +7,25 @@
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <type_traits>
+
+#include "sandphys/settings_fields.h"
 
 #include "viewer/panel_widgets.h"
 
 namespace sandphys::viewer {
 
 namespace {
+
+// A control of a WorldSettings field: named and explained as the library's table states it.
+std::string settingLabel(std::string_view key) {
+  const SettingField& field = *findWorldSettingField(key);
+  return *field.unit ? std::string(field.label) + ", " + field.unit : std::string(field.label);
+}
+void settingTooltip(std::string_view key) {
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", findWorldSettingField(key)->help);
+}
 
 template <typename T>
 void clampTo(T& value, double min, double max) {
@@ -188,30 +200,29 @@ void Panel::drawControls(Session& session) {
   } else {
     ImGui::TextDisabled("applied on restart (R)");
   }
-  if (ImGui::InputFloat("Young's modulus, Pa", &controls.youngsModulus, 0.0f, 0.0f, "%.3g")) {
+  if (ImGui::InputFloat(settingLabel("youngs_modulus").c_str(), &controls.youngsModulus, 0.0f, 0.0f,
+                        "%.3g")) {
     clampTo(controls.youngsModulus, 1.0e3, 1.0e11);
   }
-  if (ImGui::IsItemHovered()) {
-    ImGui::SetTooltip("stiffer sand needs a smaller time step: dt ~ E^(-2/5)");
-  }
-  ImGui::SliderFloat("friction", &controls.friction, 0.0f, 1.5f, "%.2f");
-  ImGui::SliderFloat("restitution", &controls.restitution, 0.05f, 1.0f, "%.2f");
-  ImGui::SliderFloat("steps per contact", &controls.stepsPerContact, kMinStepsPerContact, 100.0f,
-                     "%.0f");
+  settingTooltip("youngs_modulus");
+  ImGui::SliderFloat(settingLabel("friction").c_str(), &controls.friction, 0.0f, 1.5f, "%.2f");
+  settingTooltip("friction");
+  ImGui::SliderFloat(settingLabel("restitution").c_str(), &controls.restitution, 0.05f, 1.0f,
+                     "%.2f");
+  settingTooltip("restitution");
+  ImGui::SliderFloat(settingLabel("steps_per_contact").c_str(), &controls.stepsPerContact,
+                     kMinStepsPerContact, 100.0f, "%.0f");
+  settingTooltip("steps_per_contact");
   float frameMs = static_cast<float>(controls.frameDt * 1e3);
   if (ImGui::SliderFloat("frame dt, ms", &frameMs, 1.0f, 50.0f, "%.2f")) {
     controls.frameDt = frameMs * 1e-3;
   }
-  ImGui::Checkbox("sleeping sand", &controls.sleep);
-  if (ImGui::IsItemHovered()) {
-    ImGui::SetTooltip("granules at rest fall asleep and cost less until something touches them");
-  }
+  ImGui::Checkbox(settingLabel("sleep").c_str(), &controls.sleep);
+  settingTooltip("sleep");
   ImGui::SameLine();
   ImGui::Checkbox("tint sleeping", &controls.tintSleeping);
-  ImGui::Checkbox("profile kernels", &controls.profileKernels);
-  if (ImGui::IsItemHovered()) {
-    ImGui::SetTooltip("GL timer queries around every kernel; on llvmpipe they slow the step down");
-  }
+  ImGui::Checkbox(settingLabel("profile_kernels").c_str(), &controls.profileKernels);
+  settingTooltip("profile_kernels");
   if (!session.lastError().empty()) {
     ImGui::TextColored(ImVec4(1.0f, 0.5f, 0.3f, 1.0f), "refused, scene defaults used: %s",
                        session.lastError().c_str());

@@ -185,9 +185,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadSetting{"contactLaw", [](WorldSettings& s) { s.contactLaw = ContactLaw(7); }, "7",
                    "PaperViscous"},
         BadSetting{"listSkin", [](WorldSettings& s) { s.listSkin = std::nanf(""); }, "nan",
-                   "[0, particleDiameter = 0.02]"},
+                   "finite and >= 0 (m)"},
         BadSetting{"listSkin", [](WorldSettings& s) { s.listSkin = -0.001f; }, "-0.001",
-                   "[0, particleDiameter = 0.02]"},
+                   "finite and >= 0 (m)"},
         BadSetting{"listSkin", [](WorldSettings& s) { s.listSkin = 0.05f; }, "0.05",
                    "[0, particleDiameter = 0.02]"}));
 

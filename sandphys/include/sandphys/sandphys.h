@@ -13,6 +13,7 @@
 #include "sandphys/readback.h"
 #include "sandphys/recording.h"
 #include "sandphys/settings.h"
+#include "sandphys/settings_fields.h"
 #include "sandphys/sleep_model.h"
 #include "sandphys/snapshot.h"
 #include "sandphys/spawn.h"

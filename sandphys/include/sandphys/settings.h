@@ -131,6 +131,11 @@ struct WorldSettings {
 /// group of contact slots).
 inline constexpr std::uint32_t kMaxParticleCapacity = 1u << 21;
 
+/// Most implicit colliders (and sinks) a World may hold (WorldSettings::maxColliders): collider
+/// keys of the contact slots hold the collider and its face in 23 bits, and every contact loops
+/// over the colliders, so far fewer are practical.
+inline constexpr std::uint32_t kMaxColliderCapacity = 1u << 16;
+
 /// Fewest substeps per contact duration t_n a World accepts; fewer is refused as unstable.
 inline constexpr float kMinStepsPerContact = 8.0f;
 /// Most substeps per contact duration t_n a World accepts. A contact is resolved long before

@@ -9,6 +9,7 @@
 
 #include "core/overlap_check.h"
 #include "core/validation.h"
+#include "core/world_checks.h"
 
 namespace sandphys {
 namespace {
@@ -138,36 +139,10 @@ void requireNoPassThrough(const WorldSettings& s, double peakOverlap, double pas
 
 ContactModel ContactModel::fromSettings(const WorldSettings& s) {
   using detail::require;
-  using detail::requireFinite;
-  using detail::requireNonNegative;
-  using detail::requirePositive;
-  requirePositive("WorldSettings.particleDiameter", s.particleDiameter, "(m)");
-  requireFinite("WorldSettings.gravity.x", s.gravity.x);
-  requireFinite("WorldSettings.gravity.y", s.gravity.y);
-  requireFinite("WorldSettings.gravity.z", s.gravity.z);
-  requirePositive("WorldSettings.material.density", s.material.density, "(kg/m^3)");
-  requirePositive("WorldSettings.material.youngsModulus", s.material.youngsModulus, "(Pa)");
-  require(std::isfinite(s.material.poissonRatio) && s.material.poissonRatio >= 0.0f &&
-              s.material.poissonRatio < 0.5f,
-          "WorldSettings.material.poissonRatio", s.material.poissonRatio, "must be in [0, 0.5)");
-  requireRestitution(s.material.restitution, "WorldSettings.material.restitution");
-  requireNonNegative("WorldSettings.material.friction", s.material.friction, "");
-  requireNonNegative("WorldSettings.material.tangentialDamping", s.material.tangentialDamping,
-                     "(N s/m)");
-  requirePositive("WorldSettings.maxSpeed", s.maxSpeed, "(m/s)");
-  require(std::isfinite(s.stepsPerContact) && s.stepsPerContact >= kMinStepsPerContact &&
-              s.stepsPerContact <= kMaxStepsPerContact,
-          "WorldSettings.stepsPerContact", s.stepsPerContact,
-          "must be in [" + detail::formatValue(kMinStepsPerContact) + ", " +
-              detail::formatValue(kMaxStepsPerContact) + "] (substeps per contact time t_n)");
-  requireNonNegative("WorldSettings.timeStep", s.timeStep, "(s)");
-  require(std::isfinite(s.listSkin) && s.listSkin >= 0.0f && s.listSkin <= s.particleDiameter,
-          "WorldSettings.listSkin", s.listSkin,
+  detail::checkSettingRanges(s);
+  require(s.listSkin <= s.particleDiameter, "WorldSettings.listSkin", s.listSkin,
           "must be in [0, particleDiameter = " + detail::formatValue(s.particleDiameter) +
               "] m (0: derived from maxSpeed)");
-  require(s.contactLaw == ContactLaw::HertzMindlin || s.contactLaw == ContactLaw::PaperViscous,
-          "WorldSettings.contactLaw", double(unsigned(s.contactLaw)),
-          "must be ContactLaw::HertzMindlin (0) or ContactLaw::PaperViscous (1)");
 
   ContactModel m;
   m.law = s.contactLaw;

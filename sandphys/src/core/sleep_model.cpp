@@ -4,17 +4,14 @@
 #include <cmath>
 
 #include "core/validation.h"
+#include "core/world_checks.h"
 
 namespace sandphys {
 
 SleepModel SleepModel::fromSettings(const WorldSettings& s, float timeStep) {
   using detail::require;
-  using detail::requireNonNegative;
   const SleepSettings& sleep = s.sleep;
-  requireNonNegative("WorldSettings.sleep.linearSpeed", sleep.linearSpeed, "(m/s)");
-  requireNonNegative("WorldSettings.sleep.angularSpeed", sleep.angularSpeed, "(rad/s)");
-  requireNonNegative("WorldSettings.sleep.time", sleep.time, "(s)");
-  requireNonNegative("WorldSettings.sleep.wakeAcceleration", sleep.wakeAcceleration, "(m/s^2)");
+  detail::checkSettingRanges(s);
   SleepModel m;
   if (!sleep.enabled) return m;
   require(s.contactLaw == ContactLaw::HertzMindlin, "WorldSettings.contactLaw",

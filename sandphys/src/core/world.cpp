@@ -13,14 +13,6 @@ namespace sandphys {
 
 using namespace detail;
 
-namespace {
-
-// Collider keys of contact slots hold collider * 8 + face in 23 bits (contact_slots.glsl); the
-// contact kernel loops over every collider, so far fewer are practical.
-constexpr std::uint32_t kMaxColliders = 1u << 16;
-
-}  // namespace
-
 World::Impl::Impl(const GpuContext& context, const WorldSettings& s) : gpu(&context), settings(s) {
   World::checkSettings(settings);
   model = ContactModel::fromSettings(settings);
@@ -49,12 +41,6 @@ World::Impl::~Impl() {
 void World::checkSettings(const WorldSettings& settings) {
   const ContactModel model = ContactModel::fromSettings(settings);
   (void)SleepModel::fromSettings(settings, model.timeStep);
-  require(settings.maxSubstepsPerFrame > 0, "WorldSettings.maxSubstepsPerFrame",
-          settings.maxSubstepsPerFrame, "must be > 0");
-  require(settings.maxBodies > 0, "WorldSettings.maxBodies", settings.maxBodies, "must be > 0");
-  require(settings.maxColliders > 0 && settings.maxColliders <= kMaxColliders,
-          "WorldSettings.maxColliders", settings.maxColliders,
-          "must be in [1, " + std::to_string(kMaxColliders) + "]");
   const std::uint64_t particles =
       settings.maxParticles ? settings.maxParticles : 4ull * settings.maxBodies;
   require(particles <= kMaxParticleCapacity, "WorldSettings.maxParticles", double(particles),

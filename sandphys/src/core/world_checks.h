@@ -5,9 +5,14 @@
 
 #include "sandphys/body.h"
 #include "sandphys/math.h"
+#include "sandphys/settings.h"
 #include "sandphys/snapshot.h"
 
 namespace sandphys::detail {
+
+/// Throws InvalidArgument naming the first field of `settings` outside its range in
+/// worldSettingFields() (the checks that involve one field alone).
+void checkSettingRanges(const WorldSettings& settings);
 
 /// Throws InvalidArgument naming `field` unless every component of `v` is finite.
 void requireFiniteVec(const std::string& field, Vec3 v);
