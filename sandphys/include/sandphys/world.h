@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -97,6 +98,10 @@ class World {
   BodyId addBody(const ParticleTemplate& shape, const BodyDesc& desc);
   /// Adds a block of tetrahedral granules; all or nothing (CapacityExceeded names the limit).
   BodyRange addGranules(const GranuleBlock& block);
+  /// Adds one tetrahedral granule at each pose (orientation of the granule template, as
+  /// readBodies gives it back), in one upload; all or nothing. Every desc must be
+  /// Motion::Dynamic with finite fields (InvalidArgument names the index and field).
+  std::vector<BodyId> addGranules(std::span<const BodyDesc> granules);
   /// Adds an emitter; it runs inside step().
   EmitterId addEmitter(const EmitterSettings& emitter);
   void removeEmitter(EmitterId id);

@@ -251,6 +251,31 @@ BodyRange World::addGranules(const GranuleBlock& block) {
   return {first, std::uint32_t(descs.size())};
 }
 
+std::vector<BodyId> World::addGranules(std::span<const BodyDesc> granules) {
+  Impl& w = impl();
+  std::vector<BodyDesc> descs(granules.begin(), granules.end());
+  for (std::size_t i = 0; i < descs.size(); ++i) {
+    const std::string field = "granules[" + std::to_string(i) + "]";
+    BodyDesc& d = descs[i];
+    require(d.motion == Motion::Dynamic, field + ".motion", double(unsigned(d.motion)),
+            "must be Motion::Dynamic (a kinematic or static body: addBody)");
+    requireFiniteVec(field + ".position", d.position);
+    requireResolvable(field + ".position", d.position, w.granule.boundingRadius,
+                      w.settings.particleDiameter);
+    requireFiniteVec(field + ".velocity", d.velocity);
+    requireFiniteVec(field + ".angularVelocity", d.angularVelocity);
+    d.orientation = normalised(d.orientation, field + ".orientation");
+  }
+  std::vector<BodyId> ids;
+  if (descs.empty()) return ids;
+  const std::uint32_t first = w.addBodies(w.granule, descs, true);
+  w.checkOverlapsFrom(first);
+  ids.reserve(descs.size());
+  for (std::uint32_t i = first; i < first + descs.size(); ++i)
+    ids.push_back(BodyId{i, w.generations[i]});
+  return ids;
+}
+
 EmitterId World::addEmitter(const EmitterSettings& emitter) {
   Impl& w = impl();
   w.emitters.emplace_back(EmitterState(emitter, w.settings.particleDiameter, w.bodyCapacity));
