@@ -193,27 +193,47 @@ struct GpuStatsPartial {
   GpuUVec4 sleep;   // x: sleeping granules; y, z, w: unused
 };
 
-/// uniform SimParams in layout.glsl (std140).
-struct SimParams {
-  GpuVec4 gravityDt;
-  GpuVec4 particleGeom;
-  GpuVec4 grainContact;
-  GpuVec4 wallContact;
-  GpuUVec4 counts;
-  GpuUVec4 counts2;
-  GpuUVec4 colliderEnds;
-  GpuVec4 shearContact;
-  GpuVec4 listGeom;
-  GpuUVec4 listLayout;
-  GpuVec4 sleepSpeeds;
-  GpuUVec4 sleepSteps;
+/// uniform SimParams in layout.glsl (std140), member for member; their meaning is written there.
+struct alignas(16) SimParams {
+  Vec3 gravity;
+  float dt;
+  float particleRadius;
+  float particleDiameter;
+  float inverseCellSize;
+  float maxOverlap;
+  float grainStiffness;
+  float grainDamping;
+  float friction;
+  float tangentialDamping;
+  float wallStiffness;
+  float maxSpeed;
+  std::uint32_t particleCount;
+  std::uint32_t bodyCount;
+  std::uint32_t hashMask;
+  std::uint32_t sinkCount;
+  std::uint32_t hashSize;
+  std::uint32_t hashMultiplierY;
+  std::uint32_t hashMultiplierZ;
+  std::uint32_t planesEnd;
+  std::uint32_t boxesEnd;
+  std::uint32_t revolutionsEnd;
+  float grainShearStiffness;
+  float wallShearStiffness;
+  float listReachSquared;
+  float listMoveSquared;
+  std::uint32_t listStride;
+  float sleepLinearSpeed;
+  float sleepAngularSpeed;
+  float wakeAcceleration;
+  std::uint32_t sleepSubsteps;
+  std::uint32_t sleepNeighbourLead;
 };
 
 static_assert(sizeof(GpuCollider) == 96);
 static_assert(sizeof(GpuSink) == 32);
 static_assert(sizeof(GpuContactRecord) == 80);
 static_assert(sizeof(GpuStatsPartial) == 48);
-static_assert(sizeof(SimParams) == 192);
-static_assert(offsetof(SimParams, counts) == 64);
+static_assert(sizeof(Vec3) == 12);  // std140 packs dt right after gravity
+static_assert(sizeof(SimParams) == 144);
 
 }  // namespace sandphys::detail

@@ -56,7 +56,7 @@
 #define CELL_PARTICLES(access) layout(std430, binding = 14) access buffer CellParticlesBuffer { uint cellParticles[]; };
 // Neighbour lists (common/neighbour_list.glsl): per particle, the ids of the particles of other
 // bodies that were closer than d + skin at the last build, ascending; entry k of particle i at
-// k * listLayout.x (the particles in use) + i, so that the threads of a dispatch read one entry
+// k * params.listStride (the particles in use) + i, so that the threads of a dispatch read one entry
 // together. At most NEIGHBOUR_LIST_CAPACITY entries per particle.
 #define NEIGHBOUR_LIST_CAPACITY 16
 #define NEIGHBOUR_LIST(access) layout(std430, binding = 15) access buffer NeighbourListBuffer { uint neighbourList[]; };
@@ -212,34 +212,58 @@ struct StatsPartial {
 // the last build finds its partners in the grid instead (contacts.comp).
 #define LIST_BUILT(access) layout(std430, binding = 35) access buffer ListBuiltBuffer { uint listBuilt[]; };
 
-// Sleep (SLEEPING, docs/architecture.md "sleep"). A body's calm count is the number of substeps
-// its speeds have been below the thresholds, but at most sleepSteps.y more than the smallest
-// count among the bodies it touches: so a body reaches sleepSteps.x, and sleeps, only when
-// nothing within kSleepContacts contacts of it moves, and a calm touching group falls asleep
-// together. Only dynamic granules sleep; the count of every other movable body stops at
-// sleepSteps.x - 1. The contacts pass leaves in particleForce.w the smallest count among the
-// particle's partners (CALM_UNBOUNDED: none), 0 when a moving collider touches it or, asleep,
+// Sleep (SLEEPING, docs/architecture.md "sleep"). A body's calm count is the number of substeps its
+// speeds have been below the thresholds, but at most params.sleepNeighbourLead more than the
+// smallest count among the bodies it touches: so a body reaches params.sleepSubsteps, and sleeps,
+// only when nothing within kSleepContacts contacts of it moves, and a calm touching group falls
+// asleep together. Only dynamic granules sleep; the count of every other movable body stops at
+// params.sleepSubsteps - 1. The contacts pass leaves in particleForce.w the smallest count among
+// the particle's partners (CALM_UNBOUNDED: none), 0 when a moving collider touches it or, asleep,
 // when its contacts are not those it fell asleep with. An awake particle marks the sleeping bodies
 // it touches by setting their count (not their particles' copies) to calmTouched(): they are
-// computed in the next substep (collect_active.comp takes the mark back to sleepSteps.x).
+// computed in the next substep (collect_active.comp takes the mark back to params.sleepSubsteps).
 #define CALM_UNBOUNDED 0xffffffffu
-#define calmTouched() (sleepSteps.x + 1u)
+#define calmTouched() (params.sleepSubsteps + 1u)
 
-// Constant for the whole step; set by World when settings or counts change.
+// Constant for the whole step; set by World when settings or counts change (C++ twin: SimParams
+// in gpu_layout.h). std140 with one vec3, first, and 4-byte members after it: nothing is padded.
 layout(std140, binding = 0) uniform SimParams {
-  vec4 gravityDt;      // xyz: gravity (m/s^2); w: time step (s)
-  vec4 particleGeom;   // x: radius (m); y: diameter (m); z: 1 / cell size (d + skin); w: max overlap (m)
-  vec4 grainContact;   // x: k_n grain-grain; y: c(e) grain-grain; z: friction; w: tangential damping
-  vec4 wallContact;    // x: k_n grain-wall; y: max speed (m/s); z, w: unused
-  uvec4 counts;        // x: particles; y: bodies; z: hash table mask; w: colliders
-  uvec4 counts2;       // x: sinks; y: hash table size; z, w: hash multipliers for y and z
-  uvec4 colliderEnds;  // colliders are sorted by type: planes end at x, boxes at y, walls of revolution at z
-  vec4 shearContact;   // x: k_t0 grain-grain; y: k_t0 grain-wall (N/m^3/2; k_t = k_t0 sqrt(xi)); z, w: unused
-  vec4 listGeom;       // x: skin (m); y: (d + skin)^2; z: (skin / 2)^2 (m^2); w: unused
-  uvec4 listLayout;    // x: stride of a neighbour-list entry (the particles in use); y, z, w: unused
-  vec4 sleepSpeeds;    // SLEEPING: x: linear speed threshold (m/s); y: angular (rad/s); z: wake acceleration (m/s^2); w: unused
-  uvec4 sleepSteps;    // SLEEPING: x: substeps calm before sleep (SleepModel::substeps); y: SleepModel::neighbourLead; z, w: unused
-};
+  vec3 gravity;                // m/s^2
+  float dt;                    // the substep (s)
+  float particleRadius;        // m
+  float particleDiameter;      // d (m)
+  float inverseCellSize;       // 1 / (d + skin) (1/m): the hash grid's cells
+  float maxOverlap;            // PAPER_LAW's penetration guard (m)
+  float grainStiffness;        // k_n grain-grain
+  float grainDamping;          // c(e) grain-grain
+  float friction;              // grain-grain
+  float tangentialDamping;     // PAPER_LAW
+  float wallStiffness;         // k_n grain-wall
+  float maxSpeed;              // velocity guard (m/s)
+  uint particleCount;
+  uint bodyCount;
+  uint hashMask;               // hashSize - 1
+  uint sinkCount;
+  uint hashSize;               // buckets, a power of two
+  uint hashMultiplierY;        // spatial_hash.glsl
+  uint hashMultiplierZ;
+  // Colliders are sorted by type: the planes end at planesEnd, boxes at boxesEnd, walls of
+  // revolution at revolutionsEnd.
+  uint planesEnd;
+  uint boxesEnd;
+  uint revolutionsEnd;
+  float grainShearStiffness;   // k_t0 grain-grain (N/m^3/2; k_t = k_t0 sqrt(xi))
+  float wallShearStiffness;    // k_t0 grain-wall
+  float listReachSquared;      // (d + skin)^2 (m^2): a pair closer than this is listed
+  // A hair under (skin / 2)^2 (m^2): a particle that moved this far asks for a build.
+  float listMoveSquared;
+  uint listStride;             // of a neighbour-list entry: the particles in use
+  float sleepLinearSpeed;      // SLEEPING: speed thresholds (m/s, rad/s)
+  float sleepAngularSpeed;
+  float wakeAcceleration;      // SLEEPING: m/s^2
+  uint sleepSubsteps;          // SLEEPING: SleepModel::substeps, calm substeps before sleep
+  uint sleepNeighbourLead;     // SLEEPING: SleepModel::neighbourLead
+} params;
 
 // Linear thread index of a dispatch that World may fold into two dimensions. A macro, because
 // gl_WorkGroupSize exists only after the kernel's own local_size declaration.
