@@ -1,9 +1,9 @@
-// Neighbour lists (layout.glsl, NEIGHBOUR_LIST, LIST_ORIGIN): each particle that needs forces lists
-// the particles of other bodies closer than d + skin at the last build, ascending by id. A
+// Neighbour lists (gpu_buffers.def, NEIGHBOUR_LIST, LIST_ORIGIN): each particle that needs forces
+// lists the particles of other bodies closer than d + skin at the last build, ascending by id. A
 // particle's contacts are then evaluated in partner-id order whenever the lists were built: the
 // skin and the moments of the builds change no bit of the result, and the lists are a cache that
-// snapshots need not carry. The includer declares CELL_START_TEXTURE and CELL_PARTICLES_TEXTURE
-// and includes spatial_hash.glsl.
+// snapshots need not carry. The includer declares CELL_START_TEXTURE and CELL_PARTICLES_TEXTURE and
+// includes spatial_hash.glsl.
 
 // Entry k of particle i's list in neighbourList.
 int listEntry(uint particle, uint k) {
