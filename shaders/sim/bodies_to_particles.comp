@@ -43,7 +43,8 @@ void main() {
 #ifdef SLEEPING
   uint motion = (flags & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT;
   // A touched sleeper's mark is not copied (layout.glsl, "Sleep").
-  calm = motion == MOTION_STATIC ? CALM_UNBOUNDED : min(floatBitsToUint(velocity.w), sleepSteps.x);
+  calm = motion == MOTION_STATIC ? CALM_UNBOUNDED
+                                 : min(floatBitsToUint(velocity.w), params.sleepSubsteps);
 #endif
   storeParticle(i, texelFetch(particleLocalTexture, int(i)), body,
                 texelFetch(bodyPositionTexture, int(body)).xyz,

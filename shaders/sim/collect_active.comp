@@ -48,13 +48,13 @@ bool computed(uint b, out uvec4 info, out uint calm) {
   uint motion = (info.z & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT;
   // The thread reads its own body's count before it writes it; no other thread touches it.
   calm = floatBitsToUint(texelFetch(bodyVelocityTexture, int(b)).w);
-  return (info.z & BODY_ALIVE) != 0u && motion != MOTION_STATIC && calm != sleepSteps.x;
+  return (info.z & BODY_ALIVE) != 0u && motion != MOTION_STATIC && calm != params.sleepSubsteps;
 }
 
 void main() {
   uint local = gl_LocalInvocationID.x;
   uint first = threadIndex() * COLLECT_CHUNK;
-  uint end = min(first + COLLECT_CHUNK, counts.y);
+  uint end = min(first + COLLECT_CHUNK, params.bodyCount);
   uint bodies = 0u;
   uint particles = 0u;
   for (uint b = first; b < end; ++b) {
@@ -93,7 +93,7 @@ void main() {
     uint calm;
     if (!computed(b, info, calm)) continue;
     // A touched sleeper's mark is taken back: it is listed now.
-    if (calm == calmTouched()) bodyVelocity[b].w = uintBitsToFloat(sleepSteps.x);
+    if (calm == calmTouched()) bodyVelocity[b].w = uintBitsToFloat(params.sleepSubsteps);
     if ((info.z & BODY_LARGE) == 0u) activeBodies[nextBody++] = b;
     for (uint k = 0u; k < info.y; ++k) activeParticles[nextParticle++] = info.x + k;
   }

@@ -220,7 +220,7 @@ MindlinResult mindlinContact(Particle self, uint key, float xi, vec3 n, vec3 poi
   vec3 spring = previousSpring(key, pairs);
   if (pairs == 0u && slotsUsed < uint(CONTACT_SLOTS)) dampingFactor = 0.0;
   MindlinResult r = hertzMindlin(xi, n, vRel, kn, kt0, dampingFactor,
-                                 float(max(pairs, 1u)) * invMass, friction, gravityDt.w, spring);
+                                 float(max(pairs, 1u)) * invMass, friction, params.dt, spring);
   keepSlot(self.id, key, r.spring);
 #ifndef CONTACT_LIST
   force += r.force;
@@ -239,7 +239,7 @@ void pairContact(Particle self, uint otherId) {
   vec3 d = self.position.xyz - other.xyz;
   float dist = sqrt(dot(d, d));
   vec3 n = d / dist;
-  float xi = particleGeom.y - dist;
+  float xi = params.particleDiameter - dist;
   largestOverlap = max(largestOverlap, xi);
   vec4 otherSpin = texelFetch(particleSpinTexture, int(otherId));
 #ifdef SLEEPING
@@ -247,7 +247,7 @@ void pairContact(Particle self, uint otherId) {
   neighbourCalm = min(neighbourCalm, otherCalm);
 #ifndef CONTACT_LIST
   // Marks a sleeping partner for the next substep (every toucher writes the same value).
-  if (self.calm < sleepSteps.x && otherCalm == sleepSteps.x) {
+  if (self.calm < params.sleepSubsteps && otherCalm == params.sleepSubsteps) {
     bodyVelocity[floatBitsToUint(other.w)].w = uintBitsToFloat(calmTouched());
   }
 #endif
@@ -258,14 +258,14 @@ void pairContact(Particle self, uint otherId) {
                       surfaceVelocity(otherVelocity.xyz, otherSpin.xyz, other.xyz, point);
   float invMassSum = max(self.velocity.w, 0.0) + max(otherVelocity.w, 0.0);
   MindlinResult r = mindlinContact(self, particleSlotKey(otherId), xi, n, point, vRel,
-                                   grainContact.x, shearContact.x, grainContact.y, invMassSum,
-                                   grainContact.z);
+                                   params.grainStiffness, params.grainShearStiffness,
+                                   params.grainDamping, invMassSum, params.friction);
 #ifdef CONTACT_LIST
   // Each pair once, from the side that keeps its history (static particles keep none).
   if (listBothSides != 0u ||
       (self.velocity.w >= 0.0 && (otherVelocity.w < 0.0 || self.id < otherId))) {
     record(self.id, otherId, self.body, floatBitsToUint(other.w), 0xffffffffu,
-           self.position.xyz - n * (particleGeom.x - 0.5 * xi), n, xi, r.normalForce,
+           self.position.xyz - n * (params.particleRadius - 0.5 * xi), n, xi, r.normalForce,
            r.tangentialForce, r.spring);
   }
 #else
@@ -281,8 +281,8 @@ void pairContact(Particle self, uint otherId) {
   vec4 other = texelFetch(particlePositionTexture, int(otherId));
   vec4 otherVelocity = texelFetch(particleVelocityTexture, int(otherId));
   vec3 d = self.position.xyz - other.xyz;
-  float diameter = particleGeom.y;
-  float radius = particleGeom.x;
+  float diameter = params.particleDiameter;
+  float radius = params.particleRadius;
   float invMassSum = max(self.velocity.w, 0.0) + max(otherVelocity.w, 0.0);
   float dist2 = dot(d, d);
   float dist = sqrt(dist2);
@@ -296,13 +296,13 @@ void pairContact(Particle self, uint otherId) {
                 (self.velocity.w >= 0.0 && (otherVelocity.w < 0.0 || self.id < otherId));
 #endif
   float appliedXi = xi;
-  if (appliedXi > particleGeom.w) {
-    appliedXi = particleGeom.w;  // penetration guard (paper: d/10)
+  if (appliedXi > params.maxOverlap) {
+    appliedXi = params.maxOverlap;  // penetration guard (paper: d/10)
     ++guards;
   }
   ContactResult r = contactForce(appliedXi, n, self.velocity.xyz - otherVelocity.xyz,
-                                 grainContact.x, grainContact.y, invMassSum,
-                                 grainContact.z, grainContact.w);
+                                 params.grainStiffness, params.grainDamping, invMassSum,
+                                 params.friction, params.tangentialDamping);
   vec3 spring = vec3(0.0);
 #ifndef CONTACT_LIST
   force += r.force;
@@ -324,7 +324,7 @@ void pairContact(Particle self, uint otherId) {
 bool touches(Particle self, uint id) {
   vec3 d = self.position.xyz - texelFetch(particlePositionTexture, int(id)).xyz;
   float dist2 = dot(d, d);
-  return dist2 < particleGeom.y * particleGeom.y && dist2 != 0.0;
+  return dist2 < params.particleDiameter * params.particleDiameter && dist2 != 0.0;
 }
 
 // The partner with the smallest id above `after` that touches the current particle, found in the
@@ -394,14 +394,15 @@ void colliderContact(Particle self, Collider c, vec4 hit, uint face, float radiu
   vec3 point = self.position.xyz - n * (radius - 0.5 * xi);
 #ifdef PAPER_LAW
   float appliedXi = xi;
-  if (appliedXi > particleGeom.w) {
-    appliedXi = particleGeom.w;  // penetration guard (paper: d/10)
+  if (appliedXi > params.maxOverlap) {
+    appliedXi = params.maxOverlap;  // penetration guard (paper: d/10)
     ++guards;
   }
   // The surface's velocity at the particle's centre, where this law acts.
   vec3 surface = c.velocity.xyz + cross(c.spin.xyz, self.position.xyz);
-  ContactResult r = contactForce(appliedXi, n, self.velocity.xyz - surface, wallContact.x,
-                                 c.material.z, self.velocity.w, c.material.y, grainContact.w);
+  ContactResult r = contactForce(appliedXi, n, self.velocity.xyz - surface, params.wallStiffness,
+                                 c.material.z, self.velocity.w, c.material.y,
+                                 params.tangentialDamping);
   vec3 spring = vec3(0.0);
 #ifndef CONTACT_LIST
   force += r.force;
@@ -414,8 +415,8 @@ void colliderContact(Particle self, Collider c, vec4 hit, uint face, float radiu
   precise vec3 vRel =
       surfaceVelocity(self.velocity.xyz, self.spin, self.position.xyz, point) - surface;
   MindlinResult r = mindlinContact(self, colliderSlotKey(c, face), xi, n, point, vRel,
-                                   wallContact.x, shearContact.y, c.material.z, self.velocity.w,
-                                   c.material.y);
+                                   params.wallStiffness, params.wallShearStiffness, c.material.z,
+                                   self.velocity.w, c.material.y);
   vec3 spring = r.spring;
 #endif
 #ifdef CONTACT_LIST
@@ -435,14 +436,14 @@ void colliderContact(Particle self, Collider c, vec4 hit, uint face, float radiu
 uint findHits(Particle self, float radius, bool movable, uint skip, out uint found) {
   uint seen = 0u;
   found = 0u;
-  for (uint k = 0u; k < colliderEnds.x; ++k) {
+  for (uint k = 0u; k < params.planesEnd; ++k) {
     vec4 hit = planeHit(colliders[k], self.position.xyz, radius);
     if (movable && hit.w > 0.0) {
       if (seen >= skip && found < uint(COLLIDER_BATCH)) keepHit(found, hit, k, 0u);
       ++seen;
     }
   }
-  for (uint k = colliderEnds.x; k < colliderEnds.y; ++k) {
+  for (uint k = params.planesEnd; k < params.boxesEnd; ++k) {
     Collider c = colliders[k];
     vec3 local = boxLocal(c, self.position.xyz);
     for (int axis = 0; axis < BOX_AXES; ++axis) {
@@ -455,7 +456,7 @@ uint findHits(Particle self, float radius, bool movable, uint skip, out uint fou
       }
     }
   }
-  for (uint k = colliderEnds.y; k < colliderEnds.z; ++k) {
+  for (uint k = params.boxesEnd; k < params.revolutionsEnd; ++k) {
     vec4 hit = revolutionHit(colliders[k], self.position.xyz, radius);
     if (movable && hit.w > 0.0) {
       if (seen >= skip && found < uint(COLLIDER_BATCH)) keepHit(found, hit, k, 0u);
@@ -473,10 +474,10 @@ void main() {
   uint i = activeParticles[t];
 #elif defined(CONTACT_LIST)
   uint i = threadIndex() + listFirst;
-  if (i >= counts.x) return;
+  if (i >= params.particleCount) return;
 #else
   uint i = threadIndex();
-  if (i >= counts.x) return;
+  if (i >= params.particleCount) return;
 #endif
   Particle self;
   self.position = texelFetch(particlePositionTexture, int(i));
@@ -502,7 +503,7 @@ void main() {
   self.spin = vec3(0.0);
   self.calm = 0u;
 #endif
-  float radius = particleGeom.x;
+  float radius = params.particleRadius;
   // The partners in contact, in id order: the list's, then those beyond its capacity (from the
   // grid). The list is scanned first for the entries in contact (a bit each); the law is then
   // evaluated once per contact, from one place in the code.
@@ -525,7 +526,7 @@ void main() {
   uint found;
   uint seen = findHits(self, radius, movable, 0u, found);
 #if defined(SLEEPING) && !defined(CONTACT_LIST)
-  if (self.calm >= sleepSteps.x) {
+  if (self.calm >= params.sleepSubsteps) {
     uint calm = CALM_UNBOUNDED;
     for (uint bits = inContact; bits != 0u; bits &= bits - 1u) {
       uint partner = texelFetch(neighbourListTexture, listEntry(i, uint(findLSB(bits)))).x;
@@ -541,7 +542,7 @@ void main() {
     // are compared once counted, below).
     uint contacts = min(uint(bitCount(inContact)) + seen, uint(CONTACT_SLOTS));
     if (!beyond && contacts != min(previousPairs.w, uint(CONTACT_SLOTS))) calm = 0u;
-    if (!beyond && seen == found && calm >= sleepSteps.x) {
+    if (!beyond && seen == found && calm >= params.sleepSubsteps) {
       particleForce[i].w = uintBitsToFloat(calm);  // the force stays the last computed
       return;
     }
@@ -579,7 +580,7 @@ void main() {
 #ifndef CONTACT_LIST
 #ifdef SLEEPING
   // A sleeper whose contacts are not those it fell asleep with wakes.
-  if (self.calm >= sleepSteps.x && min(pairContacts + wallContacts, uint(CONTACT_SLOTS)) !=
+  if (self.calm >= params.sleepSubsteps && min(pairContacts + wallContacts, uint(CONTACT_SLOTS)) !=
                                        min(previousPairs.w, uint(CONTACT_SLOTS))) {
     neighbourCalm = 0u;
   }

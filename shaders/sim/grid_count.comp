@@ -15,7 +15,7 @@ CELL_COUNT(coherent)
 
 void main() {
   uint i = threadIndex();
-  if (i >= counts.x) return;
+  if (i >= params.particleCount) return;
   // The owner from particleBody: a granule that was never born (spawn_check.comp) never had
   // its state written.
   uint body = texelFetch(particleBodyTexture, int(i)).x;

@@ -14,7 +14,7 @@ CELL_PARTICLES(writeonly)
 
 void main() {
   uint i = threadIndex();
-  if (i >= counts.x) return;
+  if (i >= params.particleCount) return;
   uint bucket = particleCell[i];
   if (bucket == INVALID_CELL) return;
   uint previous = atomicAdd(cellCount[bucket], 0xffffffffu);

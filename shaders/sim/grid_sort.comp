@@ -11,7 +11,7 @@ CELL_PARTICLES(coherent)
 
 void main() {
   uint bucket = threadIndex();
-  if (bucket >= counts2.y) return;
+  if (bucket >= params.hashSize) return;
   uint begin = texelFetch(cellStartTexture, int(bucket)).x;
   uint end = texelFetch(cellStartTexture, int(bucket + 1u)).x;
   for (uint s = begin + 1u; s < end; ++s) {

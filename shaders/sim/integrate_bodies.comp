@@ -115,7 +115,7 @@ void main() {
   uint b = activeBodies[t];
 #else
   uint b = threadIndex();
-  if (b >= counts.y) return;
+  if (b >= params.bodyCount) return;
 #endif
   uvec4 info = bodyInfo[b];
   if ((info.z & BODY_ALIVE) == 0u) return;
@@ -131,8 +131,8 @@ void main() {
     neighbourCalm =
         min(neighbourCalm, floatBitsToUint(texelFetch(particleForceTexture, int(info.x + k)).w));
   }
-  bool asleep = previousCalm >= sleepSteps.x;
-  if (asleep && neighbourCalm >= sleepSteps.x) return;
+  bool asleep = previousCalm >= params.sleepSubsteps;
+  if (asleep && neighbourCalm >= params.sleepSubsteps) return;
 #endif
   // A granule's particles: its offsets turned by the orientation the contacts saw.
   vec4 q = bodyOrientation[b];
@@ -154,15 +154,16 @@ void main() {
 #ifdef SLEEPING
   if (asleep) {
     float mass = bodyInertia[b].w;
-    vec3 unbalanced = force / mass + gravityDt.xyz;
-    float torqueLimit = mass * bodyAngularVelocity[b].w * sleepSpeeds.z;
-    bool wake = neighbourCalm == 0u || dot(unbalanced, unbalanced) > sleepSpeeds.z * sleepSpeeds.z ||
+    vec3 unbalanced = force / mass + params.gravity;
+    float torqueLimit = mass * bodyAngularVelocity[b].w * params.wakeAcceleration;
+    bool wake = neighbourCalm == 0u ||
+                dot(unbalanced, unbalanced) > params.wakeAcceleration * params.wakeAcceleration ||
                 dot(torque, torque) > torqueLimit * torqueLimit;
     if (!wake) return;
     previousCalm = 0u;
   }
 #endif
-  uint calmLimit = motion == MOTION_DYNAMIC ? sleepSteps.x : sleepSteps.x - 1u;
+  uint calmLimit = motion == MOTION_DYNAMIC ? params.sleepSubsteps : params.sleepSubsteps - 1u;
   BodyMotion moved =
       integrateBody(b, info, force, torque, previousCalm, neighbourCalm, calmLimit);
   if (!moved.alive) {

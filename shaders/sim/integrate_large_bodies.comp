@@ -169,7 +169,7 @@ void main() {
     largeBodyForces[2u * entry + 1u] += vec4(torque, 0.0);
     // Not granules: they never sleep (layout.glsl, "Sleep"), but sand can sleep against them.
     BodyMotion moved = integrateBody(b, info, force, torque, floatBitsToUint(bodyVelocity[b].w),
-                                     CALM_UNBOUNDED, sleepSteps.x - 1u);
+                                     CALM_UNBOUNDED, params.sleepSubsteps - 1u);
     movedPosition = vec4(moved.position, moved.alive ? 1.0 : 0.0);
     movedOrientation = moved.orientation;
     movedVelocity = moved.velocity;

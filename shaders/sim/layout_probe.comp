@@ -26,12 +26,12 @@ layout(std430, binding = 47) readonly buffer ActiveDispatchProbe { uint activeDi
 layout(std430, binding = 48) readonly buffer ActivePassesProbe { uvec4 activePassesProbe[ACTIVE_PASS_BODIES + 1u]; };
 
 void main() {
-  vec4 sum = gravityDt + particleGeom + grainContact + wallContact + shearContact +
-             vec4(counts + counts2 + colliderEnds);
+  // Every member of a std140 block is active once the block is used.
+  vec4 sum = vec4(params.gravity, params.dt) + vec4(float(params.sleepNeighbourLead));
   sum += colliders[0].a + colliders[0].b + colliders[0].c + colliders[0].material;
   sum += colliders[0].velocity + colliders[0].spin;
   sum += slotsProbe[0] + slotGroupProbe[0] + slotGroupsProbe[0];
-  sum += vec4(listPassesProbe[0]) + listGeom + vec4(listLayout) + sleepSpeeds + vec4(sleepSteps);
+  sum += vec4(listPassesProbe[0]);
   sum.y += float(listCapacityProbe[0] + listDispatchProbe[0] + listPassProbe[0].x);
   sum.z += float(activeDispatchProbe[0] + activePassesProbe[0].x);
   sum += sinks[0].lo + sinks[0].hi;

@@ -31,14 +31,14 @@ void main() {
 #ifdef SLEEPING
   uint t = threadIndex();
   bool every = counters[COUNTER_LIST_ALL] != 0u;
-  if (t >= (every ? counts.x : activeListLength(ACTIVE_PASS_CONTACTS))) {
+  if (t >= (every ? params.particleCount : activeListLength(ACTIVE_PASS_CONTACTS))) {
     return;
   }
   uint i = every ? t : activeParticles[t];
   listBuilt[i] = counters[COUNTER_LIST_BUILDS];
 #else
   uint i = threadIndex();
-  if (i >= counts.x) return;
+  if (i >= params.particleCount) return;
 #endif
   vec4 self = texelFetch(particlePositionTexture, int(i));
   float selfInverseMass = texelFetch(particleVelocityTexture, int(i)).w;
@@ -58,7 +58,7 @@ void main() {
           vec4 other = texelFetch(particlePositionTexture, int(id));
           if (floatBitsToUint(other.w) == body) continue;
           vec3 d = self.xyz - other.xyz;
-          if (dot(d, d) >= listGeom.y) continue;
+          if (dot(d, d) >= params.listReachSquared) continue;
           float otherInverseMass = texelFetch(particleVelocityTexture, int(id)).w;
           if (max(selfInverseMass, 0.0) + max(otherInverseMass, 0.0) == 0.0) continue;
           // Keep the smallest ids, in order.

@@ -13,6 +13,6 @@ void main() {
   uint add = scanBlockSums[group];
   uint base = group * (SCAN_THREADS * 4u) + gl_LocalInvocationID.x * 4u;
   for (uint k = 0u; k < 4u; ++k) {
-    if (base + k < counts2.y) cellStart[base + k] += add;
+    if (base + k < params.hashSize) cellStart[base + k] += add;
   }
 }

@@ -14,7 +14,7 @@ shared uint carry;
 
 void main() {
   uint local = gl_LocalInvocationID.x;
-  uint blocks = (counts2.y + 1023u) / 1024u;
+  uint blocks = (params.hashSize + 1023u) / 1024u;
   if (local == 0u) carry = 0u;
   barrier();
   for (uint chunk = 0u; chunk < blocks; chunk += SCAN_THREADS) {
@@ -33,5 +33,5 @@ void main() {
     if (local == 0u) carry += partial[SCAN_THREADS - 1u];
     barrier();
   }
-  if (local == 0u) cellStart[counts2.y] = carry;
+  if (local == 0u) cellStart[params.hashSize] = carry;
 }

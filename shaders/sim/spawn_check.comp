@@ -35,7 +35,7 @@ void main() {
   uint body = texelFetch(particleBodyTexture, int(i)).x;
   vec3 position =
       texelFetch(bodyPositionTexture, int(body)).xyz + particleOffset(int(body), int(i));
-  float diameter = particleGeom.y;
+  float diameter = params.particleDiameter;
   ivec3 cell = cellOf(position);
   bool taken = false;
   for (int row = 0; row < 9; ++row) {

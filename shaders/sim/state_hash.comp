@@ -55,7 +55,7 @@ void main() {
   uint local = gl_LocalInvocationID.x;
   uint stride = gl_NumWorkGroups.x * HASH_THREADS;
   uvec2 sum = uvec2(0u);
-  for (uint b = gl_GlobalInvocationID.x; b < counts.y; b += stride) {
+  for (uint b = gl_GlobalInvocationID.x; b < params.bodyCount; b += stride) {
     uvec2 h = uvec2(fmix(b ^ 0x243f6a88u), fmix(b ^ 0x85a308d3u));
     h = absorb3(h, bodyPosition[b]);
     vec4 q = bodyOrientation[b];
@@ -69,7 +69,7 @@ void main() {
     sum += h;
   }
 #ifndef PAPER_LAW
-  for (uint i = gl_GlobalInvocationID.x; i < counts.x; i += stride) {
+  for (uint i = gl_GlobalInvocationID.x; i < params.particleCount; i += stride) {
     uvec2 h = uvec2(fmix(i ^ 0x13198a2eu), fmix(i ^ 0x03707344u));
     for (uint g = 0u; g < uint(CONTACT_SLOTS_PER_GROUP); ++g) {
       uint entry = i * uint(CONTACT_SLOTS_PER_GROUP) + g;

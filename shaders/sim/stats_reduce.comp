@@ -31,7 +31,7 @@ void main() {
   uvec4 c = uvec4(0u);
   vec4 s = vec4(0.0);
   uint asleep = 0u;
-  for (uint i = gl_GlobalInvocationID.x; i < counts.x; i += stride) {
+  for (uint i = gl_GlobalInvocationID.x; i < params.particleCount; i += stride) {
     uvec4 p = particleStats[i];
 #ifdef SLEEPING
     // Only active particles are computed, so a dead body's particles keep their last contacts.
@@ -43,14 +43,14 @@ void main() {
     s.z = max(s.z, uintBitsToFloat(p.y));
     particleStats[i] = uvec4(p.x, 0u, p.z, p.w);
   }
-  for (uint b = gl_GlobalInvocationID.x; b < counts.y; b += stride) {
+  for (uint b = gl_GlobalInvocationID.x; b < params.bodyCount; b += stride) {
     uvec4 info = bodyInfo[b];
     c.w += info.w;
     if ((info.z & BODY_ALIVE) == 0u) continue;
     if ((info.z & BODY_GRANULE) != 0u) {
       s.w += 1.0;
 #ifdef SLEEPING
-      if (floatBitsToUint(bodyVelocity[b].w) >= sleepSteps.x) ++asleep;
+      if (floatBitsToUint(bodyVelocity[b].w) >= params.sleepSubsteps) ++asleep;
 #endif
     }
     if (((info.z & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT) != MOTION_DYNAMIC) continue;

@@ -17,9 +17,10 @@ layout(location = 1) uniform vec3 hi;
 
 void main() {
   uint b = threadIndex();
-  if (b >= counts.y) return;
+  if (b >= params.bodyCount) return;
   uvec4 info = bodyInfo[b];
-  if ((info.z & BODY_ALIVE) == 0u || floatBitsToUint(bodyVelocity[b].w) < sleepSteps.x) return;
+  if ((info.z & BODY_ALIVE) == 0u || floatBitsToUint(bodyVelocity[b].w) < params.sleepSubsteps)
+    return;
   vec3 p = bodyPosition[b].xyz;
   if (any(lessThan(p, lo)) || any(greaterThan(p, hi))) return;
   bodyVelocity[b].w = uintBitsToFloat(1u);

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <iterator>
+#include <string>
 
 #include "core/gpu_layout.h"
 #include "gl/shader_library.h"
@@ -44,32 +46,64 @@ GLint blockSize(GLuint program, GLenum interface, const char* name) {
   return size;
 }
 
+GLint activeVariables(GLuint program, GLenum interface, const char* name) {
+  GLuint block = glGetProgramResourceIndex(program, interface, name);
+  EXPECT_NE(block, GL_INVALID_INDEX) << name;
+  GLenum property = GL_NUM_ACTIVE_VARIABLES;
+  GLint count = 0;
+  glGetProgramResourceiv(program, interface, block, 1, &property, 1, nullptr, &count);
+  return count;
+}
+
 TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
   testing::gpu().makeCurrent();
   gl::ShaderLibrary library;
   GLuint program = library.compileCompute("sim/layout_probe.comp");
 
-  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "gravityDt"),
-            GLint(offsetof(SimParams, gravityDt)));
-  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "particleGeom"),
-            GLint(offsetof(SimParams, particleGeom)));
-  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "grainContact"),
-            GLint(offsetof(SimParams, grainContact)));
-  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "wallContact"),
-            GLint(offsetof(SimParams, wallContact)));
-  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "counts"), GLint(offsetof(SimParams, counts)));
-  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "counts2"), GLint(offsetof(SimParams, counts2)));
-  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "colliderEnds"),
-            GLint(offsetof(SimParams, colliderEnds)));
-  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "shearContact"),
-            GLint(offsetof(SimParams, shearContact)));
-  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "listGeom"), GLint(offsetof(SimParams, listGeom)));
-  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "listLayout"),
-            GLint(offsetof(SimParams, listLayout)));
-  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "sleepSpeeds"),
-            GLint(offsetof(SimParams, sleepSpeeds)));
-  EXPECT_EQ(resourceOffset(program, GL_UNIFORM, "sleepSteps"),
-            GLint(offsetof(SimParams, sleepSteps)));
+  // Each member at the offset of its C++ twin, and no member that the C++ side lacks.
+  struct Member {
+    const char* name;
+    std::size_t offset;
+  };
+  const Member members[] = {
+      {"gravity", offsetof(SimParams, gravity)},
+      {"dt", offsetof(SimParams, dt)},
+      {"particleRadius", offsetof(SimParams, particleRadius)},
+      {"particleDiameter", offsetof(SimParams, particleDiameter)},
+      {"inverseCellSize", offsetof(SimParams, inverseCellSize)},
+      {"maxOverlap", offsetof(SimParams, maxOverlap)},
+      {"grainStiffness", offsetof(SimParams, grainStiffness)},
+      {"grainDamping", offsetof(SimParams, grainDamping)},
+      {"friction", offsetof(SimParams, friction)},
+      {"tangentialDamping", offsetof(SimParams, tangentialDamping)},
+      {"wallStiffness", offsetof(SimParams, wallStiffness)},
+      {"maxSpeed", offsetof(SimParams, maxSpeed)},
+      {"particleCount", offsetof(SimParams, particleCount)},
+      {"bodyCount", offsetof(SimParams, bodyCount)},
+      {"hashMask", offsetof(SimParams, hashMask)},
+      {"sinkCount", offsetof(SimParams, sinkCount)},
+      {"hashSize", offsetof(SimParams, hashSize)},
+      {"hashMultiplierY", offsetof(SimParams, hashMultiplierY)},
+      {"hashMultiplierZ", offsetof(SimParams, hashMultiplierZ)},
+      {"planesEnd", offsetof(SimParams, planesEnd)},
+      {"boxesEnd", offsetof(SimParams, boxesEnd)},
+      {"revolutionsEnd", offsetof(SimParams, revolutionsEnd)},
+      {"grainShearStiffness", offsetof(SimParams, grainShearStiffness)},
+      {"wallShearStiffness", offsetof(SimParams, wallShearStiffness)},
+      {"listReachSquared", offsetof(SimParams, listReachSquared)},
+      {"listMoveSquared", offsetof(SimParams, listMoveSquared)},
+      {"listStride", offsetof(SimParams, listStride)},
+      {"sleepLinearSpeed", offsetof(SimParams, sleepLinearSpeed)},
+      {"sleepAngularSpeed", offsetof(SimParams, sleepAngularSpeed)},
+      {"wakeAcceleration", offsetof(SimParams, wakeAcceleration)},
+      {"sleepSubsteps", offsetof(SimParams, sleepSubsteps)},
+      {"sleepNeighbourLead", offsetof(SimParams, sleepNeighbourLead)},
+  };
+  for (const Member& m : members) {
+    const std::string name = std::string("SimParams.") + m.name;
+    EXPECT_EQ(resourceOffset(program, GL_UNIFORM, name.c_str()), GLint(m.offset)) << name;
+  }
+  EXPECT_EQ(activeVariables(program, GL_UNIFORM_BLOCK, "SimParams"), GLint(std::size(members)));
   EXPECT_EQ(blockSize(program, GL_UNIFORM_BLOCK, "SimParams"), GLint(sizeof(SimParams)));
 
   EXPECT_EQ(stride(program, "colliders[0].a"), GLint(sizeof(GpuCollider)));

@@ -1,6 +1,8 @@
 // The shader loader without a GL context: #include expansion with #line, and log mapping.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "gl/shader_library.h"
 
 namespace sandphys::gl {
@@ -20,6 +22,23 @@ TEST(ShaderLibrary, ExpandsIncludesOnceAndMarksEveryFileWithLineDirectives) {
   std::size_t count = 0;
   for (const auto& f : source.files) count += f == "sim/common/layout.glsl";
   EXPECT_EQ(count, 1u);
+}
+
+TEST(ShaderLibrary, ServesTheBufferDeclarationsGeneratedFromTheTable) {
+  ShaderLibrary library;
+  ExpandedSource source = library.expand("sim/grid_count.comp", {});
+  EXPECT_NE(std::find(source.files.begin(), source.files.end(), "sim/common/buffers.glsl"),
+            source.files.end());
+  EXPECT_NE(source.text.find("#define BODY_POSITION(access) layout(std430, binding = 0) access "
+                             "buffer BodyPositionBuffer { vec4 bodyPosition[]; };"),
+            std::string::npos);
+  EXPECT_NE(source.text.find("#define CELL_START_TEXTURE layout(binding = "), std::string::npos);
+}
+
+TEST(ShaderLibrary, AGeneratedFileTakesPrecedence) {
+  ShaderLibrary library(embeddedShaders(), {{"sim/common/layout.glsl", "// replaced\n"}});
+  EXPECT_EQ(library.source("sim/common/layout.glsl"), "// replaced\n");
+  EXPECT_NE(library.source("sim/contacts.comp").find("#version"), std::string::npos);
 }
 
 TEST(ShaderLibrary, MapsDriverMessagesToFileAndLine) {

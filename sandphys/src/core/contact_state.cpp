@@ -1,4 +1,4 @@
-// The contact history between the GPU's layout (layout.glsl: slot k of particle i is entry
+// The contact history between the GPU's layout (gpu_buffers.def: slot k of particle i is entry
 // 4 i + k % 4 of group buffer k / 4) and StoredContacts, for snapshots and their restore.
 #include "core/contact_state.h"
 

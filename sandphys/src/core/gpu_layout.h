@@ -1,7 +1,8 @@
 #pragma once
 
-// C++ twin of shaders/sim/common/layout.glsl. A test compiles a probe shader and checks these
-// sizes and offsets against the driver's view of the GLSL declarations.
+// C++ twin of shaders/sim/common/layout.glsl: its constants, structs and uniform block. A test
+// compiles a probe shader and checks these sizes and offsets against the driver's view of the
+// GLSL declarations. The buffers themselves are declared once, in gpu_buffers.def.
 
 #include <cstddef>
 #include <cstdint>
@@ -11,72 +12,6 @@
 #include "sandphys/snapshot.h"
 
 namespace sandphys::detail {
-
-/// SSBO binding points, one per attribute (layout.glsl).
-enum Binding : unsigned {
-  kBodyPosition = 0,
-  kBodyOrientation = 1,
-  kBodyVelocity = 2,
-  kBodyAngularVelocity = 3,
-  kBodyInertia = 4,
-  kBodyInfo = 5,
-  kParticleLocal = 6,
-  kParticleBody = 7,
-  kParticlePosition = 8,
-  kParticleVelocity = 9,
-  kParticleForce = 10,
-  kParticleStats = 11,
-  kCellCount = 12,
-  kCellStart = 13,
-  kCellParticles = 14,
-  kNeighbourList = 15,
-  kListOrigin = 16,
-  kParticleCell = 17,
-  kScanBlockSums = 18,
-  kColliders = 19,
-  kSinks = 20,
-  kCounters = 21,
-  kStatsPartials = 22,
-  kContactList = 23,
-  kLargeBodies = 24,
-  kLargeBodyForces = 25,
-  kStateHashPartials = 26,
-  kParticleTorque = 27,
-  kParticleSpin = 28,
-  kContactSlots0 = 29,  // kContactSlotGroups buffers in a row
-  kContactPairs = 32,
-  kActiveBodies = 33,
-  kActiveParticles = 34,
-  kListBuilt = 35,
-  kBindingCount = 36,
-};
-
-/// Texture units of the read-only buffer-texture views of some of the buffers above (layout.glsl,
-/// *_TEXTURE). On llvmpipe an SSBO load at a per-invocation offset runs lane by lane, while a
-/// texel fetch is one vector gather; on GPUs it is the cached read path. A kernel reads through a
-/// view only what earlier dispatches wrote.
-enum TextureUnit : unsigned {
-  kNeighbourListTexture = 0,
-  kListOriginTexture = 1,
-  kCellStartTexture = 2,
-  kBodyPositionTexture = 3,
-  kBodyOrientationTexture = 4,
-  kBodyVelocityTexture = 5,
-  kBodyAngularVelocityTexture = 6,
-  kBodyInfoTexture = 7,
-  kParticleLocalTexture = 8,
-  kParticleBodyTexture = 9,
-  kParticlePositionTexture = 10,
-  kParticleVelocityTexture = 11,
-  kParticleForceTexture = 12,
-  kCellParticlesTexture = 13,
-  kCellCountTexture = 14,
-  kParticleTorqueTexture = 15,
-  kParticleSpinTexture = 16,
-  kContactSlots0Texture = 17,  // kContactSlotGroups views in a row
-  kContactPairsTexture = 20,
-  kTextureCount = 21,
-};
 
 inline constexpr unsigned kSimParamsBinding = 0;
 inline constexpr unsigned kWorkgroupSize = 64;
@@ -152,7 +87,7 @@ enum ColliderType : std::uint32_t {
   kColliderRevolution = 3,  // cylinder wall and funnel: a segment swept around the y axis
 };
 
-/// Contact slots of ContactLaw::HertzMindlin (layout.glsl, contact_slots.glsl): per particle,
+/// Contact slots of ContactLaw::HertzMindlin (gpu_buffers.def, contact_slots.glsl): per particle,
 /// kContactSlots slots of one vec4 (spring xyz, partner key), kContactSlotsPerGroup of them in
 /// each of kContactSlotGroups buffers.
 inline constexpr std::uint32_t kContactSlotsPerGroup = 4;
@@ -193,27 +128,47 @@ struct GpuStatsPartial {
   GpuUVec4 sleep;   // x: sleeping granules; y, z, w: unused
 };
 
-/// uniform SimParams in layout.glsl (std140).
-struct SimParams {
-  GpuVec4 gravityDt;
-  GpuVec4 particleGeom;
-  GpuVec4 grainContact;
-  GpuVec4 wallContact;
-  GpuUVec4 counts;
-  GpuUVec4 counts2;
-  GpuUVec4 colliderEnds;
-  GpuVec4 shearContact;
-  GpuVec4 listGeom;
-  GpuUVec4 listLayout;
-  GpuVec4 sleepSpeeds;
-  GpuUVec4 sleepSteps;
+/// uniform SimParams in layout.glsl (std140), member for member; their meaning is written there.
+struct alignas(16) SimParams {
+  Vec3 gravity;
+  float dt;
+  float particleRadius;
+  float particleDiameter;
+  float inverseCellSize;
+  float maxOverlap;
+  float grainStiffness;
+  float grainDamping;
+  float friction;
+  float tangentialDamping;
+  float wallStiffness;
+  float maxSpeed;
+  std::uint32_t particleCount;
+  std::uint32_t bodyCount;
+  std::uint32_t hashMask;
+  std::uint32_t sinkCount;
+  std::uint32_t hashSize;
+  std::uint32_t hashMultiplierY;
+  std::uint32_t hashMultiplierZ;
+  std::uint32_t planesEnd;
+  std::uint32_t boxesEnd;
+  std::uint32_t revolutionsEnd;
+  float grainShearStiffness;
+  float wallShearStiffness;
+  float listReachSquared;
+  float listMoveSquared;
+  std::uint32_t listStride;
+  float sleepLinearSpeed;
+  float sleepAngularSpeed;
+  float wakeAcceleration;
+  std::uint32_t sleepSubsteps;
+  std::uint32_t sleepNeighbourLead;
 };
 
 static_assert(sizeof(GpuCollider) == 96);
 static_assert(sizeof(GpuSink) == 32);
 static_assert(sizeof(GpuContactRecord) == 80);
 static_assert(sizeof(GpuStatsPartial) == 48);
-static_assert(sizeof(SimParams) == 192);
-static_assert(offsetof(SimParams, counts) == 64);
+static_assert(sizeof(Vec3) == 12);  // std140 packs dt right after gravity
+static_assert(sizeof(SimParams) == 144);
 
 }  // namespace sandphys::detail

@@ -50,8 +50,8 @@ std::uint32_t World::Impl::addBodies(const ParticleTemplate& shape,
                                 (std::uint32_t(motion) << kBodyMotionShift);
     info[i] = {std::uint32_t(firstParticle + i * perBody), std::uint32_t(perBody), flags, 0u};
     inertia[i] = toGpu(shape.principalInertia, shape.mass);
-    // -1 marks static particles, whose force the contact kernel skips (layout.glsl). The paper's
-    // law damps with the particle's share of the mass, HertzMindlin with the body's.
+    // -1 marks static particles, whose force the contact kernel skips (gpu_buffers.def). The
+    // paper's law damps with the particle's share of the mass, HertzMindlin with the body's.
     const float inverseMass = keepsHistory() ? 1.0f / shape.mass : float(perBody) / shape.mass;
     const float particleInvMass = dynamic ? inverseMass : (motion == Motion::Static ? -1.0f : 0.0f);
     for (std::uint64_t k = 0; k < perBody; ++k) {

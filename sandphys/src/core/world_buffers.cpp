@@ -1,6 +1,5 @@
 #include <algorithm>
 #include <bit>
-#include <iterator>
 
 #include "core/world_impl.h"
 #include "gl/gl_check.h"
@@ -8,101 +7,6 @@
 #include "sandphys/error.h"
 
 namespace sandphys::detail {
-namespace {
-
-// Element size of each binding and whether it is sized by bodies, particles or the hash table.
-// History: by particles when the contact law keeps contact state (HertzMindlin), else unused.
-// Lists: a particle's neighbour list (kNeighbourListCapacity entries), rebuilt from the
-// particles, so nothing is kept when it grows.
-enum class SizedBy {
-  Bodies,
-  Particles,
-  Lists,
-  History,
-  Table,
-  TablePlusOne,
-  ScanBlocks,
-  Colliders,
-  Fixed
-};
-struct BufferSpec {
-  const char* name;
-  std::size_t elementBytes;
-  SizedBy sizedBy;
-};
-
-constexpr BufferSpec kSpecs[kBindingCount] = {
-    {"bodyPosition", 16, SizedBy::Bodies},
-    {"bodyOrientation", 16, SizedBy::Bodies},
-    {"bodyVelocity", 16, SizedBy::Bodies},
-    {"bodyAngularVelocity", 16, SizedBy::Bodies},
-    {"bodyInertia", 16, SizedBy::Bodies},
-    {"bodyInfo", 16, SizedBy::Bodies},
-    {"particleLocal", 16, SizedBy::Particles},
-    {"particleBody", 4, SizedBy::Particles},
-    {"particlePosition", 16, SizedBy::Particles},
-    {"particleVelocity", 16, SizedBy::Particles},
-    {"particleForce", 16, SizedBy::Particles},
-    {"particleStats", 16, SizedBy::Particles},
-    {"cellCount", 4, SizedBy::Table},
-    {"cellStart", 4, SizedBy::TablePlusOne},
-    {"cellParticles", 4, SizedBy::Particles},
-    {"neighbourList", 4 * kNeighbourListCapacity, SizedBy::Lists},
-    {"listOrigin", 16, SizedBy::Particles},
-    {"particleCell", 4, SizedBy::Particles},
-    {"scanBlockSums", 4, SizedBy::ScanBlocks},
-    {"colliders", sizeof(GpuCollider), SizedBy::Colliders},
-    {"sinks", sizeof(GpuSink), SizedBy::Colliders},
-    {"counters", 4 * kCounterCount, SizedBy::Fixed},
-    {"statsPartials", sizeof(GpuStatsPartial) * kStatsWorkgroups, SizedBy::Fixed},
-    {"contactList", 16, SizedBy::Fixed},
-    {"largeBodies", 4 * kMaxLargeBodies, SizedBy::Fixed},
-    {"largeBodyForces", 32 * kMaxLargeBodies, SizedBy::Fixed},
-    {"stateHashPartials", 8 * kStatsWorkgroups, SizedBy::Fixed},
-    {"particleTorque", 16, SizedBy::History},
-    {"particleSpin", 16, SizedBy::History},
-    {"contactSlots0", 16 * kContactSlotsPerGroup, SizedBy::History},
-    {"contactSlots1", 16 * kContactSlotsPerGroup, SizedBy::History},
-    {"contactSlots2", 16 * kContactSlotsPerGroup, SizedBy::History},
-    {"contactPairs", 16, SizedBy::History},
-    {"activeBodies", 4, SizedBy::Bodies},
-    {"activeParticles", 4, SizedBy::Particles},
-    {"listBuilt", 4, SizedBy::Particles},
-};
-static_assert(kContactSlots0 + kContactSlotGroups == kContactPairs);
-
-}  // namespace
-
-struct TextureView {
-  TextureUnit unit;
-  Binding buffer;
-  GLenum format;  // the element type the buffer's GLSL declaration gives it
-};
-constexpr TextureView kTextureViews[] = {
-    {kNeighbourListTexture, kNeighbourList, GL_R32UI},
-    {kListOriginTexture, kListOrigin, GL_RGBA32F},
-    {kCellStartTexture, kCellStart, GL_R32UI},
-    {kBodyPositionTexture, kBodyPosition, GL_RGBA32F},
-    {kBodyOrientationTexture, kBodyOrientation, GL_RGBA32F},
-    {kBodyVelocityTexture, kBodyVelocity, GL_RGBA32F},
-    {kBodyAngularVelocityTexture, kBodyAngularVelocity, GL_RGBA32F},
-    {kBodyInfoTexture, kBodyInfo, GL_RGBA32UI},
-    {kParticleLocalTexture, kParticleLocal, GL_RGBA32F},
-    {kParticleBodyTexture, kParticleBody, GL_R32UI},
-    {kParticlePositionTexture, kParticlePosition, GL_RGBA32F},
-    {kParticleVelocityTexture, kParticleVelocity, GL_RGBA32F},
-    {kParticleForceTexture, kParticleForce, GL_RGBA32F},
-    {kCellParticlesTexture, kCellParticles, GL_R32UI},
-    {kCellCountTexture, kCellCount, GL_R32UI},
-    {kParticleTorqueTexture, kParticleTorque, GL_RGBA32F},
-    {kParticleSpinTexture, kParticleSpin, GL_RGBA32F},
-    {TextureUnit(kContactSlots0Texture + 0), Binding(kContactSlots0 + 0), GL_RGBA32F},
-    {TextureUnit(kContactSlots0Texture + 1), Binding(kContactSlots0 + 1), GL_RGBA32F},
-    {TextureUnit(kContactSlots0Texture + 2), Binding(kContactSlots0 + 2), GL_RGBA32F},
-    {kContactPairsTexture, kContactPairs, GL_RGBA32UI},
-};
-static_assert(kContactSlots0Texture + kContactSlotGroups == kContactPairsTexture);
-static_assert(std::size(kTextureViews) == kTextureCount);
 
 // scan_blocks.comp reads whole blocks of the table without bounds checks.
 constexpr std::uint32_t kMinTableSize = 4096;
@@ -144,7 +48,7 @@ void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::
                             std::uint32_t colliders, std::uint32_t bodiesInUse,
                             std::uint32_t particlesInUse, bool history) {
   for (unsigned b = 0; b < kBindingCount; ++b) {
-    const BufferSpec& spec = kSpecs[b];
+    const GpuBufferSpec& spec = kGpuBuffers[b];
     std::size_t count = 1;
     std::size_t keep = 0;
     switch (spec.sizedBy) {
@@ -181,16 +85,16 @@ void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::
         keep = 1;
         break;
     }
-    const std::size_t bytes = count * spec.elementBytes;
+    const std::size_t bytes = count * spec.unitBytes();
     gl::Buffer& buffer = storage[b];
     if (buffer.id() == 0) {
-      buffer = gl::Buffer(bytes, spec.name);
+      buffer = gl::Buffer(bytes, spec.array);
     } else if (bytes > buffer.size()) {
       if (spec.sizedBy == SizedBy::Table || spec.sizedBy == SizedBy::TablePlusOne ||
           spec.sizedBy == SizedBy::ScanBlocks || spec.sizedBy == SizedBy::Lists) {
-        buffer = gl::Buffer(bytes, spec.name);  // rebuilt from the particles: nothing to keep
+        buffer = gl::Buffer(bytes, spec.array);  // rebuilt from the particles: nothing to keep
       } else {
-        buffer.grow(bytes, keep * spec.elementBytes);
+        buffer.grow(bytes, keep * spec.unitBytes());
       }
     }
   }
@@ -198,8 +102,11 @@ void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::
   // The texture views follow the buffers (a grown buffer is a new buffer object).
   if (textures[0] == 0)
     glCreateTextures(GL_TEXTURE_BUFFER, GLsizei(textures.size()), textures.data());
-  for (const TextureView& view : kTextureViews)
-    glTextureBuffer(textures[view.unit], view.format, storage[view.buffer].id());
+  for (unsigned b = 0; b < kBindingCount; ++b) {
+    const GpuBufferSpec& spec = kGpuBuffers[b];
+    if (spec.textureUnit != kNoTextureUnit)
+      glTextureBuffer(textures[spec.textureUnit], viewFormat(spec.element), storage[b].id());
+  }
   gl::check("allocating world buffers");
 }
 

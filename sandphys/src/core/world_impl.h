@@ -10,7 +10,7 @@
 
 #include "core/collider_bounds.h"
 #include "core/emitter.h"
-#include "core/gpu_layout.h"
+#include "core/gpu_buffers.h"
 #include "gl/buffer.h"
 #include "gl/kernel_profiler.h"
 #include "sandphys/world.h"
@@ -19,11 +19,11 @@ namespace sandphys {
 
 namespace detail {
 
-/// Every GPU buffer of a World, one per attribute (layout.glsl).
+/// Every GPU buffer of a World, one per attribute (gpu_buffers.def).
 struct WorldBuffers {
   std::array<gl::Buffer, kBindingCount> storage;
   gl::Buffer params;  // uniform SimParams
-  // Buffer-texture views (layout.glsl, *_TEXTURE), indexed by TextureUnit.
+  // Buffer-texture views (View in gpu_buffers.def), indexed by TextureUnit.
   std::array<GLuint, kTextureCount> textures{};
 
   WorldBuffers() = default;

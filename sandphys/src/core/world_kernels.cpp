@@ -12,21 +12,34 @@ using namespace detail;
 
 void World::Impl::uploadParams() {
   SimParams p{};
-  p.gravityDt = {settings.gravity.x, settings.gravity.y, settings.gravity.z, model.timeStep};
+  p.gravity = settings.gravity;
+  p.dt = model.timeStep;
   const float skin = model.listSkin;
   const float reach = settings.particleDiameter + skin;
-  p.particleGeom = {model.radius, settings.particleDiameter, 1.0f / reach, model.maxOverlap};
+  p.particleRadius = model.radius;
+  p.particleDiameter = settings.particleDiameter;
+  p.inverseCellSize = 1.0f / reach;
+  p.maxOverlap = model.maxOverlap;
   // A build is asked for a hair before a particle has moved half the skin, so that rounding
   // cannot bring an unlisted pair into contact.
-  p.listGeom = {skin, reach * reach, 0.98f * 0.25f * skin * skin, 0.0f};
+  p.listReachSquared = reach * reach;
+  p.listMoveSquared = 0.98f * 0.25f * skin * skin;
   // Entries follow the particles in use (every change of their number asks for a build), so
   // that a World with room to spare lays its lists out as a full one does.
-  p.listLayout = {particleCount, 0u, 0u, 0u};
-  p.grainContact = {model.stiffnessGrain, model.dampingFactorGrain, settings.material.friction,
-                    model.tangentialDamping};
-  p.wallContact = {model.stiffnessWall, settings.maxSpeed, 0.0f, 0.0f};
-  p.counts = {particleCount, bodyCount, table.size - 1u, std::uint32_t(colliders.size())};
-  p.counts2 = {std::uint32_t(sinks.size()), table.size, table.multiplierY, table.multiplierZ};
+  p.listStride = particleCount;
+  p.grainStiffness = model.stiffnessGrain;
+  p.grainDamping = model.dampingFactorGrain;
+  p.friction = settings.material.friction;
+  p.tangentialDamping = model.tangentialDamping;
+  p.wallStiffness = model.stiffnessWall;
+  p.maxSpeed = settings.maxSpeed;
+  p.particleCount = particleCount;
+  p.bodyCount = bodyCount;
+  p.hashMask = table.size - 1u;
+  p.sinkCount = std::uint32_t(sinks.size());
+  p.hashSize = table.size;
+  p.hashMultiplierY = table.multiplierY;
+  p.hashMultiplierZ = table.multiplierZ;
   // Colliders go to the GPU sorted by type (stable), so that kernels loop over one type at a time.
   std::vector<GpuCollider> sorted;
   sorted.reserve(colliders.size());
@@ -37,10 +50,16 @@ void World::Impl::uploadParams() {
     }
     ends[type - kColliderPlane] = std::uint32_t(sorted.size());
   }
-  p.colliderEnds = {ends[0], ends[1], ends[2], 0u};
-  p.shearContact = {model.shearStiffnessGrain, model.shearStiffnessWall, 0.0f, 0.0f};
-  p.sleepSpeeds = {sleep.linearSpeed, sleep.angularSpeed, sleep.wakeAcceleration, 0.0f};
-  p.sleepSteps = {sleep.substeps, sleep.neighbourLead, 0u, 0u};
+  p.planesEnd = ends[0];
+  p.boxesEnd = ends[1];
+  p.revolutionsEnd = ends[2];
+  p.grainShearStiffness = model.shearStiffnessGrain;
+  p.wallShearStiffness = model.shearStiffnessWall;
+  p.sleepLinearSpeed = sleep.linearSpeed;
+  p.sleepAngularSpeed = sleep.angularSpeed;
+  p.wakeAcceleration = sleep.wakeAcceleration;
+  p.sleepSubsteps = sleep.substeps;
+  p.sleepNeighbourLead = sleep.neighbourLead;
   buffers[kColliders].upload(0, sorted.size() * sizeof(GpuCollider), sorted.data());
   buffers.params.upload(0, sizeof p, &p);
   paramsDirty = false;

@@ -144,9 +144,11 @@ std::vector<ContactRecord> World::Impl::listContacts(std::uint32_t first, std::u
       std::max<std::uint32_t>(1024u, (minOverlap > 0.0f ? 1u : 8u) * (end - first));
   for (;;) {
     gl::Buffer& list = buffers[kContactList];
-    const std::size_t bytes = 16 + std::size_t(capacity) * sizeof(GpuContactRecord);
-    if (list.size() < bytes) list = gl::Buffer(bytes, "contactList");
+    const std::size_t bytes =
+        kContactListHeaderBytes + std::size_t(capacity) * sizeof(GpuContactRecord);
+    if (list.size() < bytes) list = gl::Buffer(bytes, kGpuBuffers[kContactList].array);
     std::uint32_t header[4] = {0u, capacity, 0u, 0u};
+    static_assert(sizeof header == kContactListHeaderBytes);
     list.upload(0, sizeof header, header);
     buffers.bindAll();
     // What the next substep does first: lists built if due (that changes nothing it computes).
@@ -163,7 +165,7 @@ std::vector<ContactRecord> World::Impl::listContacts(std::uint32_t first, std::u
       continue;
     }
     std::vector<GpuContactRecord> raw(count);
-    list.download(16, count * sizeof(GpuContactRecord), raw.data());
+    list.download(kContactListHeaderBytes, count * sizeof(GpuContactRecord), raw.data());
     gl::check("listing contacts");
     std::vector<ContactRecord> out(count);
     for (std::uint32_t i = 0; i < count; ++i) {

@@ -5,7 +5,9 @@
 #include <regex>
 #include <sstream>
 #include <unordered_set>
+#include <utility>
 
+#include "core/gpu_buffers.h"
 #include "gl/embedded_shaders.h"
 #include "sandphys/error.h"
 
@@ -84,13 +86,20 @@ struct Expander {
 
 }  // namespace
 
-ShaderLibrary::ShaderLibrary() : ShaderLibrary(embeddedShaders()) {}
+ShaderLibrary::ShaderLibrary()
+    : ShaderLibrary(embeddedShaders(),
+                    {{detail::kBufferDeclarationsFile, detail::generatedBufferDeclarations()}}) {}
 
-ShaderLibrary::ShaderLibrary(std::span<const EmbeddedShader> embedded) : m_embedded(embedded) {
+ShaderLibrary::ShaderLibrary(std::span<const EmbeddedShader> embedded,
+                             std::vector<GeneratedShader> generated)
+    : m_embedded(embedded), m_generated(std::move(generated)) {
   if (const char* dir = std::getenv("SANDPHYS_SHADER_DIR"); dir && *dir) m_directory = dir;
 }
 
 std::string ShaderLibrary::source(const std::string& name) const {
+  for (const auto& shader : m_generated) {
+    if (name == shader.name) return shader.source;
+  }
   if (!m_directory.empty()) {
     std::ifstream file(m_directory + "/" + name);
     if (!file) {

@@ -23,15 +23,24 @@ struct ShaderStage {
   std::string name;
 };
 
-/// Finds shader files (embedded at build time; or, when SANDPHYS_SHADER_DIR is set in the
-/// environment, read from that directory so that a viewer can hot-reload them), expands
+/// A shader file made at run time, from C++ (e.g. declarations generated from a table).
+struct GeneratedShader {
+  std::string name;  ///< path relative to shaders/, as an #include names it
+  std::string source;
+};
+
+/// Finds shader files (generated; embedded at build time; or, when SANDPHYS_SHADER_DIR is set in
+/// the environment, read from that directory so that a viewer can hot-reload them), expands
 /// `#include "relative/path.glsl"` once per file, and compiles programs.
 class ShaderLibrary {
  public:
-  /// The library's own shaders (shaders/sim).
+  /// The library's own shaders (shaders/sim), with the buffer declarations generated from
+  /// core/gpu_buffers.def.
   ShaderLibrary();
-  /// Another set embedded with sandphys_embed_shaders(... FUNCTION f) (e.g. the renderer's).
-  explicit ShaderLibrary(std::span<const EmbeddedShader> embedded);
+  /// Another set embedded with sandphys_embed_shaders(... FUNCTION f) (e.g. the renderer's), and
+  /// files generated at run time, which take precedence over files of the same name.
+  explicit ShaderLibrary(std::span<const EmbeddedShader> embedded,
+                         std::vector<GeneratedShader> generated = {});
 
   /// Source of one file relative to shaders/; throws GpuError if there is none.
   std::string source(const std::string& name) const;
@@ -52,6 +61,7 @@ class ShaderLibrary {
  private:
   std::string m_directory;  // empty: embedded sources
   std::span<const EmbeddedShader> m_embedded;
+  std::vector<GeneratedShader> m_generated;
 };
 
 }  // namespace sandphys::gl

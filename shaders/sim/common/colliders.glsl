@@ -1,8 +1,8 @@
 // Implicit, smooth colliders (docs/architecture.md, "colliders"). World keeps them sorted by
-// type (SimParams.colliderEnds) so that kernels loop over each type in turn, every invocation
-// running the same code. Each function returns one surface that a sphere of radius r at p may
-// overlap: hit = (unit normal towards the sphere, overlap xi), a contact when xi > 0. A value, not
-// an array of hits: llvmpipe runs dynamically indexed arrays lane by lane.
+// type (params.planesEnd, boxesEnd, revolutionsEnd) so that kernels loop over each type in turn,
+// every invocation running the same code. Each function returns one surface that a sphere of
+// radius r at p may overlap: hit = (unit normal towards the sphere, overlap xi), a contact when
+// xi > 0. A value, not an array of hits: llvmpipe runs dynamically indexed arrays lane by lane.
 // Types and parameters (written by World, see gpu_layout.h):
 //   PLANE       a = (n, offset): solid where dot(n, x) < offset
 //   BOX         a = (centre, inside ? 1 : 0), b = (half extents, 0), c = orientation (x, y, z, w)

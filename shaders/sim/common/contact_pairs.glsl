@@ -1,10 +1,10 @@
-// The pair counts of ContactLaw::HertzMindlin (layout.glsl, CONTACT_PAIRS): after the contacts of
-// a substep, each body counts, for each of its particles' slots, how many of its slots name the
+// The pair counts of ContactLaw::HertzMindlin (gpu_buffers.def, CONTACT_PAIRS): after the contacts
+// of a substep, each body counts, for each of its particles' slots, how many of its slots name the
 // same partner (the partner particle's body, or the collider face). The next substep's contacts
-// share the two bodies' masses among those n contacts, m* = 1 / (n (1/M_a + 1/M_b)), so that a
-// body meeting a surface with n particles at once gets the restitution a single contact would
-// (Kodam et al. 2010). Both bodies of a pair count the same contacts, so both sides of every
-// contact use the same n. The includer declares PARTICLE_BODY_TEXTURE and CONTACT_SLOTS_*_TEXTURE.
+// share the two bodies' masses among those n contacts, m* = 1 / (n (1/M_a + 1/M_b)), so that a body
+// meeting a surface with n particles at once gets the restitution a single contact would (Kodam et
+// al. 2010). Both bodies of a pair count the same contacts, so both sides of every contact use the
+// same n. The includer declares PARTICLE_BODY_TEXTURE and CONTACT_SLOTS_*_TEXTURE.
 
 // No partner: a free slot (never a body index nor a collider key).
 #define PARTNER_NONE 0xffffffffu

@@ -1,4 +1,4 @@
-// Contact slots of ContactLaw::HertzMindlin (layout.glsl, CONTACT_SLOTS_*): the state a contact
+// Contact slots of ContactLaw::HertzMindlin (gpu_buffers.def, CONTACT_SLOTS_*): the state a contact
 // keeps from one substep to the next. Each particle owns CONTACT_SLOTS slots; contacts.comp
 // matches every contact it finds to the slot of the same partner from the previous substep and
 // writes the slots again in the order it found the contacts (the grid's fixed order, then the

@@ -18,7 +18,7 @@ void decideListBuild(bool everyList, uint activeParticles) {
   bool due = requested != 0u;
   counters[COUNTER_LIST_REQUESTED] = 0u;
   if (due) counters[COUNTER_LIST_BUILDS] += 1u;
-  uint particleGroups = due ? (counts.x + WORKGROUP_SIZE - 1u) / WORKGROUP_SIZE : 0u;
+  uint particleGroups = due ? (params.particleCount + WORKGROUP_SIZE - 1u) / WORKGROUP_SIZE : 0u;
   uint listGroups = particleGroups;
 #ifdef SLEEPING
   bool all = everyList || requested == LIST_REQUEST_ALL;
@@ -26,12 +26,12 @@ void decideListBuild(bool everyList, uint activeParticles) {
   if (due && !all) listGroups = (activeParticles + WORKGROUP_SIZE - 1u) / WORKGROUP_SIZE;
 #endif
   // The table size is a power of two of at least 4096.
-  uint scanGroups = due ? counts2.y / SCAN_BLOCK : 0u;
+  uint scanGroups = due ? params.hashSize / SCAN_BLOCK : 0u;
   setGroups(PASS_GRID_COUNT, particleGroups);
   setGroups(PASS_SCAN_BLOCKS, scanGroups);
   setGroups(PASS_SCAN_BLOCK_SUMS, due ? 1u : 0u);
   setGroups(PASS_SCAN_ADD, scanGroups);
   setGroups(PASS_GRID_SCATTER, particleGroups);
-  setGroups(PASS_GRID_SORT, due ? counts2.y / WORKGROUP_SIZE : 0u);
+  setGroups(PASS_GRID_SORT, due ? params.hashSize / WORKGROUP_SIZE : 0u);
   setGroups(PASS_LIST_BUILD, listGroups);
 }

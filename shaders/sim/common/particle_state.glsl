@@ -22,5 +22,6 @@ void storeParticle(uint k, vec4 local, uint body, vec3 centre, vec4 q, vec3 v, v
 #endif
   vec3 moved = position - texelFetch(listOriginTexture, int(k)).xyz;
   // The same value from every writer: no atomic needed.
-  if (dot(moved, moved) > listGeom.z) counters[COUNTER_LIST_REQUESTED] = LIST_REQUEST_MOVED;
+  if (dot(moved, moved) > params.listMoveSquared)
+    counters[COUNTER_LIST_REQUESTED] = LIST_REQUEST_MOVED;
 }

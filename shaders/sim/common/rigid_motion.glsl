@@ -21,11 +21,11 @@ struct BodyMotion {
 // velocities and only move. A granule that a sink takes asks for a list build (its particles
 // leave the lists). Under SLEEPING the calm count follows from the body's count `previousCalm`,
 // the smallest count of the bodies it touches `neighbourCalm` and its limit `calmLimit`; a body
-// that reaches sleepSteps.x stops dead, so that what touches it sees it at rest.
+// that reaches params.sleepSubsteps stops dead, so that what touches it sees it at rest.
 BodyMotion integrateBody(uint b, uvec4 info, vec3 force, vec3 torque, uint previousCalm,
                          uint neighbourCalm, uint calmLimit) {
   uint motion = (info.z & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT;
-  float dt = gravityDt.w;
+  float dt = params.dt;
   vec4 position = bodyPosition[b];
   vec4 q = bodyOrientation[b];
   vec3 v = bodyVelocity[b].xyz;
@@ -33,7 +33,7 @@ BodyMotion integrateBody(uint b, uvec4 info, vec3 force, vec3 torque, uint previ
   vec3 omega = spin.xyz;
 
   if (motion == MOTION_DYNAMIC) {
-    v += dt * (force * position.w + gravityDt.xyz);
+    v += dt * (force * position.w + params.gravity);
     // Euler's equations in the principal frame: I w' = T - w x (I w).
     vec3 inertia = bodyInertia[b].xyz;
     vec3 omegaLocal = quatRotateInverse(q, omega);
@@ -42,7 +42,7 @@ BodyMotion integrateBody(uint b, uvec4 info, vec3 force, vec3 torque, uint previ
     omega = quatRotate(q, omegaLocal);
 
     // Speed guard (paper: CFL velocity clamp), counted per body.
-    float maxSpeed = wallContact.y;
+    float maxSpeed = params.maxSpeed;
     float speed = length(v);
     if (speed > maxSpeed) {
       v *= maxSpeed / speed;
@@ -61,18 +61,19 @@ BodyMotion integrateBody(uint b, uvec4 info, vec3 force, vec3 torque, uint previ
 
   uint calm = 0u;
 #ifdef SLEEPING
-  if (dot(v, v) < sleepSpeeds.x * sleepSpeeds.x &&
-      dot(omega, omega) < sleepSpeeds.y * sleepSpeeds.y) {
-    calm = min(min(previousCalm + 1u, min(neighbourCalm, calmLimit) + sleepSteps.y), calmLimit);
+  if (dot(v, v) < params.sleepLinearSpeed * params.sleepLinearSpeed &&
+      dot(omega, omega) < params.sleepAngularSpeed * params.sleepAngularSpeed) {
+    calm = min(min(previousCalm + 1u, min(neighbourCalm, calmLimit) + params.sleepNeighbourLead),
+               calmLimit);
   }
-  if (calm >= sleepSteps.x) {
+  if (calm >= params.sleepSubsteps) {
     v = vec3(0.0);
     omega = vec3(0.0);
   }
 #endif
 
   if ((info.z & BODY_GRANULE) != 0u) {
-    for (uint k = 0u; k < counts2.x; ++k) {
+    for (uint k = 0u; k < params.sinkCount; ++k) {
       if (all(greaterThanEqual(position.xyz, sinks[k].lo.xyz)) &&
           all(lessThanEqual(position.xyz, sinks[k].hi.xyz))) {
         info.z &= ~BODY_ALIVE;
