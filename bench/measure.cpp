@@ -189,6 +189,7 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   result.listSkin = world.contactModel().listSkin;
   result.gpuMemoryBytes = world.gpuMemoryBytes();
   result.built = readPileState(world, pile, world.readStats());
+  world.resetPeakOverlap();  // the settled state's peak is the settling's
 
   char tagText[24];
   std::snprintf(tagText, sizeof tagText, "[%u]", result.granules);
@@ -244,6 +245,7 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   result.asleepAtStart = settledStats.granulesAsleep;
   result.settleWallSeconds = secondsSince(settleStart);
   result.settled = readPileState(world, pile, settledStats);
+  world.resetPeakOverlap();  // the end state's peak is the measured span's
   if (options.rockSpeed > 0.0f) {
     const float side = result.layout.boxSide * d;
     const Vec3 at{-0.5f * side + (kRockRadius + 2.0f) * d,

@@ -73,7 +73,7 @@ struct PileState {
   double contactsPerGranule = 0.0;
   double kineticEnergyPerGranule = 0.0;  ///< J
   double rmsSpeed = 0.0;                 ///< sqrt(2 KE / (granules · granule mass)), m/s
-  double maxOverlap = 0.0;               ///< largest overlap since the previous read, d
+  double maxOverlap = 0.0;               ///< largest overlap of the phase that ends here, d
   double pileTop = 0.0;                  ///< CylinderPile::pileTop, d
   std::uint32_t granulesOutside = 0;     ///< granule centres outside the container
 };

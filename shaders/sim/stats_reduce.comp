@@ -1,13 +1,13 @@
 #version 450
 // Statistics, once per frame (never per substep): a fixed number of workgroups each reduce a
 // fixed stride of particles and bodies in shared memory in a fixed order; the CPU adds the
-// partials in double. Also resets the per-particle largest overlap, which is "since last read".
+// partials in double. Reads only: the largest overlap restarts in reset_peak_overlap.comp.
 #include "common/layout.glsl"
 
 #define STATS_THREADS 256
 layout(local_size_x = STATS_THREADS) in;
 
-PARTICLE_STATS(coherent)
+PARTICLE_STATS(readonly)
 BODY_POSITION(readonly)
 BODY_VELOCITY(readonly)
 BODY_ANGULAR_VELOCITY(readonly)
@@ -41,7 +41,6 @@ void main() {
     c.y += p.w;
     c.z += p.z;
     s.z = max(s.z, uintBitsToFloat(p.y));
-    particleStats[i] = uvec4(p.x, 0u, p.z, p.w);
   }
   for (uint b = gl_GlobalInvocationID.x; b < params.bodyCount; b += stride) {
     uvec4 info = bodyInfo[b];

@@ -65,7 +65,7 @@ struct Drain {
   Hourglass::FlowFit fit;
   std::uint32_t granules = 0;
   double wallSeconds = 0.0;
-  double maxOverlap = 0.0;  // m, over every frame (each frame's stats read resets the world's)
+  double maxOverlap = 0.0;  // m, over every frame (each step() restarts the world's peak)
   WorldStats stats;
 };
 

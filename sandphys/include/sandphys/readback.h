@@ -87,7 +87,7 @@ struct WorldStats {
   /// slower.
   std::uint64_t neighbourListOverflows = 0;
   double kineticEnergy = 0.0;  ///< translational + rotational of dynamic bodies, J
-  double maxOverlap = 0.0;     ///< largest overlap since the last readStats, m
+  double maxOverlap = 0.0;     ///< largest overlap since the last step() or resetPeakOverlap(), m
   /// ContactLaw::PaperViscous: contacts whose overlap exceeded d/10 and was capped (total).
   std::uint64_t penetrationClamps = 0;
   /// ContactLaw::HertzMindlin: contacts that found all of their particle's kContactSlots slots

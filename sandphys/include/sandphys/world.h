@@ -147,7 +147,12 @@ class World {
   BodyState readBody(BodyId id) const;
   std::vector<ParticleState> readParticles() const;
   std::vector<ContactRecord> readContacts() const;
+  /// Counts, energies and the peak overlap (WorldStats); changes nothing, so two calls in a row
+  /// agree.
   WorldStats readStats();
+  /// The peak overlap of WorldStats::maxOverlap restarts at zero (step() does this at the start
+  /// of every frame, so that a frame's stats hold that frame's peak).
+  void resetPeakOverlap();
   /// Every body slot in use exactly as stored (what readStateHash covers), with the step count
   /// and simulated time; WorldSnapshot::frame is left 0 for the caller. Sync point.
   WorldSnapshot readSnapshot() const;

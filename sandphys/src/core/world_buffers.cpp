@@ -151,6 +151,7 @@ void WorldKernels::compile(ContactLaw law, bool sleeping) {
   integrateBodies = compile("sim/integrate_bodies.comp");
   integrateLargeBodies = compile("sim/integrate_large_bodies.comp");
   statsReduce = compile("sim/stats_reduce.comp");
+  resetPeakOverlap = compile("sim/reset_peak_overlap.comp");
   stateHash = compile("sim/state_hash.comp");
   spawnCheck = compile("sim/spawn_check.comp");
   if (sleeping) {
@@ -163,7 +164,7 @@ void WorldKernels::release() {
   for (GLuint p :
        {bodiesToParticles, listCheck, gridCount, scanBlocks, scanBlockSums, scanAdd, gridScatter,
         gridSort, listBuild, contacts, contactList, integrateBodies, integrateLargeBodies,
-        statsReduce, stateHash, spawnCheck, wakeRegion, collectActive}) {
+        statsReduce, resetPeakOverlap, stateHash, spawnCheck, wakeRegion, collectActive}) {
     if (p) glDeleteProgram(p);
   }
   *this = {};

@@ -59,6 +59,7 @@ struct WorldKernels {
   GLuint integrateBodies = 0;
   GLuint integrateLargeBodies = 0;
   GLuint statsReduce = 0;
+  GLuint resetPeakOverlap = 0;
   GLuint stateHash = 0;
   GLuint spawnCheck = 0;
   GLuint wakeRegion = 0;     // with sleeping only
@@ -203,6 +204,8 @@ struct World::Impl {
   /// spawn_check.comp over the `count` granules just added from body slot `firstBody`.
   void checkSpawnPlaces(std::uint32_t firstBody, std::uint32_t count);
   WorldStats reduceStats();
+  /// The peak overlap of every particle restarts at zero (reset_peak_overlap.comp).
+  void resetPeakOverlap();
 };
 
 }  // namespace sandphys

@@ -208,6 +208,19 @@ void World::Impl::checkSpawnPlaces(std::uint32_t firstBody, std::uint32_t count)
   dispatch(kernels.spawnCheck, "spawn_check", particles, kWorkgroupSize);
 }
 
+void World::Impl::resetPeakOverlap() {
+  if (particleCount == 0) return;
+  if (paramsDirty) uploadParams();
+  buffers.bindAll();
+  // Not through dispatch(): a per-frame pass, kept out of the per-substep kernel times.
+  glUseProgram(kernels.resetPeakOverlap);
+  const std::uint32_t groups = (particleCount + kWorkgroupSize - 1) / kWorkgroupSize;
+  constexpr std::uint32_t kMaxX = 32768;
+  const std::uint32_t gx = std::min(groups, kMaxX);
+  glDispatchCompute(gx, (groups + gx - 1) / gx, 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
 WorldStats World::Impl::reduceStats() {
   if (paramsDirty) uploadParams();
   buffers.bindAll();

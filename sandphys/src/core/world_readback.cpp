@@ -237,6 +237,11 @@ WorldStats World::readStats() {
   return impl().reduceStats();
 }
 
+void World::resetPeakOverlap() {
+  impl().gpu->makeCurrent();
+  impl().resetPeakOverlap();
+}
+
 Vec3 BodyForce::meanForce() const {
   const float n = substeps > 0 ? float(substeps) : 1.0f;
   return {force.x / n, force.y / n, force.z / n};

@@ -42,6 +42,7 @@ StepReport World::step(float frameDt) {
     w.accumulator -= double(due) * dt;
   }
   report.initialOverlaps = w.checkInitialOverlaps();
+  w.resetPeakOverlap();
   if (w.profiler.enabled()) w.profiler.resetTotals();
   w.buffers.bindAll();
   for (std::uint64_t i = 0; i < due; ++i) {
