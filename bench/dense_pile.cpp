@@ -308,26 +308,9 @@ void DensePile::addCrystal(World& world) const {
   const float d = m_config.particleDiameter;
   const std::vector<Site> sites =
       crystalColumnsInside(m_config.cylinderRadius * d, d, m_granuleOuterRadius);
-  // GranuleBlock always orients granules at random and keeps them 2.225 d apart, so the granules
-  // are added on loose lines high above the wall and then posed one by one.
-  constexpr std::uint32_t kLine = 1024;
-  const float parking = (m_layout.wallHeight + 10.0f) * d;
-  std::uint32_t first = BodyId::kInvalidIndex;
-  for (std::uint32_t added = 0; added < m_config.granules;) {
-    const std::uint32_t count = std::min(kLine, m_config.granules - added);
-    const float y = parking + static_cast<float>(added / kLine) * 3.0f * d;
-    const BodyRange range = world.addGranules(GranuleBlock{.center = {0.0f, y, 0.0f},
-                                                           .countX = count,
-                                                           .countY = 1,
-                                                           .countZ = 1,
-                                                           .spacing = 2.5f * d,
-                                                           .jitter = 0.0f,
-                                                           .seed = m_config.seed});
-    if (added == 0) first = range.first;
-    added += count;
-  }
   const std::uint32_t layers = m_layout.fullLayers + (m_layout.topLayerGranules > 0 ? 1u : 0u);
-  std::uint32_t index = first;
+  std::vector<BodyDesc> poses;
+  poses.reserve(m_config.granules);
   for (std::uint32_t layer = 0; layer < layers; ++layer) {
     std::vector<Site> layerOrder = layerSites(sites, m_layout, layer);
     // Row by row, as the lattice packing orders its bodies (memory locality is part of the cost).
@@ -336,11 +319,10 @@ void DensePile::addCrystal(World& world) const {
     const float y = m_layout.layerY[layer];
     for (const Site& site : layerOrder) {
       const Vec3 column = crystalColumn(site.i, site.j, d);
-      // BodyRange carries no generations; slots of a world without removals are at generation 0.
-      world.setBodyState(BodyId{index++, 0}, BodyDesc{.position = {column.x, y, column.z},
-                                                      .orientation = kCrystalOrientation});
+      poses.push_back({.position = {column.x, y, column.z}, .orientation = kCrystalOrientation});
     }
   }
+  world.addGranules(poses);
 }
 
 }  // namespace sandphys::bench

@@ -34,11 +34,6 @@ constexpr float kGateClearance = 3.0f;
 constexpr float kSinkHalfWidth = 20.0f;
 constexpr float kSinkHeight = 50.0f;
 
-// Granules of a startFrom packing are first added in lines of this many this far above the
-// funnel (GranuleBlock orients them at random) and then posed one by one.
-constexpr std::uint32_t kParkingLine = 1024;
-constexpr float kParkingHeight = 10.0f;
-
 float radians(float degrees) {
   return degrees * std::numbers::pi_v<float> / 180.0f;
 }
@@ -199,30 +194,10 @@ void Hourglass::build(World& world) {
 }
 
 void Hourglass::addPacking(World& world) const {
-  const std::vector<BodyState> kept = keptPacking();
-  // GranuleBlock orients its granules at random and keeps them apart, so the granules are added
-  // on loose lines above the funnel and then posed one by one, before any step.
-  const float parking = m_funnelTop + kParkingHeight * d();
-  std::uint32_t first = BodyId::kInvalidIndex;
-  for (std::size_t added = 0; added < kept.size();) {
-    const auto count =
-        static_cast<std::uint32_t>(std::min<std::size_t>(kParkingLine, kept.size() - added));
-    const float y = parking + static_cast<float>(added / kParkingLine) * 3.0f * d();
-    const BodyRange range = world.addGranules(GranuleBlock{.center = {0.0f, y, 0.0f},
-                                                           .countX = count,
-                                                           .countY = 1,
-                                                           .countZ = 1,
-                                                           .spacing = 2.5f * d(),
-                                                           .jitter = 0.0f,
-                                                           .seed = m_config.seed});
-    if (added == 0) first = range.first;
-    added += count;
-  }
-  for (std::size_t i = 0; i < kept.size(); ++i) {
-    // BodyRange carries no generations; slots of a world without removals are at generation 0.
-    world.setBodyState(BodyId{first + static_cast<std::uint32_t>(i), 0},
-                       BodyDesc{.position = kept[i].position, .orientation = kept[i].orientation});
-  }
+  std::vector<BodyDesc> poses;
+  for (const BodyState& granule : keptPacking())
+    poses.push_back({.position = granule.position, .orientation = granule.orientation});
+  world.addGranules(poses);
 }
 
 void Hourglass::update(World& world, const StepReport& report, double simTime) {
