@@ -37,22 +37,16 @@ GLint stride(GLuint program, const char* name) {
   return std::max(values[0], values[1]);
 }
 
-GLint blockSize(GLuint program, GLenum interface, const char* name) {
+// One property of a uniform or storage block (GL_BUFFER_DATA_SIZE, GL_NUM_ACTIVE_VARIABLES).
+GLint blockProperty(GLuint program, GLenum interface, const char* name, GLenum property) {
   GLuint block = glGetProgramResourceIndex(program, interface, name);
   EXPECT_NE(block, GL_INVALID_INDEX) << name;
-  GLenum property = GL_BUFFER_DATA_SIZE;
-  GLint size = 0;
-  glGetProgramResourceiv(program, interface, block, 1, &property, 1, nullptr, &size);
-  return size;
+  GLint value = 0;
+  glGetProgramResourceiv(program, interface, block, 1, &property, 1, nullptr, &value);
+  return value;
 }
-
-GLint activeVariables(GLuint program, GLenum interface, const char* name) {
-  GLuint block = glGetProgramResourceIndex(program, interface, name);
-  EXPECT_NE(block, GL_INVALID_INDEX) << name;
-  GLenum property = GL_NUM_ACTIVE_VARIABLES;
-  GLint count = 0;
-  glGetProgramResourceiv(program, interface, block, 1, &property, 1, nullptr, &count);
-  return count;
+GLint blockSize(GLuint program, GLenum interface, const char* name) {
+  return blockProperty(program, interface, name, GL_BUFFER_DATA_SIZE);
 }
 
 TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
@@ -103,7 +97,8 @@ TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
     const std::string name = std::string("SimParams.") + m.name;
     EXPECT_EQ(resourceOffset(program, GL_UNIFORM, name.c_str()), GLint(m.offset)) << name;
   }
-  EXPECT_EQ(activeVariables(program, GL_UNIFORM_BLOCK, "SimParams"), GLint(std::size(members)));
+  EXPECT_EQ(blockProperty(program, GL_UNIFORM_BLOCK, "SimParams", GL_NUM_ACTIVE_VARIABLES),
+            GLint(std::size(members)));
   EXPECT_EQ(blockSize(program, GL_UNIFORM_BLOCK, "SimParams"), GLint(sizeof(SimParams)));
 
   EXPECT_EQ(stride(program, "colliders[0].a"), GLint(sizeof(GpuCollider)));
