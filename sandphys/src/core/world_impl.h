@@ -195,6 +195,7 @@ struct World::Impl {
   void prepareBodies();
   void buildLists();
   void runSubstep();
+  /// `name` nullptr: not timed by the profiler (a pass outside the substeps).
   void dispatch(GLuint program, const char* name, std::uint32_t threads, std::uint32_t groupSize);
   /// A pass whose group counts the GPU wrote into the counters at `commandOffset` (bytes): the
   /// list build's passes (listDispatchOffset) and, with sleep, those over the active lists

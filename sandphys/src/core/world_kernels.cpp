@@ -74,9 +74,9 @@ void World::Impl::dispatch(GLuint program, const char* name, std::uint32_t threa
   constexpr std::uint32_t kMaxX = 32768;
   std::uint32_t gx = std::min(groups, kMaxX);
   std::uint32_t gy = (groups + gx - 1) / gx;
-  profiler.begin(name);
+  if (name) profiler.begin(name);
   glDispatchCompute(gx, gy, 1);
-  profiler.end();
+  if (name) profiler.end();
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
                   GL_COMMAND_BARRIER_BIT);
 }
@@ -212,13 +212,8 @@ void World::Impl::resetPeakOverlap() {
   if (particleCount == 0) return;
   if (paramsDirty) uploadParams();
   buffers.bindAll();
-  // Not through dispatch(): a per-frame pass, kept out of the per-substep kernel times.
-  glUseProgram(kernels.resetPeakOverlap);
-  const std::uint32_t groups = (particleCount + kWorkgroupSize - 1) / kWorkgroupSize;
-  constexpr std::uint32_t kMaxX = 32768;
-  const std::uint32_t gx = std::min(groups, kMaxX);
-  glDispatchCompute(gx, (groups + gx - 1) / gx, 1);
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  // Unnamed: a per-frame pass, kept out of the per-substep kernel times.
+  dispatch(kernels.resetPeakOverlap, nullptr, particleCount, kWorkgroupSize);
 }
 
 WorldStats World::Impl::reduceStats() {
