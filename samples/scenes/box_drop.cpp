@@ -1,24 +1,33 @@
 #include "scenes/box_drop.h"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "scenes/kit/geometry.h"
 #include "scenes/pour.h"
 
-#include <algorithm>
-#include <cmath>
-#include <string>
-
 namespace sandphys::scenes {
+
+namespace {
+
+using C = BoxDropConfig;
+const auto kTable = std::to_array<kit::Param<C>>({
+    {"block", &C::block, "", 1, 1024, "granules along x, y (layers), z"},
+    kit::seedParam(&C::seed),
+    kit::diameterParam(&C::particleDiameter),
+});
+
+}  // namespace
+
+std::span<const kit::Param<C>> BoxDrop::table() const {
+  return kTable;
+}
 
 WorldSettings BoxDrop::worldSettings() const {
   WorldSettings settings;
   settings.particleDiameter = d();
-  const std::uint64_t granules =
-      static_cast<std::uint64_t>(m_config.block[0]) * m_config.block[1] * m_config.block[2];
-  if (4 * granules > 0xffffffffu) {
-    throw InvalidArgument("box-drop: block of " + std::to_string(granules) +
-                          " granules is more than a World can index");
-  }
-  settings.maxBodies = static_cast<std::uint32_t>(granules);
-  settings.maxParticles = static_cast<std::uint32_t>(4 * granules);
+  kit::reserveExactly(settings, name(), kit::granuleCount(m_config.block));
   const float blockHeight = static_cast<float>(m_config.block[1]) * kDefaultGranuleSpacing;
   settings.maxSpeed =
       pourGuardSpeed(0.0f, (m_config.dropHeight + blockHeight) * d(), gravityMagnitude(settings));
@@ -27,26 +36,26 @@ WorldSettings BoxDrop::worldSettings() const {
 }
 
 void BoxDrop::build(World& world) {
-  const float halfWidth = m_config.boxHalfWidth * d();
-  const float height = m_config.boxHeight * d();
-  world.addCollider(Box{.center = {0.0f, 0.5f * height, 0.0f},
-                        .halfExtents = {halfWidth, 0.5f * height, halfWidth},
+  const SceneBounds box = bounds();
+  world.addCollider(Box{.center = {0.0f, 0.5f * box.max.y, 0.0f},
+                        .halfExtents = {box.max.x, 0.5f * box.max.y, box.max.z},
                         .inside = true});
   const float spacing = m_config.spacing * d();
-  const float blockHeight = static_cast<float>(m_config.block[1] - 1) * spacing;
-  world.addGranules(
-      GranuleBlock{.center = {0.0f, m_config.dropHeight * d() + 0.5f * blockHeight, 0.0f},
-                   .countX = m_config.block[0],
-                   .countY = m_config.block[1],
-                   .countZ = m_config.block[2],
-                   .spacing = spacing,
-                   .seed = m_config.seed});
+  world.addGranules(GranuleBlock{
+      .center = {0.0f,
+                 m_config.dropHeight * d() + 0.5f * kit::blockSpan(m_config.block[1], spacing),
+                 0.0f},
+      .countX = m_config.block[0],
+      .countY = m_config.block[1],
+      .countZ = m_config.block[2],
+      .spacing = spacing,
+      .seed = m_config.seed});
 }
 
 bool BoxDrop::contains(const Vec3& centre) const {
-  const float halfWidth = m_config.boxHalfWidth * d();
-  return centre.y >= 0.0f && centre.y <= m_config.boxHeight * d() &&
-         std::abs(centre.x) <= halfWidth && std::abs(centre.z) <= halfWidth;
+  const SceneBounds box = bounds();
+  return centre.y >= 0.0f && centre.y <= box.max.y && std::abs(centre.x) <= box.max.x &&
+         std::abs(centre.z) <= box.max.z;
 }
 
 std::vector<SceneMetric> BoxDrop::metrics(std::span<const BodyState> bodies) const {
@@ -60,14 +69,6 @@ std::vector<SceneMetric> BoxDrop::metrics(std::span<const BodyState> bodies) con
     ++count;
   }
   return {{"mean_height_m", count ? sum / static_cast<double>(count) : 0.0}, {"max_height_m", top}};
-}
-
-std::vector<SceneParameter> BoxDrop::parameters() {
-  return {
-      {"block", "granules along x, y (layers), z", &m_config.block, 1, 1024},
-      {"seed", "random seed of the block", &m_config.seed, 0, 1.8446744073709552e19},
-      {"diameter", "particle diameter d, m", &m_config.particleDiameter, 1e-4, 1.0},
-  };
 }
 
 SceneBounds BoxDrop::bounds() const {

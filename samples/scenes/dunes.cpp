@@ -1,5 +1,7 @@
 #include "scenes/dunes.h"
 
+#include "scenes/kit/geometry.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -67,10 +69,10 @@ WorldSettings Dunes::worldSettings() const {
 void Dunes::build(World& world) {
   m_poured = 0;
   m_profile = {};
-  m_settling = PourSettling(
-      fallTime(m_config.pourHeight * d(), emitterSpeed(), gravityMagnitude(world.settings())),
-      tetrahedronTemplate(d(), world.settings().material.density).mass, m_config.settleSpeed,
-      m_config.maxSettleSeconds);
+  m_course = kit::Course(pourCourse(fallTime(m_config.pourHeight * d(), emitterSpeed(),
+                                             gravityMagnitude(world.settings())),
+                                    m_config.settleSpeed, m_config.maxSettleSeconds),
+                         kit::granuleMass(world.settings()));
   const float halfX = m_config.floorHalfLength * d();
   const float halfZ = m_config.floorHalfWidth * d();
   world.addRoughFloor(RoughFloor{
@@ -94,15 +96,16 @@ void Dunes::build(World& world) {
 }
 
 void Dunes::update(World& world, const StepReport& report, double simTime) {
-  if (m_settling.settled()) return;
+  if (m_course.done()) return;
   m_poured = world.granulesSpawned();
-  if (!m_settling.update(report, simTime, m_poured, 2 * m_config.granules)) return;
+  if (m_course.acting() && m_poured >= 2 * m_config.granules) m_course.endAct(simTime);
+  if (!m_course.update(report, simTime)) return;
   // Once per run: the settled sand's profile for series().
   m_profile = profile(world.readBodies());
 }
 
 std::string Dunes::status() const {
-  return m_settling.status(m_poured, 2 * m_config.granules);
+  return pourStatus(m_course, m_poured, 2 * m_config.granules);
 }
 
 bool Dunes::contains(const Vec3& centre) const {
@@ -165,7 +168,7 @@ std::vector<SceneMetric> Dunes::metrics(std::span<const BodyState> bodies) const
       {"saddle_x_d", p.saddle[0] / d()},
       {"saddle_depth_d", (lowerCrest - p.saddle[1]) / d()},
       {"crest_separation_d", (p.rightCrest[0] - p.leftCrest[0]) / d()},
-      {"settled", m_settling.calm() ? 1.0 : 0.0},
+      {"settled", m_course.calm() ? 1.0 : 0.0},
   };
 }
 

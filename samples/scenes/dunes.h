@@ -81,7 +81,7 @@ class Dunes final : public Scene {
   /// Waits for the pours to end and the sand to settle, then reads the bodies once for the
   /// profile.
   void update(World& world, const StepReport& report, double simTime) override;
-  bool finished() const override { return m_settling.settled(); }
+  bool finished() const override { return m_course.done(); }
   /// "pouring n/N", "settling", "settled" (calm) or "stopped" (the wait ran out).
   std::string status() const override;
   /// On or above the floor.
@@ -104,7 +104,7 @@ class Dunes final : public Scene {
 
   Config m_config;
   Profile m_profile;
-  PourSettling m_settling{0.0, 0.0f, 0.0f, 0.0f};  // set by build()
+  kit::Course m_course;
   std::uint32_t m_poured = 0;
 };
 

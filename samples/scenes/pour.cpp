@@ -41,24 +41,18 @@ float pourGuardSpeed(float speed, float height, float g) {
   return std::max(kMinGuardSpeed, kGuardMargin * impact);
 }
 
-bool PourSettling::update(const StepReport& report, double simTime, std::uint32_t poured,
-                          std::uint32_t budget) {
-  if (m_settled) return true;
-  if (poured < budget) return false;
-  if (m_pourEnd < 0.0) m_pourEnd = simTime;
-  const double sincePour = simTime - m_pourEnd;
-  const double landing = (1.0 + kLandingMargin) * m_fallSeconds;
-  if (sincePour < landing) return false;
-  const std::uint32_t alive = report.hasStats ? report.stats.granulesAlive : poured;
-  m_calm = granulesCalm(report, alive, m_granuleMass, m_settleSpeed);
-  m_settled = m_calm || sincePour >= landing + m_maxSettleSeconds;
-  return m_settled;
+kit::Course::Rule pourCourse(double fallSeconds, float settleSpeed, float maxSettleSeconds) {
+  const double landing = (1.0 + kLandingMargin) * fallSeconds;
+  return {.settleSpeed = settleSpeed,
+          .minRestSeconds = landing,
+          .maxRestSeconds = landing + maxSettleSeconds,
+          .actFirst = true};
 }
 
-std::string PourSettling::status(std::uint32_t poured, std::uint32_t budget) const {
-  if (m_pourEnd < 0.0) return "pouring " + std::to_string(poured) + "/" + std::to_string(budget);
-  if (!m_settled) return "settling";
-  return m_calm ? "settled" : "stopped";
+std::string pourStatus(const kit::Course& course, std::uint32_t poured, std::uint32_t budget) {
+  if (course.acting()) return "pouring " + std::to_string(poured) + "/" + std::to_string(budget);
+  if (!course.done()) return "settling";
+  return course.calm() ? "settled" : "stopped";
 }
 
 }  // namespace sandphys::scenes

@@ -6,6 +6,8 @@
 
 #include <sandphys/sandphys.h>
 
+#include "scenes/kit/course.h"
+
 namespace sandphys::scenes {
 
 /// A steady pour from a square emitter above a floor, as the pouring scenes (sand-box-pour,
@@ -35,38 +37,13 @@ void checkPourSpeed(std::string_view scene, std::string_view widthName, float ha
 /// speed of spinning grains, and at least 2 m/s.
 float pourGuardSpeed(float speed, float height, float g);
 
-/// When a pour has ended and the sand it made has settled (repose-heap, dunes): the last granule
-/// leaves the emitter, falls (fallTime with a margin for the grains to slide and bounce), and
-/// then the sand is calm (granulesCalm) or maxSettleSeconds more have passed.
-class PourSettling {
- public:
-  /// `fallSeconds`: the fall of the last granule from the emitter onto the floor, s.
-  PourSettling(double fallSeconds, float granuleMass, float settleSpeed, float maxSettleSeconds)
-      : m_fallSeconds(fallSeconds),
-        m_granuleMass(granuleMass),
-        m_settleSpeed(settleSpeed),
-        m_maxSettleSeconds(maxSettleSeconds) {}
+/// The course of a pour (repose-heap, dunes): the pour is the act, from the first frame until
+/// the scene ends it; then the last granule falls (fallSeconds, with a margin for the grains to
+/// slide and bounce) and the sand is calm or maxSettleSeconds more have passed.
+kit::Course::Rule pourCourse(double fallSeconds, float settleSpeed, float maxSettleSeconds);
 
-  /// After each frame: `poured` granules so far of the pour's `budget`, `report` the frame's
-  /// step (its stats tell the kinetic energy). True from the frame the sand has settled on.
-  bool update(const StepReport& report, double simTime, std::uint32_t poured, std::uint32_t budget);
-  /// Simulated time at which the last granule was poured, s; negative while pouring.
-  double pourEnd() const { return m_pourEnd; }
-  /// The wait is over: the sand is calm, or maxSettleSeconds ran out.
-  bool settled() const { return m_settled; }
-  /// The sand was calm when the wait ended (false when it ran out with the sand still moving).
-  bool calm() const { return m_calm; }
-  /// "pouring n/N", "settling", "settled" or "stopped" (the wait ran out).
-  std::string status(std::uint32_t poured, std::uint32_t budget) const;
-
- private:
-  double m_fallSeconds;
-  float m_granuleMass;
-  float m_settleSpeed;
-  float m_maxSettleSeconds;
-  double m_pourEnd = -1.0;
-  bool m_settled = false;
-  bool m_calm = false;
-};
+/// "pouring n/N", "settling", "settled" (calm) or "stopped" (the wait ran out) for a pour of
+/// `budget` granules that has poured `poured` so far.
+std::string pourStatus(const kit::Course& course, std::uint32_t poured, std::uint32_t budget);
 
 }  // namespace sandphys::scenes

@@ -1,12 +1,14 @@
 #include "scenes/repose_heap.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <string>
 
 #include "scenes/heap_metrics.h"
+#include "scenes/kit/geometry.h"
 #include "scenes/pour.h"
 
 namespace sandphys::scenes {
@@ -21,7 +23,28 @@ constexpr double kSettledVolume = 3.6;
 // Room left between the foot of the heap and the floor's edge, d.
 constexpr float kFootMargin = 4.0f;
 
+using C = ReposeHeapConfig;
+const auto kTable = std::to_array<kit::Param<C>>({
+    {"granules", &C::granules, "", 1, 1e8, "granules poured"},
+    kit::frictionParam(&C::friction),
+    {"outlet", &C::outlet, "d", 0.5, 1e4, "width of the emitter's square"},
+    {"rate", &C::rate, "granules/s", 1.0, 1e5, "pour rate"},
+    {"pour-height", &C::pourHeight, "d", 1.0, 1e4, "height of the emitter above the floor"},
+    {"floor-radius", &C::floorRadius, "d", 2.0, 1e4, "radius of the rough floor"},
+    kit::youngsModulusParam(&C::youngsModulus),
+    kit::restitutionParam(&C::restitution),
+    kit::settleSpeedParam(&C::settleSpeed),
+    kit::maxSettleSecondsParam(&C::maxSettleSeconds),
+    kit::stepsPerContactParam(&C::stepsPerContact),
+    kit::seedParam(&C::seed),
+    kit::diameterParam(&C::particleDiameter),
+});
+
 }  // namespace
+
+std::span<const kit::Param<C>> ReposeHeap::table() const {
+  return kTable;
+}
 
 float ReposeHeap::emitterSpeed() const {
   return pourSpeed(0.5f * m_config.outlet * d(), m_config.rate, d());
@@ -40,31 +63,23 @@ float ReposeHeap::floorRadiusHolding(std::uint32_t granules, float angleDegrees)
 
 WorldSettings ReposeHeap::worldSettings() const {
   const std::string scene = "repose-heap: ";
-  const std::uint64_t floorParticles =
-      roughFloorParticles(RoughFloor{.radius = m_config.floorRadius * d()}, d());
-  const std::uint64_t particles = 4ull * m_config.granules + floorParticles;
-  if (m_config.granules == 0 || particles > std::numeric_limits<std::uint32_t>::max()) {
-    throw InvalidArgument(scene + "granules = " + std::to_string(m_config.granules) +
-                          " must be >= 1 and, with the floor's " + std::to_string(floorParticles) +
-                          " particles, fit a World's 2^32 particles");
-  }
-  if (0.5f * m_config.outlet + static_cast<float>(kGranuleReach) > m_config.floorRadius) {
+  if (0.5f * m_config.outlet + kit::kReach > m_config.floorRadius) {
     throw InvalidArgument(scene + "outlet " + numberText(m_config.outlet) +
                           " d is wider than the floor (floor-radius " +
                           numberText(m_config.floorRadius) + " d)");
   }
-  if (m_config.pourHeight < 2.0f * static_cast<float>(kGranuleReach)) {
+  if (m_config.pourHeight < 2.0f * kit::kReach) {
     throw InvalidArgument(scene + "pour-height " + numberText(m_config.pourHeight) +
                           " d leaves no room for a granule above the floor (at least " +
-                          numberText(2.0f * static_cast<float>(kGranuleReach)) + " d)");
+                          numberText(2.0f * kit::kReach) + " d)");
   }
-  checkPourSpeed("repose-heap", "the outlet", 0.5f * m_config.outlet * d(), m_config.rate, d());
+  checkPourSpeed(name(), "the outlet", 0.5f * m_config.outlet * d(), m_config.rate, d());
   WorldSettings settings;
   settings.particleDiameter = d();
   settings.material.friction = m_config.friction;
   settings.material.restitution = m_config.restitution;
-  settings.maxBodies = m_config.granules + 1;  // + the floor
-  settings.maxParticles = static_cast<std::uint32_t>(particles);
+  kit::reserveExactly(settings, name(), m_config.granules, 1,
+                      roughFloorParticles(RoughFloor{.radius = m_config.floorRadius * d()}, d()));
   // Settling is judged from every frame's kinetic energy.
   settings.statsEachFrame = true;
   settings.maxSpeed =
@@ -76,10 +91,10 @@ WorldSettings ReposeHeap::worldSettings() const {
 
 void ReposeHeap::build(World& world) {
   m_poured = 0;
-  m_settling = PourSettling(
-      fallTime(m_config.pourHeight * d(), emitterSpeed(), gravityMagnitude(world.settings())),
-      tetrahedronTemplate(d(), world.settings().material.density).mass, m_config.settleSpeed,
-      m_config.maxSettleSeconds);
+  m_course = kit::Course(pourCourse(fallTime(m_config.pourHeight * d(), emitterSpeed(),
+                                             gravityMagnitude(world.settings())),
+                                    m_config.settleSpeed, m_config.maxSettleSeconds),
+                         kit::granuleMass(world.settings()));
   const float radius = m_config.floorRadius * d();
   world.addRoughFloor(RoughFloor{.center = {0.0f, 0.0f, 0.0f}, .radius = radius, .spacing = d()});
   // Everything that rolls off the floor's edge (or, by a fault, through it) ends here.
@@ -98,11 +113,12 @@ void ReposeHeap::build(World& world) {
 
 void ReposeHeap::update(World& world, const StepReport& report, double simTime) {
   m_poured = world.granulesSpawned();
-  m_settling.update(report, simTime, m_poured, m_config.granules);
+  if (m_course.acting() && m_poured >= m_config.granules) m_course.endAct(simTime);
+  m_course.update(report, simTime);
 }
 
 std::string ReposeHeap::status() const {
-  return m_settling.status(m_poured, m_config.granules);
+  return pourStatus(m_course, m_poured, m_config.granules);
 }
 
 bool ReposeHeap::contains(const Vec3& centre) const {
@@ -133,34 +149,13 @@ std::vector<SceneMetric> ReposeHeap::metrics(std::span<const BodyState> bodies) 
       {"granules_on_floor", static_cast<double>(onFloor)},
       {"granules_off_floor", static_cast<double>(m_poured - std::min(m_poured, onFloor))},
       {"granules_in_flight", static_cast<double>(elsewhere)},
-      {"pour_end_s", m_settling.pourEnd()},
+      {"pour_end_s", m_course.actEnd()},
       {"friction", m_config.friction},
-      {"settled", m_settling.calm() ? 1.0 : 0.0},
+      {"settled", m_course.calm() ? 1.0 : 0.0},
   };
   appendHeapAngleMetrics(
       result, [&] { return heapAngle(bodies); }, d());
   return result;
-}
-
-std::vector<SceneParameter> ReposeHeap::parameters() {
-  return {
-      {"granules", "granules poured", &m_config.granules, 1, 1e8},
-      {"friction", "Coulomb friction coefficient of every contact", &m_config.friction, 0.0, 10.0},
-      {"outlet", "width of the emitter's square, d", &m_config.outlet, 0.5, 1e4},
-      {"rate", "pour rate, granules/s", &m_config.rate, 1.0, 1e5},
-      {"pour-height", "height of the emitter above the floor, d", &m_config.pourHeight, 1.0, 1e4},
-      {"floor-radius", "radius of the rough floor, d", &m_config.floorRadius, 2.0, 1e4},
-      {"youngs-modulus", kYoungsModulusHelp, &m_config.youngsModulus, 0.0, 1e12},
-      {"restitution", "coefficient of restitution", &m_config.restitution, 0.01, 1.0},
-      {"settle-speed", "the heap has settled below this rms speed, m/s", &m_config.settleSpeed, 0.0,
-       10.0},
-      {"max-settle-seconds", "longest wait for the heap to settle after the pour, s",
-       &m_config.maxSettleSeconds, 0.0, 1e6},
-      {"steps-per-contact", "substeps per Hertz contact time at the speed guard",
-       &m_config.stepsPerContact, kMinStepsPerContact, 1e4},
-      {"seed", "random seed of the emitter", &m_config.seed, 0, 1.8446744073709552e19},
-      {"diameter", "particle diameter d, m", &m_config.particleDiameter, 1e-4, 1.0},
-  };
 }
 
 SceneBounds ReposeHeap::bounds() const {

@@ -1,5 +1,7 @@
 #include "scenes/scene.h"
 
+#include "scenes/kit/parameters.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -148,6 +150,8 @@ std::optional<ContactLaw> contactLawFromName(std::string_view name) {
 }
 
 WorldSettings Scene::settings() const {
+  // parameters() hands out pointers to write through; the check only reads them.
+  kit::checkRanges(name(), const_cast<Scene&>(*this).parameters());
   WorldSettings settings = worldSettings();
   settings.contactLaw = m_contactLaw;
   settings.sleep.enabled = m_sleep;

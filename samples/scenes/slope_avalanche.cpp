@@ -1,6 +1,7 @@
 #include "scenes/slope_avalanche.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -10,10 +11,8 @@ namespace sandphys::scenes {
 
 namespace {
 
-// kGranuleReach in float, as the scene's geometry is computed.
-constexpr float kReach = static_cast<float>(kGranuleReach);
-// Largest jitter of a block granule per axis, d (GranuleBlock::jitter of the default spacing).
-const float kJitter = GranuleBlock{}.jitter * kDefaultGranuleSpacing;
+using kit::kJitter;
+using kit::kReach;
 // Gap between a wall and the nearest lattice centres, d: the reach and the jitter, with room.
 constexpr float kWallGap = 1.4f;
 // Room above the block's top inside the container, d.
@@ -32,11 +31,31 @@ constexpr float kStepsPerContact = 10.0f;
 // "not started yet", s.
 constexpr double kMinRunSeconds = 0.25;
 
+using C = SlopeAvalancheConfig;
+const auto kTable = std::to_array<kit::Param<C>>({
+    {"slope-angle", &C::slopeAngle, "deg", 0.0, 60.0, "tilt of the slope from horizontal"},
+    {"block", &C::block, "", 1, 1024, "granules along x (down the slope), y (layers), z (across)"},
+    {"friction", &C::friction, "", 0.0, 10.0, "friction coefficient of the slope and the walls"},
+    {"release-time", &C::releaseTime, "s", 0.0, 1e9, "earliest time the wall is removed"},
+    {"slope-length", &C::slopeLength, "d", 0.0, 1e4, "horizontal length of the slope"},
+    {"runout-length", &C::runoutLength, "d", 1.0, 1e4, "length of the flat floor beyond it"},
+    {"moved-distance", &C::movedDistance, "d", 0.0, 1e4,
+     "a granule has moved when this far from its place at release"},
+    kit::settleSpeedParam(&C::settleSpeed),
+    kit::maxSettleSecondsParam(&C::maxSettleSeconds),
+    kit::seedParam(&C::seed),
+    kit::diameterParam(&C::particleDiameter),
+});
+
 float radians(float degrees) {
   return degrees * std::numbers::pi_v<float> / 180.0f;
 }
 
 }  // namespace
+
+std::span<const kit::Param<C>> SlopeAvalanche::table() const {
+  return kTable;
+}
 
 std::uint32_t SlopeAvalanche::blockGranules() const {
   return m_config.block[0] * m_config.block[1] * m_config.block[2];
@@ -64,7 +83,7 @@ float SlopeAvalanche::columnX(std::uint32_t i) const {
 }
 
 SlopeAvalanche::Channel SlopeAvalanche::channel() const {
-  Channel c;
+  Channel c{};
   c.back = columnX(m_config.block[0] - 1) - kWallGap * d();
   c.end = (m_config.slopeLength + m_config.runoutLength) * d();
   c.halfWidth =
@@ -78,13 +97,7 @@ SlopeAvalanche::Channel SlopeAvalanche::channel() const {
 WorldSettings SlopeAvalanche::worldSettings() const {
   WorldSettings settings;
   settings.particleDiameter = d();
-  const std::uint64_t granules = blockGranules();
-  if (4 * granules > std::numeric_limits<std::uint32_t>::max()) {
-    throw InvalidArgument("slope-avalanche: block of " + std::to_string(granules) +
-                          " granules is more than a World can index");
-  }
-  settings.maxBodies = static_cast<std::uint32_t>(granules);
-  settings.maxParticles = static_cast<std::uint32_t>(4 * granules);
+  kit::reserveExactly(settings, name(), kit::granuleCount(m_config.block));
   const Channel c = channel();
   const float drop = c.top - c.floor;
   settings.maxSpeed =
@@ -95,10 +108,11 @@ WorldSettings SlopeAvalanche::worldSettings() const {
 }
 
 void SlopeAvalanche::build(World& world) {
-  m_released = false;
-  m_finished = false;
-  m_releasedAt = -1.0;
-  m_granuleMass = tetrahedronTemplate(d(), world.settings().material.density).mass;
+  m_course = kit::Course({.settleSpeed = m_config.settleSpeed,
+                          .maxSettleSeconds = m_config.maxSettleSeconds,
+                          .actAfter = m_config.releaseTime,
+                          .minRestSeconds = kMinRunSeconds},
+                         kit::granuleMass(world.settings()));
 
   const SurfaceMaterial surface{.friction = m_config.friction};
   const Channel c = channel();
@@ -129,35 +143,23 @@ void SlopeAvalanche::build(World& world) {
                      .seed = m_config.seed * 1000003u + i});
   }
   // Until the release, the metrics measure from the lattice (a sync point at setup only).
-  m_reference = world.readBodies();
+  m_reference = kit::Reference(world.readBodies());
 }
 
 void SlopeAvalanche::update(World& world, const StepReport& report, double simTime) {
-  if (m_finished) return;
-  const bool calm = granulesCalm(report, blockGranules(), m_granuleMass, m_config.settleSpeed);
-  if (!m_released) {
-    if (simTime < m_config.releaseTime) return;
-    if (!calm && simTime < m_config.releaseTime + m_config.maxSettleSeconds) return;
-    // The reference of the metrics: one read-back, at the release only.
-    m_reference = world.readBodies();
-    // Beyond the end of the run-out, where no grain can reach it.
-    world.setCollider(m_wall, Plane{.normal = {-1.0f, 0.0f, 0.0f},
-                                    .offset = -(channel().end + 10.0f * d()),
-                                    .material = {.friction = m_config.friction}});
-    m_released = true;
-    m_releasedAt = simTime;
-    return;
-  }
-  const double sinceRelease = simTime - m_releasedAt;
-  if (sinceRelease < kMinRunSeconds) return;
-  if (!calm && sinceRelease < m_config.maxSettleSeconds) return;
-  m_finished = true;
+  if (!m_course.update(report, simTime, blockGranules()) || !m_course.acting()) return;
+  m_reference = kit::Reference(world.readBodies());
+  // Beyond the end of the run-out, where no grain can reach it.
+  world.setCollider(m_wall, Plane{.normal = {-1.0f, 0.0f, 0.0f},
+                                  .offset = -(channel().end + 10.0f * d()),
+                                  .material = {.friction = m_config.friction}});
+  m_course.endAct(simTime);
 }
 
 std::string SlopeAvalanche::status() const {
-  if (!m_released) return "held";
-  if (m_finished) return "stopped";
-  return "released at " + std::to_string(m_releasedAt).substr(0, 5) + " s";
+  if (!released()) return "held";
+  if (m_course.done()) return "stopped";
+  return "released at " + std::to_string(releasedAt()).substr(0, 5) + " s";
 }
 
 bool SlopeAvalanche::contains(const Vec3& centre) const {
@@ -167,35 +169,22 @@ bool SlopeAvalanche::contains(const Vec3& centre) const {
          centre.y >= c.floor && centre.y <= c.top && n.x * centre.x + n.y * centre.y >= 0.0f;
 }
 
-double SlopeAvalanche::comDisplacement(std::span<const BodyState> reference,
+double SlopeAvalanche::comDisplacement(const kit::Reference& reference,
                                        std::span<const BodyState> bodies) const {
-  std::vector<const BodyState*> before;
-  for (const BodyState& body : reference) {
-    if (!body.granule) continue;
-    if (body.index >= before.size()) before.resize(body.index + 1, nullptr);
-    before[body.index] = &body;
-  }
   const Vec3 s = downSlope();
   double sum = 0.0;
   std::size_t count = 0;
   for (const BodyState& body : bodies) {
-    if (!body.granule || !body.alive || body.index >= before.size() || !before[body.index]) {
-      continue;
-    }
-    const Vec3& p0 = before[body.index]->position;
-    sum += (body.position.x - p0.x) * s.x + (body.position.y - p0.y) * s.y;
+    const BodyState* before = body.granule && body.alive ? reference.before(body) : nullptr;
+    if (!before) continue;
+    sum +=
+        (body.position.x - before->position.x) * s.x + (body.position.y - before->position.y) * s.y;
     ++count;
   }
   return count ? sum / static_cast<double>(count) : 0.0;
 }
 
 std::vector<SceneMetric> SlopeAvalanche::metrics(std::span<const BodyState> bodies) const {
-  std::vector<const BodyState*> before;
-  for (const BodyState& body : m_reference) {
-    if (!body.granule) continue;
-    if (body.index >= before.size()) before.resize(body.index + 1, nullptr);
-    before[body.index] = &body;
-  }
   const double moved = m_config.movedDistance * d();
   double front = -std::numeric_limits<double>::infinity();
   double frontBefore = -std::numeric_limits<double>::infinity();
@@ -205,8 +194,9 @@ std::vector<SceneMetric> SlopeAvalanche::metrics(std::span<const BodyState> bodi
     if (!body.granule || !body.alive) continue;
     ++granules;
     front = std::max(front, static_cast<double>(body.position.x));
-    if (body.index >= before.size() || !before[body.index]) continue;
-    const Vec3& p0 = before[body.index]->position;
+    const BodyState* before = m_reference.before(body);
+    if (!before) continue;
+    const Vec3& p0 = before->position;
     frontBefore = std::max(frontBefore, static_cast<double>(p0.x));
     const double dx = body.position.x - p0.x;
     const double dy = body.position.y - p0.y;
@@ -218,8 +208,8 @@ std::vector<SceneMetric> SlopeAvalanche::metrics(std::span<const BodyState> bodi
   return {
       {"granules", static_cast<double>(granules)},
       {"slope_angle_deg", m_config.slopeAngle},
-      {"released", m_released ? 1.0 : 0.0},
-      {"release_time_s", m_releasedAt},
+      {"released", released() ? 1.0 : 0.0},
+      {"release_time_s", releasedAt()},
       {"com_displacement_m", com},
       {"com_displacement_d", com / d()},
       // x is horizontal distance downhill from the retaining wall.
@@ -227,31 +217,6 @@ std::vector<SceneMetric> SlopeAvalanche::metrics(std::span<const BodyState> bodi
       {"front_x_d", front / d()},
       {"front_advance_d", (front - frontBefore) / d()},
       {"moved_fraction", granules ? static_cast<double>(movedCount) / granules : 0.0},
-  };
-}
-
-std::vector<SceneParameter> SlopeAvalanche::parameters() {
-  return {
-      {"slope-angle", "tilt of the slope from horizontal, degrees", &m_config.slopeAngle, 0.0,
-       60.0},
-      {"block", "granules along x (down the slope), y (layers), z (across)", &m_config.block, 1,
-       1024},
-      {"friction", "friction coefficient of the slope and the walls", &m_config.friction, 0.0,
-       10.0},
-      {"release-time", "earliest time the retaining wall is removed, s", &m_config.releaseTime, 0.0,
-       1e9},
-      {"slope-length", "horizontal length of the slope below the wall, d", &m_config.slopeLength,
-       0.0, 1e4},
-      {"runout-length", "length of the flat floor beyond the slope, d", &m_config.runoutLength, 1.0,
-       1e4},
-      {"moved-distance", "a granule has moved when this far from its place at release, d",
-       &m_config.movedDistance, 0.0, 1e4},
-      {"settle-speed", "the sand has settled below this rms speed, m/s", &m_config.settleSpeed, 0.0,
-       10.0},
-      {"max-settle-seconds", "longest wait for the block to settle and the sand to stop, s",
-       &m_config.maxSettleSeconds, 0.0, 1e6},
-      {"seed", "random seed of the block", &m_config.seed, 0, 1.8446744073709552e19},
-      {"diameter", "particle diameter d, m", &m_config.particleDiameter, 1e-4, 1.0},
   };
 }
 
