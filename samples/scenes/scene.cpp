@@ -182,38 +182,14 @@ double fallTime(double height, double speed, double g) {
 }
 
 std::uint32_t emitterLayerGranules(float halfExtent, float particleDiameter) {
-  // As sandphys/src/core/emitter.cpp: double arithmetic on the float inputs.
-  const double spacing = kDefaultGranuleSpacing * particleDiameter;
-  const auto perSide = static_cast<std::uint32_t>(1 + std::floor(2.0 * halfExtent / spacing));
-  return perSide * perSide;
+  return static_cast<std::uint32_t>(emitterLayerSlots(
+      EmitterSettings{.halfExtentX = halfExtent, .halfExtentZ = halfExtent}, particleDiameter));
 }
 
 std::string numberText(double value) {
   std::ostringstream out;
   out << value;
   return out.str();
-}
-
-std::uint32_t roughFloorParticles(const RoughFloor& floor, float particleDiameter) {
-  // Same arithmetic as World::addRoughFloor (double products of the float inputs), so that points
-  // on the rim are counted exactly as the world places them.
-  const double s = floor.spacing > 0.0f ? floor.spacing : particleDiameter;
-  const bool disc = floor.radius > 0.0f;
-  const double hx = disc ? floor.radius : floor.halfExtentX;
-  const double hz = disc ? floor.radius : floor.halfExtentZ;
-  const auto nx = static_cast<std::int64_t>(std::floor(hx / s));
-  const auto nz = static_cast<std::int64_t>(std::floor(hz / s));
-  if (!disc) return static_cast<std::uint32_t>((2 * nx + 1) * (2 * nz + 1));
-  const double r = floor.radius;
-  std::uint32_t count = 0;
-  for (std::int64_t i = -nz; i <= nz; ++i) {
-    for (std::int64_t j = -nx; j <= nx; ++j) {
-      const double x = static_cast<double>(j) * s;
-      const double z = static_cast<double>(i) * s;
-      if (x * x + z * z <= r * r) ++count;
-    }
-  }
-  return count;
 }
 
 float gravityMagnitude(const WorldSettings& settings) {

@@ -183,9 +183,7 @@ bool releaseDue(bool calm, double simTime, float releaseTime, float maxSettleSec
 /// under gravity `g` (m/s²), s.
 double fallTime(double height, double speed, double g);
 /// Granules in one layer of a square emitter of half extent `halfExtent` (m) for particles of
-/// diameter `particleDiameter` (m): its lattice has a slot every kDefaultGranuleSpacing diameters
-/// across the square, corners included (the same arithmetic as the emitter's, so that a width
-/// that is a whole number of spacings rounds alike).
+/// diameter `particleDiameter` (m) (emitterLayerSlots).
 std::uint32_t emitterLayerGranules(float halfExtent, float particleDiameter);
 /// The Young's modulus (Pa) a scene's World gets for a configured `youngsModulus`: that value
 /// when > 0; for 0 (auto) the one at which two granules meeting head-on at the scene's speed
@@ -210,12 +208,6 @@ std::optional<ContactLaw> contactLawFromName(std::string_view name);
 std::string numberText(double value);
 /// Length of the world's gravity vector, m/s².
 float gravityMagnitude(const WorldSettings& settings);
-
-/// Particles World::addRoughFloor places for `floor` in a world of particles `particleDiameter`
-/// (m) wide: the lattice points (i·s, j·s) within the floor's disc, or its rectangle when the
-/// radius is 0 (s is floor.spacing, or the diameter when that is 0). Scenes size their capacity
-/// with it.
-std::uint32_t roughFloorParticles(const RoughFloor& floor, float particleDiameter);
 
 /// Height between two layers of a loose starting lattice of granules (hourglass, repose-scupper),
 /// d. Odd layers are shifted by half the lattice spacing along x and z, so a granule sits over the

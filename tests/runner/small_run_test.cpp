@@ -79,7 +79,7 @@ TEST(SmallRun, MetricsDescribeTheRun) {
   EXPECT_EQ(m["bodies"], nlohmann::json::array());
   EXPECT_EQ(m["bodies_series"], nlohmann::json::array());
   EXPECT_EQ(m["particles"],
-            4 * kGranules + scenes::roughFloorParticles(RoughFloor{.radius = kRadius}, 0.02f));
+            4 * kGranules + roughFloorParticles(RoughFloor{.radius = kRadius}, 0.02f));
   EXPECT_EQ(m["scene_parameters"]["batch"], nlohmann::json::array({8, 4, 8}));
   EXPECT_FALSE(m["gpu"].get<std::string>().empty());
 

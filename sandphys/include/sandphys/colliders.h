@@ -1,5 +1,7 @@
 #pragma once
 
+#include <cstdint>
+
 #include <variant>
 
 #include "sandphys/math.h"
@@ -75,6 +77,11 @@ struct RoughFloor {
   float halfExtentZ = 0.0f;  ///< m; used when radius == 0
   float spacing = 0.0f;      ///< m; 0 means one particle diameter
 };
+
+/// Particles World::addRoughFloor places for `floor` in a World of particles `particleDiameter`
+/// (m) wide: the lattice points within its disc, or its rectangle when the radius is 0. For
+/// sizing WorldSettings::maxParticles exactly; counted row by row, so any size is cheap.
+std::uint64_t roughFloorParticles(const RoughFloor& floor, float particleDiameter);
 
 /// A kill volume: granules whose centre enters this axis-aligned box are removed and counted.
 struct Sink {

@@ -41,4 +41,9 @@ struct EmitterSettings {
   std::uint64_t seed = 1;
 };
 
+/// Slots in one layer of `emitter`'s lattice in a World of particles `particleDiameter` (m) wide:
+/// a slot every kDefaultGranuleSpacing diameters across the rectangle, edges included. A layer
+/// leaves every spacing / speed seconds, so this bounds the rate an emitter can pour.
+std::uint64_t emitterLayerSlots(const EmitterSettings& emitter, float particleDiameter);
+
 }  // namespace sandphys

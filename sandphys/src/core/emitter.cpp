@@ -1,11 +1,33 @@
 #include "core/emitter.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "core/validation.h"
 #include "core/world_checks.h"
 
-namespace sandphys::detail {
+namespace sandphys {
+
+namespace {
+
+// Columns (along x) and rows (along z) of an emitter's lattice, in double so that a rectangle
+// of any size is counted without overflow.
+std::array<double, 2> emitterLattice(const EmitterSettings& s, float particleDiameter) {
+  const double spacing = kDefaultGranuleSpacing * particleDiameter;
+  return {1.0 + std::floor(2.0 * s.halfExtentX / spacing),
+          1.0 + std::floor(2.0 * s.halfExtentZ / spacing)};
+}
+
+}  // namespace
+
+std::uint64_t emitterLayerSlots(const EmitterSettings& emitter, float particleDiameter) {
+  const auto [columns, rows] = emitterLattice(emitter, particleDiameter);
+  constexpr double kMax = 9.0e18;  // below 2^63: the cast stays defined for any rectangle
+  return std::uint64_t(std::min(columns * rows, kMax));
+}
+
+namespace detail {
 
 EmitterState::EmitterState(const EmitterSettings& s, float particleDiameter, std::uint32_t maxSlots)
     : m_settings(s), m_rng(s.seed) {
@@ -22,8 +44,7 @@ EmitterState::EmitterState(const EmitterSettings& s, float particleDiameter, std
                   "(m/s): emitted granules must move away");
 
   const double spacing = kDefaultGranuleSpacing * particleDiameter;
-  const double columns = 1.0 + std::floor(2.0 * s.halfExtentX / spacing);
-  const double rows = 1.0 + std::floor(2.0 * s.halfExtentZ / spacing);
+  const auto [columns, rows] = emitterLattice(s, particleDiameter);
   require(columns * rows <= double(maxSlots), "EmitterSettings.halfExtentX/Z (lattice slots)",
           columns * rows,
           "must be <= WorldSettings.maxBodies = " + std::to_string(maxSlots) +
@@ -91,4 +112,6 @@ std::vector<GranuleSpawn> EmitterState::advance(double dt, std::uint32_t room, b
   return out;
 }
 
-}  // namespace sandphys::detail
+}  // namespace detail
+
+}  // namespace sandphys

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/validation.h"
+#include "sandphys/colliders.h"
 #include "sandphys/settings.h"
 
 namespace sandphys::detail {
@@ -134,3 +135,15 @@ std::uint64_t roughFloorParticles(double spacing, double hx, double hz, double r
 }
 
 }  // namespace sandphys::detail
+
+namespace sandphys {
+
+std::uint64_t roughFloorParticles(const RoughFloor& floor, float particleDiameter) {
+  const double spacing = floor.spacing > 0.0f ? floor.spacing : particleDiameter;
+  const double hx = floor.radius > 0.0f ? floor.radius : floor.halfExtentX;
+  const double hz = floor.radius > 0.0f ? floor.radius : floor.halfExtentZ;
+  return detail::roughFloorParticles(spacing, hx, hz, floor.radius,
+                                     std::numeric_limits<std::uint64_t>::max() - 1);
+}
+
+}  // namespace sandphys
