@@ -151,13 +151,20 @@ void Bulldozer::build(World& world) {
   m_blade = world.addBody(bladeShape().shape,
                           BodyDesc{.position = bladeStart(), .motion = Motion::Kinematic});
 
-  // The push starts at the first substep at or after pushStart and lasts a whole number of
-  // substeps (see the class comment).
-  m_pushStartStep = static_cast<std::uint64_t>(std::ceil(m_config.pushStart / m_timeStep));
-  const double travel = bladeTravel();
-  m_pushSteps = travel > 0.0 ? std::max<std::uint64_t>(
-                                   1, std::llround(travel / (m_config.bladeSpeed * m_timeStep)))
-                             : 0;
+  // The World runs the push in whole substeps (see the class comment); a blade that does not
+  // move is given a move in place, for the substep where the push would start.
+  const float travel = bladeTravel();
+  Vec3 end = bladeStart();
+  end.x += travel;
+  const KinematicMovePlan push = world.moveKinematic(
+      m_blade,
+      KinematicMove{
+          .from = bladeStart(),
+          .to = end,
+          .startTime = m_config.pushStart,
+          .duration = travel > 0.0f ? static_cast<double>(travel) / m_config.bladeSpeed : 0.0});
+  m_pushStartStep = push.startStep;
+  m_pushSteps = travel > 0.0f ? push.endStep - push.startStep : 0;
 
   // Until the push starts, the metrics measure from the lattice (a sync point at setup only).
   m_reference = world.readBodies();
@@ -165,28 +172,6 @@ void Bulldozer::build(World& world) {
   for (const BodyState& body : m_reference) {
     if (body.granule) m_bermFront = std::max(m_bermFront, body.position.x);
   }
-}
-
-Vec3 Bulldozer::bladePosition(std::uint64_t step) const {
-  Vec3 position = bladeStart();
-  if (m_pushSteps == 0 || step <= m_pushStartStep) return position;
-  const std::uint64_t done = std::min(step - m_pushStartStep, m_pushSteps);
-  // In double, so that the last substep lands on start + travel as float addition would.
-  position.x = static_cast<float>(static_cast<double>(position.x) +
-                                  static_cast<double>(bladeTravel()) * static_cast<double>(done) /
-                                      static_cast<double>(m_pushSteps));
-  return position;
-}
-
-void Bulldozer::placeBlade(World& world, std::uint64_t step) const {
-  const bool pushing =
-      m_pushSteps > 0 && step >= m_pushStartStep && step < m_pushStartStep + m_pushSteps;
-  const float speed = pushing ? static_cast<float>(static_cast<double>(bladeTravel()) /
-                                                   (static_cast<double>(m_pushSteps) * m_timeStep))
-                              : 0.0f;
-  world.setBodyState(m_blade, BodyDesc{.position = bladePosition(step),
-                                       .velocity = {speed, 0.0f, 0.0f},
-                                       .motion = Motion::Kinematic});
 }
 
 void Bulldozer::readLoad(World& world) {
@@ -203,47 +188,49 @@ void Bulldozer::readLoad(World& world) {
   }
 }
 
+std::uint64_t Bulldozer::phaseEnd() const {
+  switch (m_phase) {
+    case Phase::Waiting:
+      return m_pushStartStep;
+    case Phase::Pushing:
+      return m_pushStartStep + m_pushSteps;
+    case Phase::Stopped:
+      break;
+  }
+  return std::numeric_limits<std::uint64_t>::max();
+}
+
+void Bulldozer::endPhases(World& world) {
+  const std::uint64_t now = world.stepCount();
+  // A phase ends: its force is read before the next one's substeps add to it.
+  if (m_phase == Phase::Waiting && now >= phaseEnd()) {
+    readLoad(world);
+    m_atPushStart = world.readBodies();
+    m_reference = m_atPushStart;
+    m_bermFront = -std::numeric_limits<float>::infinity();
+    for (const BodyState& body : m_reference) {
+      if (body.granule) m_bermFront = std::max(m_bermFront, body.position.x);
+    }
+    m_phase = Phase::Pushing;
+  }
+  if (m_phase == Phase::Pushing && now >= phaseEnd()) {
+    readLoad(world);
+    m_atPushEnd = world.readBodies();
+    m_stoppedAt = world.simulatedTime();
+    m_phase = Phase::Stopped;
+  }
+}
+
 StepReport Bulldozer::step(World& world, float frameDt) {
   if (!m_blade.isValid()) return world.step(frameDt);
-  std::uint32_t split = 0;
-  double remaining = frameDt;
-  for (;;) {
-    const std::uint64_t now = world.stepCount();
-    // A phase ends: its force is read before the next one's substeps add to it.
-    if (m_phase == Phase::Waiting && now >= m_pushStartStep) {
-      readLoad(world);
-      m_atPushStart = world.readBodies();
-      m_reference = m_atPushStart;
-      m_bermFront = -std::numeric_limits<float>::infinity();
-      for (const BodyState& body : m_reference) {
-        if (body.granule) m_bermFront = std::max(m_bermFront, body.position.x);
-      }
-      m_phase = Phase::Pushing;
-    }
-    if (m_phase == Phase::Pushing && now >= m_pushStartStep + m_pushSteps) {
-      readLoad(world);
-      m_atPushEnd = world.readBodies();
-      m_stoppedAt = world.simulatedTime();
-      m_phase = Phase::Stopped;
-    }
-    placeBlade(world, now);
-    if (m_phase == Phase::Stopped) break;
-    const std::uint64_t next =
-        m_phase == Phase::Waiting ? m_pushStartStep : m_pushStartStep + m_pushSteps;
-    const std::uint64_t count = next - now;
-    // World::step below runs fewer than remaining / dt + 1 substeps (its accumulator holds less
-    // than one), so without a split it reaches `next` at most, never passes it.
-    if (static_cast<double>(count) * m_timeStep >= remaining ||
-        count > world.settings().maxSubstepsPerFrame) {
-      break;
-    }
-    world.substep(static_cast<std::uint32_t>(count));
-    split += static_cast<std::uint32_t>(count);
-    remaining -= static_cast<double>(count) * m_timeStep;
+  endPhases(world);
+  // The World stops where the current phase ends and holds the rest of the frame for the next
+  // phase.
+  StepReport report = world.step(frameDt, phaseEnd());
+  while (report.substepsHeld > 0) {
+    endPhases(world);
+    report.append(world.step(0.0f, phaseEnd()));
   }
-  StepReport report = world.step(static_cast<float>(remaining));
-  report.substeps += split;
-  report.simulatedTime += static_cast<float>(split * m_timeStep);
   readLoad(world);
   m_stepsRun = world.stepCount();
   return report;
@@ -265,7 +252,9 @@ std::string Bulldozer::status() const {
     case Phase::Pushing: {
       char text[96];
       const float drag = m_drag.empty() ? 0.0f : m_drag.back().drag;
-      const float travelled = (bladePosition(m_stepsRun).x - bladeStart().x) / d();
+      const double done = static_cast<double>(std::min(m_stepsRun - m_pushStartStep, m_pushSteps));
+      const double travelled =
+          m_pushSteps > 0 ? m_config.pushDistance * done / static_cast<double>(m_pushSteps) : 0.0;
       std::snprintf(text, sizeof text, "pushing %.1f/%.0f d, drag %.2f N", travelled,
                     m_config.pushDistance, drag);
       return text;

@@ -21,15 +21,14 @@ namespace sandphys::scenes {
 /// bladeSpeed, covers pushDistance and stops there. No side walls: sand that the blade does not
 /// catch spills round its ends.
 ///
-/// The blade's path is a function of the substep count, so that it is the same whatever frame
-/// lengths drive the scene: the push starts at the first substep at or after pushStart and lasts
-/// a whole number of substeps, at a speed within a hair of bladeSpeed that makes it end exactly
-/// pushDistance on. Scene::step sets the blade's pose and velocity at the start of each frame
-/// (the integrator then moves it by its velocity each substep) and splits a frame at the start
-/// and the end of the push, so that the blade starts and stops between two substeps.
+/// The push is a World::moveKinematic, so the blade's path is a function of the substep count
+/// whatever frame lengths drive the scene: it starts at the first substep at or after pushStart
+/// and lasts a whole number of substeps, at a speed within a hair of bladeSpeed that makes it end
+/// exactly pushDistance on.
 ///
 /// The sand's force on the blade is read once per frame and at the start and end of the push
-/// (World::takeBodyForces), so each reading belongs to one phase: waiting, pushing, stopped.
+/// (World::takeBodyForces; Scene::step stops the World's step there, World::step(frameDt,
+/// stopAt)), so each reading belongs to one phase: waiting, pushing, stopped.
 class Bulldozer final : public Scene {
  public:
   /// Parameters; lengths in particle diameters d unless stated.
@@ -107,8 +106,8 @@ class Bulldozer final : public Scene {
   WorldSettings worldSettings() const override;
   /// The floor, the berm and the blade (the sampling is repeated, as settings() did it).
   void build(World& world) override;
-  /// Sets the blade's pose and velocity, runs the frame's substeps (split where the push starts
-  /// or ends) and reads the sand's force on the blade.
+  /// Runs the frame's substeps (stopping where the push starts or ends, to read the sand's force
+  /// on the blade there) and reads the sand's force on the blade.
   StepReport step(World& world, float frameDt) override;
   /// Detects when the sand has come to rest after the push.
   void update(World& world, const StepReport& report, double simTime) override;
@@ -167,10 +166,10 @@ class Bulldozer final : public Scene {
   float spacing() const;
   /// Height of the berm's lowest lattice centres above the floor, m.
   float bermLift() const;
-  /// The blade's centre of mass before substep `step` (a World::stepCount), m.
-  Vec3 bladePosition(std::uint64_t step) const;
-  /// Sets the blade's pose and velocity for the substeps from `step` on.
-  void placeBlade(World& world, std::uint64_t step) const;
+  /// The World::stepCount at which the current phase ends (none for Stopped).
+  std::uint64_t phaseEnd() const;
+  /// Ends the phases whose end the World has reached: their force and bodies are read.
+  void endPhases(World& world);
   /// Reads the sand's force on the blade into the current phase.
   void readLoad(World& world);
 

@@ -7,6 +7,7 @@
 #include "sandphys/error.h"
 #include "sandphys/gpu_context.h"
 #include "sandphys/ids.h"
+#include "sandphys/kinematic_move.h"
 #include "sandphys/log.h"
 #include "sandphys/math.h"
 #include "sandphys/mesh.h"

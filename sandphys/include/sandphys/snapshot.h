@@ -48,6 +48,9 @@ struct WorldSnapshot {
   /// World restored to a snapshot of its own takes its next frame as it would have; recordings
   /// do not store it (read back, it is 0).
   double unsteppedTime = 0.0;
+  /// Substeps World::step held at its stopAt, not yet run (StepReport::substepsHeld); kept and
+  /// not recorded like unsteppedTime.
+  std::uint64_t heldSubsteps = 0;
   std::vector<StoredBody> bodies;
   /// Under ContactLaw::HertzMindlin, every particle slot in use; empty under PaperViscous (whose
   /// contacts keep nothing).

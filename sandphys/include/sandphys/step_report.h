@@ -32,6 +32,9 @@ struct StepReport {
   std::uint32_t substeps = 0;  ///< fixed substeps run
   float simulatedTime = 0.0f;  ///< substeps · timeStep, s
   float droppedTime = 0.0f;    ///< frame time discarded by the substep cap, s
+  /// Substeps due but not run because the step stopped at its stopAt (World::step(frameDt,
+  /// stopAt)): the next step runs them first. 0 for a step without stopAt.
+  std::uint32_t substepsHeld = 0;
   std::uint32_t granulesEmitted = 0;
   bool emitterBlocked = false;  ///< an emitter wanted to add granules but capacity was full
   bool hasStats = false;
@@ -39,6 +42,24 @@ struct StepReport {
   /// Bodies added since the previous step that start overlapping (all zero when none were added
   /// or none overlap).
   InitialOverlaps initialOverlaps{};
+
+  /// Adds `later`, the report of the next part of a frame run in parts (a step that held
+  /// substeps, then the steps that ran them), so that the frame reads as one: counts and times
+  /// add up; the held substeps and the stats are the later part's; the initial overlaps are the
+  /// first part's that found any.
+  void append(const StepReport& later) {
+    substeps += later.substeps;
+    simulatedTime += later.simulatedTime;
+    droppedTime += later.droppedTime;
+    substepsHeld = later.substepsHeld;
+    granulesEmitted += later.granulesEmitted;
+    emitterBlocked = emitterBlocked || later.emitterBlocked;
+    if (later.hasStats) {
+      hasStats = true;
+      stats = later.stats;
+    }
+    if (initialOverlaps.particles == 0) initialOverlaps = later.initialOverlaps;
+  }
 };
 
 }  // namespace sandphys

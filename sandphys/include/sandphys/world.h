@@ -11,6 +11,7 @@
 #include "sandphys/contact_model.h"
 #include "sandphys/gpu_context.h"
 #include "sandphys/ids.h"
+#include "sandphys/kinematic_move.h"
 #include "sandphys/readback.h"
 #include "sandphys/settings.h"
 #include "sandphys/sleep_model.h"
@@ -106,7 +107,19 @@ class World {
   EmitterId addEmitter(const EmitterSettings& emitter);
   void removeEmitter(EmitterId id);
   /// Sets the pose and velocities of a body (typically a kinematic one) before the next step.
+  /// While a move of the body runs (moveKinematic), the move sets them again at the next substep.
   void setBodyState(BodyId id, const BodyDesc& state);
+  /// Makes kinematic body `id` follow `move` (KinematicMove: from which substep to which, and
+  /// its pose and velocity at each), in place of any move it had; returns those substeps, so
+  /// that a scene can stop a step where the move starts or ends (step(frameDt, stopAt)). The
+  /// World places the body after every substep the move covers (a 64-byte upload each; nothing
+  /// when no move runs), so the path does not depend on how frames divide the substeps, and a
+  /// World restored to a snapshot (restoreSnapshot) runs it from there as it ran before: a move
+  /// is the World's setup, like a collider, not part of the snapshot. Throws InvalidId for a
+  /// stale id; InvalidArgument naming the field and value for a body that is not kinematic, a
+  /// non-finite or unresolvable position, a zero orientation, a negative or non-finite duration
+  /// or a start before the World's current substep.
+  KinematicMovePlan moveKinematic(BodyId id, const KinematicMove& move);
   /// Puts every body slot the snapshot holds back to its stored state, bit for bit, with the
   /// step count, simulated time and unstepped frame time; slots added after it (bodies an emitter
   /// or a scene added later) are marked not alive, so they neither move nor touch anything nor
@@ -125,6 +138,12 @@ class World {
   /// warning is logged once, setLogHandler). Does not throw; non-finite or negative frameDt runs
   /// nothing.
   StepReport step(float frameDt);
+  /// Like step(frameDt), but stops when stepCount() reaches `stopAt`, e.g. to read a body's force
+  /// exactly where a move starts (moveKinematic): the frame's substeps due beyond it are held
+  /// (StepReport::substepsHeld), and the next call runs them before those of its own frameDt,
+  /// within one cap; step(0.0f, stopAt) runs only them. stopAt <= stepCount() runs nothing and
+  /// holds every substep due. StepReport::append joins the parts' reports into the frame's.
+  StepReport step(float frameDt, std::uint64_t stopAt);
   /// Runs exactly `count` substeps, bypassing the accumulator (tests, single stepping).
   void substep(std::uint32_t count = 1);
 

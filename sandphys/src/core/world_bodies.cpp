@@ -307,15 +307,21 @@ void World::setBodyState(BodyId id, const BodyDesc& state) {
                           std::to_string(unsigned(added)) + "; 0 dynamic, 1 kinematic, 2 static)");
   }
   w.gpu->makeCurrent();
+  w.placeBody(id.index, d);
+}
+
+void World::Impl::placeBody(std::uint32_t body, const BodyDesc& desc) {
+  // Inside a step the integration may still be writing the body's state.
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   // The body's mass data stay as they were (kept on the CPU: no sync, so a bridge can call this
   // every frame).
   ParticleTemplate massOnly;
-  massOnly.mass = w.bodyMasses[id.index];
-  massOnly.boundingRadius = w.boundingRadii[id.index];
-  w.uploadBodyStates(id.index, {d}, massOnly);
+  massOnly.mass = bodyMasses[body];
+  massOnly.boundingRadius = boundingRadii[body];
+  uploadBodyStates(body, {desc}, massOnly);
   // Its particles follow before the next contacts (and ask for a list build if they jumped).
-  const std::uint32_t first = id.index == 0 ? 0u : w.particleEnd(id.index - 1);
-  w.markParticlesDirty(first, w.particleEnd(id.index));
+  const std::uint32_t first = body == 0 ? 0u : particleEnd(body - 1);
+  markParticlesDirty(first, particleEnd(body));
 }
 
 }  // namespace sandphys

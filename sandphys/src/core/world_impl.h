@@ -13,6 +13,7 @@
 #include "core/gpu_buffers.h"
 #include "gl/buffer.h"
 #include "gl/kernel_profiler.h"
+#include "sandphys/kinematic_move.h"
 #include "sandphys/world.h"
 
 namespace sandphys {
@@ -71,6 +72,13 @@ struct WorldKernels {
   void release();
 };
 
+/// A kinematic body's move as World::moveKinematic resolved it (world_moves.cpp).
+struct KinematicPath {
+  std::uint32_t body = 0;  // body slot
+  KinematicMove move;      // orientation normalised
+  KinematicMovePlan plan;
+};
+
 /// Smallest power of two >= 4096 and >= `particles`, with hash multipliers that send the 27
 /// cells around any cell to 27 distinct buckets. A World allocates the table for its capacity
 /// but uses the one for the particles it holds, so that the list builds cost what is in use.
@@ -109,8 +117,14 @@ struct World::Impl {
   std::vector<ColliderShape> colliderShapes;  // the descriptors of `colliders`, for renderers
   std::vector<detail::GpuSink> sinks;
   std::vector<std::optional<detail::EmitterState>> emitters;
+  // Every body's latest move, kept after it ends: a World restored to a snapshot taken before
+  // the end runs it again (world_moves.cpp).
+  std::vector<detail::KinematicPath> moves;
+  std::uint64_t movesEnd = 0;  // the latest endStep of `moves`
 
   double accumulator = 0.0;
+  // Substeps a frame had due beyond World::step's stopAt, run first by the next call.
+  std::uint64_t heldSubsteps = 0;
   std::uint64_t steps = 0;
   double simTime = 0.0;
   bool warnedDroppedTime = false;
@@ -158,6 +172,12 @@ struct World::Impl {
   /// surfacePassOverlap).
   void requireImpenetrableSurface(const ParticleTemplate& shape) const;
   void requireBody(BodyId id) const;
+  /// Sets body slot `body`'s pose and velocities (its motion as added); its particles follow
+  /// before the next contacts. Safe between the substeps of a step.
+  void placeBody(std::uint32_t body, const BodyDesc& desc);
+  /// Places every body whose move covers the substep count now (world_moves.cpp); nothing when
+  /// no move does.
+  void followMoves();
   /// The particles of the bodies from slot `firstBody` on, just added from the CPU, are checked
   /// for deep initial overlaps at the next step.
   void checkOverlapsFrom(std::uint32_t firstBody);

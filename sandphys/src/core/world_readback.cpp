@@ -74,6 +74,7 @@ WorldSnapshot World::readSnapshot() const {
   snapshot.steps = w.steps;
   snapshot.simulatedTime = w.simTime;
   snapshot.unsteppedTime = w.accumulator;
+  snapshot.heldSubsteps = w.heldSubsteps;
   snapshot.bodies.resize(w.bodyCount);
   for (std::uint32_t i = 0; i < w.bodyCount; ++i) {
     const GpuVec4& p = stored.position[i];

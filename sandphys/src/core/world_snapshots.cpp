@@ -66,6 +66,7 @@ void World::restoreSnapshot(const WorldSnapshot& snapshot) {
   w.markParticlesDirty(0, w.particleCount);
   w.listsStale = true;
   w.accumulator = snapshot.unsteppedTime;
+  w.heldSubsteps = snapshot.heldSubsteps;
 }
 
 }  // namespace sandphys

@@ -1,9 +1,11 @@
 // The frame: World::step's accumulator of fixed substeps, and World::substep.
 #include "sandphys/world.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 
 #include "core/log.h"
 #include "core/world_impl.h"
@@ -13,15 +15,21 @@ namespace sandphys {
 using namespace detail;
 
 StepReport World::step(float frameDt) {
+  return step(frameDt, std::numeric_limits<std::uint64_t>::max());
+}
+
+StepReport World::step(float frameDt, std::uint64_t stopAt) {
   Impl& w = impl();
   StepReport report;
-  if (!std::isfinite(frameDt) || frameDt <= 0.0f) return report;
+  if (!std::isfinite(frameDt) || frameDt < 0.0f) return report;
+  if (frameDt == 0.0f && w.heldSubsteps == 0) return report;
   w.gpu->makeCurrent();
   w.accumulator += frameDt;
   const double dt = w.model.timeStep;
   // Compared in double before any integer conversion: a frame of more substeps than an integer
   // holds is dropped like any other beyond the cap, never wrapped to none.
-  const double needed = std::floor(w.accumulator / dt);
+  const double fresh = std::floor(w.accumulator / dt);
+  const double needed = double(w.heldSubsteps) + fresh;
   std::uint64_t due = 0;
   if (needed > double(w.settings.maxSubstepsPerFrame)) {
     report.droppedTime = float((needed - w.settings.maxSubstepsPerFrame) * dt);
@@ -39,18 +47,24 @@ StepReport World::step(float frameDt) {
     w.accumulator = 0.0;
   } else {
     due = std::uint64_t(needed);
-    w.accumulator -= double(due) * dt;
+    w.accumulator -= fresh * dt;
   }
+  // Whatever lies beyond stopAt waits, counted, for the next call.
+  const std::uint64_t room = stopAt > w.steps ? stopAt - w.steps : 0;
+  const std::uint64_t run = std::min(due, room);
+  w.heldSubsteps = due - run;
   report.initialOverlaps = w.checkInitialOverlaps();
   w.resetPeakOverlap();
   if (w.profiler.enabled()) w.profiler.resetTotals();
   w.buffers.bindAll();
-  for (std::uint64_t i = 0; i < due; ++i) {
+  for (std::uint64_t i = 0; i < run; ++i) {
     w.emit(dt, &report);
     w.runSubstep();
+    w.followMoves();
   }
-  report.substeps = std::uint32_t(due);
-  report.simulatedTime = float(double(due) * dt);
+  report.substeps = std::uint32_t(run);
+  report.simulatedTime = float(double(run) * dt);
+  report.substepsHeld = std::uint32_t(w.heldSubsteps);
   if (w.profiler.enabled()) w.profiler.collect();
   if (w.settings.statsEachFrame) {
     report.stats = w.reduceStats();
@@ -68,6 +82,7 @@ void World::substep(std::uint32_t count) {
   for (std::uint32_t i = 0; i < count; ++i) {
     w.emit(w.model.timeStep, nullptr);
     w.runSubstep();
+    w.followMoves();
   }
   if (w.profiler.enabled()) w.profiler.collect();
 }
