@@ -1,44 +1,68 @@
 #include "scenes/sand_box_pour.h"
 
-#include "scenes/pour.h"
-
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <limits>
+#include <functional>
 #include <string>
+
+#include "scenes/kit/geometry.h"
+#include "scenes/pour.h"
 
 namespace sandphys::scenes {
 
 namespace {
 
-// kGranuleReach in float, as the scene's geometry is computed.
-constexpr float kReach = static_cast<float>(kGranuleReach);
-
-// Height of the bed's lowest granule centres above the floor, d: the granule's reach plus the
-// block's jitter (0.03 of 2.4 d), so that no granule starts inside the floor.
+using kit::kReach;
+// Height of the bed's lowest centres above the floor, d: the reach and the jitter.
 constexpr float kBedClearance = 1.4f;
-
-// Substeps per Hertz contact time at the guard speed. The guard is the worst impact; slower
-// contacts last longer and so get more substeps. 10 (the minimum is 8) halves the cost of the
-// default 20, which a pour of thousands of granules on llvmpipe needs, as the cylinder-pile
-// settle test does.
+// Substeps per Hertz contact time at the guard speed: the guard is the worst impact, slower
+// contacts get more substeps, and 10 (the minimum is 8) halves the cost of the default 20.
 constexpr float kStepsPerContact = 10.0f;
-
-// Granules slower than this (m/s) belong to the pile; the ones falling from the emitter leave it
-// at kMinPourSpeed or more and only speed up, so a pile measured during the pour leaves them
-// out.
+// Granules slower than this (m/s) belong to the pile: the falling ones leave the emitter at
+// kMinPourSpeed or more and only speed up.
 constexpr float kRestSpeed = 0.3f;
 
-// Fraction of a fall's time added before the pile may count as settled: after landing the grains
-// still slide and bounce for a while.
-constexpr double kLandingMargin = 0.5;
+using C = SandBoxPourConfig;
+const auto kTable = std::to_array<kit::Param<C>>({
+    {"rate", &C::rate, "granules/s", 1.0, 1e5, "pour rate"},
+    {"granules", &C::granules, "", 1, 1e8, "granules poured in total (the emitter's budget)"},
+    {"box-width", &C::boxWidth, "d", 4.0, 1e4, "inner width of the box along x and z"},
+    {"box-height", &C::boxHeight, "d", 4.0, 1e4, "inner height of the box"},
+    {"emitter-height", &C::emitterHeight, "d", 2.0, 1e4, "height of the emitter above the floor"},
+    {"emitter-size", &C::emitterSize, "d", 0.5, 1e4, "width of the square emitter"},
+    {"block", &C::block, "", 0, 1024,
+     "bed of granules on the floor before the pour, x, y (layers), z; 0,0,0 for none"},
+    {"settle-speed", &C::settleSpeed, "m/s", 0.0, 10.0,
+     "the sand has settled below this rms speed"},
+    {"max-settle-seconds", &C::maxSettleSeconds, "s", 0.0, 1e6,
+     "longest wait for the bed or the pile to settle"},
+    kit::youngsModulusParam(&C::youngsModulus),
+    kit::seedParam(&C::seed),
+    kit::diameterParam(&C::particleDiameter),
+});
 
-bool atRest(const BodyState& body) {
-  const Vec3& v = body.velocity;
-  return v.x * v.x + v.y * v.y + v.z * v.z < kRestSpeed * kRestSpeed;
+// The 99th percentile of `value` over the contained granules at rest in `bodies`, plus the
+// granule's reach; 0 without such granules.
+float pileExtent(const SandBoxPour& scene, std::span<const BodyState> bodies, float reach,
+                 const std::function<float(const Vec3&)>& value) {
+  std::vector<float> values;
+  values.reserve(bodies.size());
+  for (const BodyState& body : bodies) {
+    const Vec3& v = body.velocity;
+    const bool atRest = v.x * v.x + v.y * v.y + v.z * v.z < kRestSpeed * kRestSpeed;
+    if (body.alive && body.granule && atRest && scene.contains(body.position)) {
+      values.push_back(value(body.position));
+    }
+  }
+  return values.empty() ? 0.0f : percentile(values, 0.99) + reach;
 }
 
 }  // namespace
+
+std::span<const kit::Param<C>> SandBoxPour::table() const {
+  return kTable;
+}
 
 std::uint32_t SandBoxPour::bedGranules() const {
   return m_config.block[0] * m_config.block[1] * m_config.block[2];
@@ -53,89 +77,73 @@ float SandBoxPour::emitterSpeed() const {
 }
 
 WorldSettings SandBoxPour::worldSettings() const {
+  const Config& c = m_config;
+  const auto check = [&](const std::string& what, float needs, const char* limit, float room) {
+    if (needs <= room) return;
+    throw InvalidArgument("sand-box-pour: " + what + " needs " + numberText(needs) +
+                          " d, more than " + limit + " " + numberText(room) + " d");
+  };
+  check("emitter-size with a granule's reach each side", c.emitterSize + 2.0f * kReach, "box-width",
+        c.boxWidth);
+  check("emitter-height with a granule's reach", c.emitterHeight + kReach, "box-height",
+        c.boxHeight);
+  if (bedGranules() > 0) {
+    const auto span = [&](int axis) {
+      return static_cast<float>(c.block[axis] - 1) * kDefaultGranuleSpacing;
+    };
+    // Lattice, jitter and reach on both sides.
+    const auto wide = [&](int axis) { return span(axis) + 2.0f * kit::kJitter + 2.0f * kReach; };
+    check("the bed (block) along x", wide(0), "box-width", c.boxWidth);
+    check("the bed (block) along z", wide(2), "box-width", c.boxWidth);
+    // A granule's room above the bed's top.
+    check("the bed (block) in height", kBedClearance + span(1) + kReach + kReach, "emitter-height",
+          c.emitterHeight);
+  }
+  checkPourSpeed(name(), "emitter-size", emitterHalfExtent(), c.rate, d());
   WorldSettings settings;
   settings.particleDiameter = d();
-  const std::string scene = "sand-box-pour: ";
-
-  const std::uint64_t granules = static_cast<std::uint64_t>(m_config.granules) + bedGranules();
-  if (4 * granules > std::numeric_limits<std::uint32_t>::max()) {
-    throw InvalidArgument(scene + std::to_string(granules) +
-                          " granules (bed and pour) are more than a World can index");
-  }
-  const float boxWidth = m_config.boxWidth;
-  if (m_config.emitterSize + 2.0f * kReach > boxWidth) {
-    throw InvalidArgument(scene + "emitter-size " + numberText(m_config.emitterSize) +
-                          " d does not fit in box-width " + numberText(boxWidth) +
-                          " d (it needs the emitter's width plus " + numberText(2.0f * kReach) +
-                          " d)");
-  }
-  if (m_config.emitterHeight + kReach > m_config.boxHeight) {
-    throw InvalidArgument(scene + "emitter-height " + numberText(m_config.emitterHeight) +
-                          " d is not inside the box (box-height " + numberText(m_config.boxHeight) +
-                          " d)");
-  }
-  if (bedGranules() > 0) {
-    const float jitter = 2.0f * GranuleBlock{}.jitter * kDefaultGranuleSpacing;
-    for (int axis : {0, 2}) {
-      const float extent = static_cast<float>(m_config.block[axis] - 1) * kDefaultGranuleSpacing +
-                           jitter + 2.0f * kReach;
-      if (extent > boxWidth) {
-        throw InvalidArgument(scene + "bed (block) of " + std::to_string(m_config.block[axis]) +
-                              " granules along " + (axis == 0 ? "x" : "z") + " is " +
-                              numberText(extent) + " d wide, more than box-width " +
-                              numberText(boxWidth) + " d");
-      }
-    }
-    const float bedTop =
-        kBedClearance + static_cast<float>(m_config.block[1] - 1) * kDefaultGranuleSpacing + kReach;
-    if (bedTop + kReach > m_config.emitterHeight) {
-      throw InvalidArgument(scene + "bed (block) of " + std::to_string(m_config.block[1]) +
-                            " layers reaches " + numberText(bedTop) + " d, into the emitter at " +
-                            numberText(m_config.emitterHeight) + " d");
-    }
-  }
-  checkPourSpeed("sand-box-pour", "emitter-size", emitterHalfExtent(), m_config.rate, d());
-
-  settings.maxBodies = static_cast<std::uint32_t>(granules);
-  settings.maxParticles = static_cast<std::uint32_t>(4 * granules);
+  kit::reserveExactly(settings, name(), std::uint64_t(c.granules) + bedGranules());
   settings.maxSpeed =
-      pourGuardSpeed(emitterSpeed(), m_config.emitterHeight * d(), gravityMagnitude(settings));
+      pourGuardSpeed(emitterSpeed(), c.emitterHeight * d(), gravityMagnitude(settings));
   settings.stepsPerContact = kStepsPerContact;
-  settings.material.youngsModulus = sceneYoungsModulus(settings, m_config.youngsModulus);
+  settings.material.youngsModulus = sceneYoungsModulus(settings, c.youngsModulus);
   return settings;
 }
 
 void SandBoxPour::build(World& world) {
   m_poured = 0;
-  m_pourStart = -1.0;
-  m_pourEnd = -1.0;
-  m_finished = false;
-  m_granuleMass = tetrahedronTemplate(d(), world.settings().material.density).mass;
-
   const float height = m_config.boxHeight * d();
   world.addCollider(Box{.center = {0.0f, 0.5f * height, 0.0f},
                         .halfExtents = {halfWidth(), 0.5f * height, halfWidth()},
                         .inside = true});
-  m_bedDropTime = world.simulatedTime();
-  if (bedGranules() == 0) {
-    startPour(world, world.simulatedTime());
-    return;
-  }
+  const bool bed = bedGranules() > 0;
   const float spacing = kDefaultGranuleSpacing * d();
-  const float bedHeight = static_cast<float>(m_config.block[1] - 1) * spacing;
-  world.addGranules(GranuleBlock{.center = {0.0f, kBedClearance * d() + 0.5f * bedHeight, 0.0f},
-                                 .countX = m_config.block[0],
-                                 .countY = m_config.block[1],
-                                 .countZ = m_config.block[2],
-                                 .spacing = spacing,
-                                 // Not the emitter's seed: the bed and the pour differ.
-                                 .seed = m_config.seed * 1000003u + 1u});
-  // The lattice collapses onto the floor: its top layer falls about its own height.
+  const float bedHeight = bed ? kit::blockSpan(m_config.block[1], spacing) : 0.0f;
+  if (bed) {
+    world.addGranules(GranuleBlock{.center = {0.0f, kBedClearance * d() + 0.5f * bedHeight, 0.0f},
+                                   .countX = m_config.block[0],
+                                   .countY = m_config.block[1],
+                                   .countZ = m_config.block[2],
+                                   .spacing = spacing,
+                                   .seed = m_config.seed * 1000003u + 1u});  // not the emitter's
+  }
+  // Calm means nothing while the bed collapses onto the floor (its top layer falls about its own
+  // height) or the last granule falls from the emitter; then the sand slides a while. The bed's
+  // wait is limited from its drop, the pile's from the pour's end.
   const double g = gravityMagnitude(world.settings());
-  m_minSettleTime = (1.0 + kLandingMargin) * fallTime(bedHeight + kBedClearance * d(), 0.0, g);
+  const double bedLanding = bed ? 1.5 * fallTime(bedHeight + kBedClearance * d(), 0.0, g) : 0.0;
+  m_course = kit::Course(
+      {.settleSpeed = m_config.settleSpeed,
+       .maxSettleSeconds = m_config.maxSettleSeconds - bedLanding,
+       .actAfter = bedLanding,
+       .minRestSeconds = 1.5 * fallTime(m_config.emitterHeight * d(), emitterSpeed(), g),
+       .maxRestSeconds = m_config.maxSettleSeconds,
+       .actFirst = !bed},
+      kit::granuleMass(world.settings()));
+  if (!bed) startPour(world);
 }
 
-void SandBoxPour::startPour(World& world, double simTime) {
+void SandBoxPour::startPour(World& world) {
   const float half = emitterHalfExtent();
   world.addEmitter(EmitterSettings{.center = {0.0f, m_config.emitterHeight * d(), 0.0f},
                                    .halfExtentX = half,
@@ -144,43 +152,18 @@ void SandBoxPour::startPour(World& world, double simTime) {
                                    .velocity = {0.0f, -emitterSpeed(), 0.0f},
                                    .maxGranules = m_config.granules,
                                    .seed = m_config.seed});
-  m_pourStart = simTime;
 }
 
 void SandBoxPour::update(World& world, const StepReport& report, double simTime) {
-  if (m_finished) return;
-  auto calm = [&](std::uint32_t granules) {
-    return granulesCalm(report, granules, m_granuleMass, m_config.settleSpeed);
-  };
-
-  if (m_pourStart < 0.0) {
-    const double sinceDrop = simTime - m_bedDropTime;
-    if (sinceDrop < m_minSettleTime) return;
-    if (!calm(bedGranules()) && sinceDrop < m_config.maxSettleSeconds) return;
-    startPour(world, simTime);
-    return;
-  }
-
   m_poured = world.granulesSpawned() - bedGranules();
-  if (m_poured < m_config.granules) return;
-  if (m_pourEnd < 0.0) {
-    m_pourEnd = simTime;
-    // The last granule left the emitter during this frame and still has to fall onto the pile.
-    const double g = gravityMagnitude(world.settings());
-    m_minSettleTime =
-        (1.0 + kLandingMargin) * fallTime(m_config.emitterHeight * d(), emitterSpeed(), g);
-  }
-  const double sincePour = simTime - m_pourEnd;
-  if (sincePour < m_minSettleTime) return;
-  if (!calm(m_config.granules + bedGranules()) && sincePour < m_config.maxSettleSeconds) return;
-  m_finished = true;
+  if (m_course.acting() && m_poured >= m_config.granules) m_course.endAct(simTime);
+  const bool bedSettling = m_course.phase() == kit::Course::Phase::Settling;
+  const std::uint32_t granules = bedGranules() + (bedSettling ? 0u : m_config.granules);
+  if (m_course.update(report, simTime, granules) && m_course.acting()) startPour(world);
 }
 
 std::string SandBoxPour::status() const {
-  if (m_pourStart < 0.0) return "bed settling";
-  std::string line = "poured " + std::to_string(m_poured) + "/" + std::to_string(m_config.granules);
-  if (m_finished) line += " settled";
-  return line;
+  return pourStatus(m_course, m_poured, m_config.granules);
 }
 
 bool SandBoxPour::contains(const Vec3& centre) const {
@@ -190,66 +173,30 @@ bool SandBoxPour::contains(const Vec3& centre) const {
 }
 
 float SandBoxPour::pileHeight(std::span<const BodyState> bodies) const {
-  std::vector<float> heights;
-  heights.reserve(bodies.size());
-  for (const BodyState& body : bodies) {
-    if (body.alive && body.granule && atRest(body) && contains(body.position)) {
-      heights.push_back(body.position.y);
-    }
-  }
-  if (heights.empty()) return 0.0f;
-  return percentile(heights, 0.99) + kReach * d();
+  return pileExtent(*this, bodies, kReach * d(), [](const Vec3& p) { return p.y; });
 }
 
 float SandBoxPour::footprintRadius(std::span<const BodyState> bodies) const {
-  std::vector<float> radii;
-  radii.reserve(bodies.size());
-  for (const BodyState& body : bodies) {
-    if (body.alive && body.granule && atRest(body) && contains(body.position)) {
-      radii.push_back(std::hypot(body.position.x, body.position.z));
-    }
-  }
-  if (radii.empty()) return 0.0f;
-  return percentile(radii, 0.99) + kReach * d();
+  return pileExtent(*this, bodies, kReach * d(),
+                    [](const Vec3& p) { return std::hypot(p.x, p.z); });
 }
 
 std::vector<SceneMetric> SandBoxPour::metrics(std::span<const BodyState> bodies) const {
   const double height = pileHeight(bodies);
   const double radius = footprintRadius(bodies);
+  const double pourEnd = m_course.actEnd();
   return {
       {"granules_poured", static_cast<double>(m_poured)},
       {"granules_budget", static_cast<double>(m_config.granules)},
       {"bed_granules", static_cast<double>(bedGranules())},
       {"pour_rate_per_s", m_config.rate},
-      {"pour_seconds", m_pourEnd >= 0.0 ? m_pourEnd - m_pourStart : 0.0},
+      {"pour_seconds", pourEnd >= 0.0 ? pourEnd - m_course.actStart() : 0.0},
       {"emitter_speed_m_per_s", emitterSpeed()},
       {"pile_height_m", height},
       {"pile_height_d", height / d()},
       {"footprint_radius_m", radius},
       {"footprint_radius_d", radius / d()},
       {"box_half_width_m", halfWidth()},
-  };
-}
-
-std::vector<SceneParameter> SandBoxPour::parameters() {
-  return {
-      {"rate", "pour rate, granules/s", &m_config.rate, 1.0, 1e5},
-      {"granules", "granules poured in total (the emitter's budget)", &m_config.granules, 1, 1e8},
-      {"box-width", "inner width of the box along x and z, d", &m_config.boxWidth, 4.0, 1e4},
-      {"box-height", "inner height of the box, d", &m_config.boxHeight, 4.0, 1e4},
-      {"emitter-height", "height of the emitting rectangle above the floor, d",
-       &m_config.emitterHeight, 2.0, 1e4},
-      {"emitter-size", "width of the square emitting rectangle, d", &m_config.emitterSize, 0.5,
-       1e4},
-      {"block", "bed of granules on the floor before the pour, x, y (layers), z; 0,0,0 for none",
-       &m_config.block, 0, 1024},
-      {"settle-speed", "the pile has settled below this rms speed, m/s", &m_config.settleSpeed, 0.0,
-       10.0},
-      {"max-settle-seconds", "longest wait for the bed or the pile to settle, s",
-       &m_config.maxSettleSeconds, 0.0, 1e6},
-      {"youngs-modulus", kYoungsModulusHelp, &m_config.youngsModulus, 0.0, 1e12},
-      {"seed", "random seed of the emitter and the bed", &m_config.seed, 0, 1.8446744073709552e19},
-      {"diameter", "particle diameter d, m", &m_config.particleDiameter, 1e-4, 1.0},
   };
 }
 
