@@ -1,12 +1,11 @@
 #include "scenes/dunes.h"
 
-#include "scenes/kit/geometry.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 
+#include "scenes/kit/geometry.h"
 #include "scenes/pour.h"
 
 namespace sandphys::scenes {
@@ -15,54 +14,64 @@ namespace {
 
 // Depth of the sink's top below the floor's particle centres, d.
 constexpr float kSinkDepth = 3.0f;
-// kGranuleReach in float, as the scene's geometry is computed.
-constexpr float kReach = static_cast<float>(kGranuleReach);
+
+using C = DunesConfig;
+const auto kTable = std::to_array<kit::Param<C>>({
+    {"granules", &C::granules, "", 1, 1e8, "granules poured by each column"},
+    {"separation", &C::separation, "d", 0.0, 1e4, "distance between the two columns"},
+    kit::frictionParam(&C::friction),
+    {"outlet", &C::outlet, "d", 0.5, 1e4, "width of each emitter's square"},
+    {"rate", &C::rate, "granules/s", 1.0, 1e5, "pour rate of each column"},
+    {"pour-height", &C::pourHeight, "d", 1.0, 1e4, "height of the emitters above the floor"},
+    {"floor-half-length", &C::floorHalfLength, "d", 2.0, 1e4, "half length of the floor along x"},
+    {"floor-half-width", &C::floorHalfWidth, "d", 2.0, 1e4, "half width of the floor along z"},
+    kit::youngsModulusParam(&C::youngsModulus),
+    kit::settleSpeedParam(&C::settleSpeed),
+    kit::maxSettleSecondsParam(&C::maxSettleSeconds),
+    kit::stepsPerContactParam(&C::stepsPerContact),
+    kit::seedParam(&C::seed),
+    kit::diameterParam(&C::particleDiameter),
+});
 
 }  // namespace
+
+std::span<const kit::Param<C>> Dunes::table() const {
+  return kTable;
+}
 
 float Dunes::emitterSpeed() const {
   return pourSpeed(0.5f * m_config.outlet * d(), m_config.rate, d());
 }
 
 WorldSettings Dunes::worldSettings() const {
-  const std::string scene = "dunes: ";
-  // A RoughFloor rectangle has a particle every d from -half to +half along each side; at most
-  // this many (World::addRoughFloor rounds each half down to whole spacings).
-  const std::uint64_t floorParticles =
-      static_cast<std::uint64_t>(2.0 * std::floor(m_config.floorHalfLength) + 1.0) *
-      static_cast<std::uint64_t>(2.0 * std::floor(m_config.floorHalfWidth) + 1.0);
-  const std::uint64_t granules = 2ull * m_config.granules;
-  if (m_config.granules == 0 ||
-      4 * granules + floorParticles > std::numeric_limits<std::uint32_t>::max()) {
-    throw InvalidArgument(scene + "granules = " + std::to_string(m_config.granules) +
-                          " per column must be >= 1 and, with the floor's particles, fit a "
-                          "World's 2^32 particles");
+  const Config& c = m_config;
+  if (0.5f * c.separation + 0.5f * c.outlet + kit::kReach > c.floorHalfLength ||
+      0.5f * c.outlet + kit::kReach > c.floorHalfWidth) {
+    throw InvalidArgument("dunes: the columns (separation " + numberText(c.separation) +
+                          " d, outlet " + numberText(c.outlet) + " d) reach past the floor (" +
+                          "floor-half-length " + numberText(c.floorHalfLength) +
+                          " d, floor-half-width " + numberText(c.floorHalfWidth) + " d)");
   }
-  const float reach = 0.5f * m_config.separation + 0.5f * m_config.outlet + kReach;
-  if (reach > m_config.floorHalfLength ||
-      0.5f * m_config.outlet + kReach > m_config.floorHalfWidth) {
-    throw InvalidArgument(scene + "the columns (separation " + numberText(m_config.separation) +
-                          " d, outlet " + numberText(m_config.outlet) +
-                          " d) reach past the floor (floor-half-length " +
-                          numberText(m_config.floorHalfLength) + " d, floor-half-width " +
-                          numberText(m_config.floorHalfWidth) + " d)");
-  }
-  if (m_config.pourHeight < 2.0f * kReach) {
-    throw InvalidArgument(scene + "pour-height " + numberText(m_config.pourHeight) +
+  if (c.pourHeight < 2.0f * kit::kReach) {
+    throw InvalidArgument("dunes: pour-height " + numberText(c.pourHeight) +
                           " d leaves no room for a granule above the floor (at least " +
-                          numberText(2.0f * kReach) + " d)");
+                          numberText(2.0f * kit::kReach) + " d)");
   }
-  checkPourSpeed("dunes", "the outlet", 0.5f * m_config.outlet * d(), m_config.rate, d());
+  checkPourSpeed(name(), "the outlet", 0.5f * c.outlet * d(), c.rate, d());
   WorldSettings settings;
   settings.particleDiameter = d();
-  settings.material.friction = m_config.friction;
-  settings.maxBodies = static_cast<std::uint32_t>(granules + 1);  // + the floor
-  settings.maxParticles = static_cast<std::uint32_t>(4 * granules + floorParticles);
+  settings.material.friction = c.friction;
+  // The floor's particles, at most (World::addRoughFloor rounds each half down to whole d).
+  const std::uint64_t floorParticles =
+      static_cast<std::uint64_t>(2.0 * std::floor(c.floorHalfLength) + 1.0) *
+      static_cast<std::uint64_t>(2.0 * std::floor(c.floorHalfWidth) + 1.0);
+  kit::reserveExactly(settings, name(), 2ull * c.granules, 1, floorParticles);
+  // Settling is judged from every frame's kinetic energy.
   settings.statsEachFrame = true;
   settings.maxSpeed =
-      pourGuardSpeed(emitterSpeed(), m_config.pourHeight * d(), gravityMagnitude(settings));
-  settings.stepsPerContact = m_config.stepsPerContact;
-  settings.material.youngsModulus = sceneYoungsModulus(settings, m_config.youngsModulus);
+      pourGuardSpeed(emitterSpeed(), c.pourHeight * d(), gravityMagnitude(settings));
+  settings.stepsPerContact = c.stepsPerContact;
+  settings.material.youngsModulus = sceneYoungsModulus(settings, c.youngsModulus);
   return settings;
 }
 
@@ -82,16 +91,15 @@ void Dunes::build(World& world) {
                      .max = {wide, -kSinkDepth * d(), wide}});
   const float half = 0.5f * m_config.outlet * d();
   for (int side : {-1, 1}) {
-    world.addEmitter(
-        EmitterSettings{.center = {static_cast<float>(side) * 0.5f * m_config.separation * d(),
-                                   m_config.pourHeight * d(), 0.0f},
-                        .halfExtentX = half,
-                        .halfExtentZ = half,
-                        .rate = m_config.rate,
-                        .velocity = {0.0f, -emitterSpeed(), 0.0f},
-                        .maxGranules = m_config.granules,
-                        // Two different streams of orientations.
-                        .seed = m_config.seed * 2 + (side > 0 ? 1 : 0)});
+    const float x = static_cast<float>(side) * 0.5f * m_config.separation * d();
+    world.addEmitter(EmitterSettings{.center = {x, m_config.pourHeight * d(), 0.0f},
+                                     .halfExtentX = half,
+                                     .halfExtentZ = half,
+                                     .rate = m_config.rate,
+                                     .velocity = {0.0f, -emitterSpeed(), 0.0f},
+                                     .maxGranules = m_config.granules,
+                                     // Two different streams of orientations.
+                                     .seed = m_config.seed * 2 + (side > 0 ? 1 : 0)});
   }
 }
 
@@ -99,9 +107,8 @@ void Dunes::update(World& world, const StepReport& report, double simTime) {
   if (m_course.done()) return;
   m_poured = world.granulesSpawned();
   if (m_course.acting() && m_poured >= 2 * m_config.granules) m_course.endAct(simTime);
-  if (!m_course.update(report, simTime)) return;
-  // Once per run: the settled sand's profile for series().
-  m_profile = profile(world.readBodies());
+  // Once per run, when the sand has settled: the profile for series().
+  if (m_course.update(report, simTime)) m_profile = profile(world.readBodies());
 }
 
 std::string Dunes::status() const {
@@ -114,29 +121,22 @@ bool Dunes::contains(const Vec3& centre) const {
 }
 
 Dunes::Profile Dunes::profile(std::span<const BodyState> bodies) const {
-  // Strips one granule wide along x; the granules within a granule of the z = 0 plane.
   const double strip = 2.0 * kGranuleReach * d();
   const double halfLength = m_config.floorHalfLength * d();
   const auto strips = static_cast<std::size_t>(std::ceil(2.0 * halfLength / strip));
-  const double floorTop = 0.5 * d();
-  std::vector<double> top(strips, -1.0);
-  std::vector<double> where(strips, 0.0);
+  // The highest [x, height] of each strip; an empty strip keeps its height of -1.
+  std::vector<std::array<double, 2>> top(strips, {0.0, -1.0});
   for (const BodyState& body : bodies) {
-    if (!body.alive || !body.granule || !contains(body.position)) continue;
-    if (std::abs(body.position.z) > strip) continue;
-    const auto i =
-        std::min(strips - 1, static_cast<std::size_t>((body.position.x + halfLength) / strip));
-    const double h = body.position.y - floorTop;
-    if (h > top[i]) {
-      top[i] = h;
-      where[i] = body.position.x;
-    }
+    const Vec3& c = body.position;
+    if (!body.alive || !body.granule || !contains(c) || std::abs(c.z) > strip) continue;
+    const auto i = std::min(strips - 1, static_cast<std::size_t>((c.x + halfLength) / strip));
+    const double h = c.y - 0.5 * d();  // above the floor particles' tops
+    if (h > top[i][1]) top[i] = {c.x, h};
   }
   Profile p;
-  for (std::size_t i = 0; i < strips; ++i) {
-    if (top[i] >= 0.0) p.points.push_back({where[i], top[i]});
-  }
-  for (const auto& point : p.points) {
+  for (const auto& point : top) {
+    if (point[1] < 0.0) continue;
+    p.points.push_back(point);
     auto& crest = point[0] < 0.0 ? p.leftCrest : p.rightCrest;
     if (point[1] > crest[1]) crest = point;
   }
@@ -153,9 +153,7 @@ Dunes::Profile Dunes::profile(std::span<const BodyState> bodies) const {
 std::vector<SceneMetric> Dunes::metrics(std::span<const BodyState> bodies) const {
   const Profile p = profile(bodies);
   std::uint32_t onFloor = 0;
-  for (const BodyState& body : bodies) {
-    if (body.granule && body.alive && contains(body.position)) ++onFloor;
-  }
+  for (const BodyState& b : bodies) onFloor += b.granule && b.alive && contains(b.position);
   const double lowerCrest = std::min(p.leftCrest[1], p.rightCrest[1]);
   return {
       {"granules_poured", static_cast<double>(m_poured)},
@@ -174,33 +172,8 @@ std::vector<SceneMetric> Dunes::metrics(std::span<const BodyState> bodies) const
 
 std::vector<SceneSeries> Dunes::series() const {
   SceneSeries profile{.name = "dune_profile"};
-  for (const auto& point : m_profile.points)
-    profile.points.push_back({point[0] / d(), point[1] / d()});
+  for (const auto& [x, h] : m_profile.points) profile.points.push_back({x / d(), h / d()});
   return {profile};
-}
-
-std::vector<SceneParameter> Dunes::parameters() {
-  return {
-      {"granules", "granules poured by each column", &m_config.granules, 1, 1e8},
-      {"separation", "distance between the two columns, d", &m_config.separation, 0.0, 1e4},
-      {"friction", "Coulomb friction coefficient of every contact", &m_config.friction, 0.0, 10.0},
-      {"outlet", "width of each emitter's square, d", &m_config.outlet, 0.5, 1e4},
-      {"rate", "pour rate of each column, granules/s", &m_config.rate, 1.0, 1e5},
-      {"pour-height", "height of the emitters above the floor, d", &m_config.pourHeight, 1.0, 1e4},
-      {"floor-half-length", "half length of the rough floor along x, d", &m_config.floorHalfLength,
-       2.0, 1e4},
-      {"floor-half-width", "half width of the rough floor along z, d", &m_config.floorHalfWidth,
-       2.0, 1e4},
-      {"youngs-modulus", kYoungsModulusHelp, &m_config.youngsModulus, 0.0, 1e12},
-      {"settle-speed", "the sand has settled below this rms speed, m/s", &m_config.settleSpeed, 0.0,
-       10.0},
-      {"max-settle-seconds", "longest wait for the sand to settle after the pour, s",
-       &m_config.maxSettleSeconds, 0.0, 1e6},
-      {"steps-per-contact", "substeps per Hertz contact time at the speed guard",
-       &m_config.stepsPerContact, kMinStepsPerContact, 1e4},
-      {"seed", "random seed of the emitters", &m_config.seed, 0, 1.8446744073709552e19},
-      {"diameter", "particle diameter d, m", &m_config.particleDiameter, 1e-4, 1.0},
-  };
 }
 
 SceneBounds Dunes::bounds() const {
