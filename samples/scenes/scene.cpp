@@ -172,11 +172,6 @@ bool granulesCalm(const StepReport& report, std::uint32_t granules, float granul
   return report.hasStats && granules > 0 && report.stats.kineticEnergy / granules < settleEnergy;
 }
 
-bool releaseDue(bool calm, double simTime, float releaseTime, float maxSettleSeconds) {
-  if (simTime < releaseTime) return false;
-  return calm || simTime >= releaseTime + maxSettleSeconds;
-}
-
 double fallTime(double height, double speed, double g) {
   return (std::sqrt(speed * speed + 2.0 * g * std::max(height, 0.0)) - speed) / g;
 }

@@ -175,10 +175,6 @@ bool runUntilFinished(Scene& scene, World& world, float frameDt, double maxSecon
 bool granulesCalm(const StepReport& report, std::uint32_t granules, float granuleMass,
                   float settleSpeed);
 
-/// Whether a gate held shut while a fill settles (hourglass, repose-scupper) opens now, at
-/// simulated time `simTime` (s): not before `releaseTime`, then as soon as the fill is `calm`
-/// (granulesCalm), and at the latest `maxSettleSeconds` after `releaseTime`.
-bool releaseDue(bool calm, double simTime, float releaseTime, float maxSettleSeconds);
 /// Time a body needs to fall `height` (m; none when <= 0) starting at `speed` (m/s, downward)
 /// under gravity `g` (m/s²), s.
 double fallTime(double height, double speed, double g);
