@@ -18,6 +18,7 @@
 #define XXH_INLINE_ALL
 #include <xxhash.h>
 
+#include "core/assert.h"
 #include "sandphys/error.h"
 #include "sandphys/recording.h"
 #include "sandphys/settings.h"
@@ -324,6 +325,12 @@ void RecordingWriter::addSnapshot(const WorldSnapshot& snapshot) {
     }
     for (std::uint32_t word : c.pairs) raw.put(word);
   }
+  // The reader (readSnapshot) takes the body and contact counts for the layout of these bytes.
+  SANDPHYS_ASSERT(raw.data().size() == snapshot.bodies.size() * kSnapshotBodyBytes +
+                                           snapshot.contacts.size() * kSnapshotContactBytes,
+                  std::to_string(raw.data().size()) + " snapshot bytes for " +
+                      std::to_string(snapshot.bodies.size()) + " bodies and " +
+                      std::to_string(snapshot.contacts.size()) + " particles");
   std::vector<std::uint8_t> compressed(ZSTD_compressBound(raw.data().size()));
   const std::size_t size = ZSTD_compress(compressed.data(), compressed.size(), raw.data().data(),
                                          raw.data().size(), kZstdLevel);
