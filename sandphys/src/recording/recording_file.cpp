@@ -1,6 +1,7 @@
 // The recording file (docs/recording.md): a header, then records of (tag, length, payload), all
 // little-endian; snapshots compressed with zstd; an end record with an XXH3 checksum of every
 // byte before it. Written as the run goes, so an interrupted run leaves a truncated file.
+#include <array>
 #include <bit>
 #include <cerrno>
 #include <cinttypes>
@@ -218,7 +219,9 @@ WorldSnapshot readSnapshot(Reader& in, const std::string& context) {
   snapshot.bodies.resize(bodies);
   for (StoredBody& b : snapshot.bodies) {
     for (float& v : b.position) v = body.get<float>();
-    for (float& v : b.orientation) v = body.get<float>();
+    std::array<float, 4> words{};
+    for (float& v : words) v = body.get<float>();
+    b.principalOrientation = {words[3], words[0], words[1], words[2]};  // orientationWords' order
     for (float& v : b.velocity) v = body.get<float>();
     for (float& v : b.angularVelocity) v = body.get<float>();
     const auto status = body.get<std::uint32_t>();
@@ -314,7 +317,7 @@ void RecordingWriter::addSnapshot(const WorldSnapshot& snapshot) {
   Bytes raw;
   for (const StoredBody& b : snapshot.bodies) {
     for (float v : b.position) raw.put(v);
-    for (float v : b.orientation) raw.put(v);
+    for (float v : orientationWords(b)) raw.put(v);
     for (float v : b.velocity) raw.put(v);
     for (float v : b.angularVelocity) raw.put(v);
     raw.put(statusWord(b));
