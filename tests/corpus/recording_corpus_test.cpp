@@ -45,7 +45,7 @@ Bytes sampleRecording() {
         for (std::uint32_t i = 0; i < 3; ++i) {
           StoredBody b;
           b.position = {float(i), 0.5f, -float(frame)};
-          b.orientation = {0.0f, 0.6f, 0.0f, 0.8f};
+          b.principalOrientation = {.w = 0.8f, .x = 0.0f, .y = 0.6f, .z = 0.0f};
           b.velocity = {0.1f, -0.2f, 0.3f};
           b.calm = i;
           s.bodies.push_back(b);

@@ -124,9 +124,9 @@ TEST(CarelessInput, ASnapshotThatWouldPutNaNIntoTheWorldIsRefusedAndChangesNothi
       {[](WorldSnapshot& s) { s.bodies[0].position[1] = std::nanf(""); },
        "WorldSnapshot.bodies[0].position.y = nan"},
       {[](WorldSnapshot& s) {
-         s.bodies[0].orientation = {0, 0, 0, 0};
+         s.bodies[0].principalOrientation = {0, 0, 0, 0};
        },
-       "WorldSnapshot.bodies[0].orientation (squared norm) = 0"},
+       "WorldSnapshot.bodies[0].principalOrientation (squared norm) = 0"},
       {[](WorldSnapshot& s) { s.bodies[0].angularVelocity[2] = INFINITY; },
        "WorldSnapshot.bodies[0].angularVelocity.z = inf"},
       {[](WorldSnapshot& s) { s.simulatedTime = std::nan(""); },

@@ -2,6 +2,7 @@
 // and every kind of bad file gets an error that names the file and the problem.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -9,6 +10,7 @@
 #include <limits>
 
 #include <sandphys/sandphys.h>
+#include <zstd.h>
 
 namespace sandphys {
 namespace {
@@ -28,7 +30,7 @@ WorldSnapshot snapshotOf(std::uint64_t frame, std::uint32_t bodies) {
     StoredBody b;
     const float f = float(i) + 0.25f * float(frame);
     b.position = {f, -f, 0.5f * f};
-    b.orientation = {0.0f, 0.6f, 0.0f, 0.8f};
+    b.principalOrientation = {.w = 0.8f, .x = 0.0f, .y = 0.6f, .z = 0.0f};
     b.velocity = {std::numeric_limits<float>::denorm_min(), -0.0f, 3.0f};
     b.angularVelocity = {1e-30f, 2.0f, -7.5f};
     b.alive = i % 3 != 0;
@@ -127,6 +129,35 @@ TEST(RecordingFile, ReadsBackWhatWasWrittenBitForBit) {
     EXPECT_EQ(stateHash(expected), stateHash(s));
   }
   EXPECT_EQ(r.snapshots[1].frame, 5u);
+}
+
+TEST(RecordingFile, KeepsThePrincipalOrientationInTheGpusWordOrder) {
+  // Four different words, so that any other order shows (the file keeps any bits, unit or not).
+  WorldSnapshot snapshot;
+  snapshot.bodies.emplace_back().principalOrientation = {
+      .w = 0.125f, .x = 0.25f, .y = 0.5f, .z = 0.75f};
+  const std::filesystem::path file = tempFile("order.sprec");
+  {
+    RecordingWriter writer(file, {});
+    writer.addSnapshot(snapshot);
+    writer.finish(0.0);
+  }
+  const std::vector<char> bytes = bytesOf(file);
+  // The file header (16 bytes), the SETS record (8-byte record header, a count of 0), the SNAP
+  // record's header and its 32 bytes of frame, steps, time and counts, then its zstd frame.
+  constexpr std::size_t kSnapshotAt = 16 + 12;
+  constexpr std::size_t kFrameAt = kSnapshotAt + 8 + 32;
+  std::uint32_t payload = 0;
+  std::memcpy(&payload, bytes.data() + kSnapshotAt + 4, sizeof payload);
+  std::array<float, 14> body{};  // position, orientation, velocity, spin, status
+  ASSERT_EQ(ZSTD_decompress(body.data(), sizeof body, bytes.data() + kFrameAt, payload - 32),
+            sizeof body);
+  EXPECT_EQ(body[3], 0.25f);   // x
+  EXPECT_EQ(body[4], 0.5f);    // y
+  EXPECT_EQ(body[5], 0.75f);   // z
+  EXPECT_EQ(body[6], 0.125f);  // w
+  const Quat back = readRecording(file).snapshots.at(0).bodies.at(0).principalOrientation;
+  EXPECT_EQ(std::memcmp(&back, &snapshot.bodies[0].principalOrientation, sizeof back), 0);
 }
 
 TEST(RecordingFile, ANegativeZeroOrOneBitIsADifferenceNamedWithBothValues) {

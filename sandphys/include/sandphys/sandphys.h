@@ -1,6 +1,7 @@
 #pragma once
 
 /// The whole public API of sandphys.
+#include "sandphys/assert.h"
 #include "sandphys/body.h"
 #include "sandphys/colliders.h"
 #include "sandphys/contact_model.h"

@@ -6,12 +6,18 @@
 #include <string>
 #include <vector>
 
+#include "sandphys/math.h"
+
 namespace sandphys {
 
 /// One body slot exactly as the GPU stores it: the bits World::readStateHash covers.
 struct StoredBody {
-  std::array<float, 3> position{};         ///< centre of mass, m
-  std::array<float, 4> orientation{};      ///< x, y, z, w of the principal frame's orientation
+  std::array<float, 3> position{};  ///< centre of mass, m
+  /// Orientation of the body's principal frame (ParticleTemplate::principalRotation), the frame
+  /// the GPU integrates in: BodyState::orientation · principalRotation, kept as stored so that a
+  /// restore is exact. The state hash and recordings take its words in the order x, y, z, w
+  /// (docs/recording.md).
+  Quat principalOrientation{};
   std::array<float, 3> velocity{};         ///< m/s
   std::array<float, 3> angularVelocity{};  ///< rad/s, world frame
   bool alive = true;                       ///< false once a sink removed it
@@ -24,6 +30,13 @@ struct StoredBody {
 /// bit 0 alive, the calm count above it (so 1 or 0 without sleep).
 inline std::uint32_t statusWord(const StoredBody& b) {
   return (b.alive ? 1u : 0u) | (b.calm << 1);
+}
+
+/// The words the state hash and recordings keep of a StoredBody's principal orientation, in the
+/// GPU's order: x, y, z, w.
+inline std::array<float, 4> orientationWords(const StoredBody& b) {
+  const Quat& q = b.principalOrientation;
+  return {q.x, q.y, q.z, q.w};
 }
 
 /// Contact slots each particle owns under ContactLaw::HertzMindlin (docs/architecture.md,
@@ -62,7 +75,8 @@ struct WorldSnapshot {
 std::uint64_t stateHash(const WorldSnapshot& snapshot);
 
 /// Where two states first differ: the lowest body slot, then the first field in the order of
-/// StoredBody ("position.x" ... "angularVelocity.z", "alive", "calm"); field "body count" when the
+/// StoredBody ("position.x" ... "principalOrientation.w" ... "angularVelocity.z", "alive",
+/// "calm"); field "body count" when the
 /// number of slots differs (body is then the smaller count). Then the contact history: the
 /// lowest particle (subject Particle), "contact slot K spring.x" ... "contact slot K key",
 /// "contact pairs W", or "particle count". Also for inputs (below).

@@ -3,6 +3,9 @@
 #include "core/contact_state.h"
 
 #include <array>
+#include <string>
+
+#include "core/assert.h"
 
 namespace sandphys::detail {
 
@@ -32,6 +35,9 @@ std::vector<StoredContacts> downloadContacts(const WorldBuffers& buffers, std::u
 
 void uploadContacts(WorldBuffers& buffers, const std::vector<StoredContacts>& contacts,
                     std::uint32_t particles) {
+  SANDPHYS_ASSERT(contacts.size() <= particles,
+                  std::to_string(contacts.size()) + " particles' contact history for " +
+                      std::to_string(particles) + " particles in use");
   if (particles == 0) return;
   std::vector<SlotWords> group(std::size_t(particles) * kContactSlotsPerGroup, SlotWords{});
   for (std::uint32_t g = 0; g < kContactSlotGroups; ++g) {

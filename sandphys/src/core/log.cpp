@@ -37,8 +37,8 @@ void log(LogLevel level, std::string_view message) {
     handler(level, message);
     return;
   }
-  (void)level;  // one level so far
-  std::fprintf(stderr, "sandphys: warning: %.*s\n", int(message.size()), message.data());
+  const char* prefix = level == LogLevel::Error ? "error" : "warning";
+  std::fprintf(stderr, "sandphys: %s: %.*s\n", prefix, int(message.size()), message.data());
 }
 
 }  // namespace detail

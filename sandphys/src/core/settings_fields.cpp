@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
+#include "core/assert.h"
 #include "core/validation.h"
 #include "core/world_checks.h"
 
@@ -118,7 +120,7 @@ double SettingField::valueIn(const WorldSettings& settings) const {
     case Kind::Law:
       return double(unsigned(*law(s)));
   }
-  return 0.0;
+  SANDPHYS_ASSERT(false, "SettingField kind " + std::to_string(int(kind)) + " of " + member);
 }
 
 bool SettingField::accepts(double value) const {

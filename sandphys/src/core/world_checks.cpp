@@ -16,9 +16,9 @@ namespace {
 // far inside it.
 constexpr double kUnitTolerance = 1e-4;
 
-void requireUnit(const std::string& field, const float q[4]) {
+void requireUnit(const std::string& field, Quat q) {
   double n2 = 0.0;
-  for (int i = 0; i < 4; ++i) n2 += double(q[i]) * q[i];
+  for (const float v : {q.w, q.x, q.y, q.z}) n2 += double(v) * v;
   require(std::isfinite(n2) && std::abs(n2 - 1.0) <= kUnitTolerance, field + " (squared norm)", n2,
           "must be a unit quaternion (finite, squared norm 1 within " +
               formatValue(kUnitTolerance) + ")");
@@ -60,9 +60,7 @@ void requireTemplate(const ParticleTemplate& shape) {
   requirePositive("ParticleTemplate.principalInertia.x", shape.principalInertia.x, "(kg m^2)");
   requirePositive("ParticleTemplate.principalInertia.y", shape.principalInertia.y, "(kg m^2)");
   requirePositive("ParticleTemplate.principalInertia.z", shape.principalInertia.z, "(kg m^2)");
-  const Quat& q = shape.principalRotation;
-  const float rotation[4] = {q.w, q.x, q.y, q.z};
-  requireUnit("ParticleTemplate.principalRotation", rotation);
+  requireUnit("ParticleTemplate.principalRotation", shape.principalRotation);
   requireNonNegative("ParticleTemplate.boundingRadius", shape.boundingRadius, "(m)");
   requireNonNegative("ParticleTemplate.surfaceSpacing", shape.surfaceSpacing, "(m)");
   double farthest = 0.0;
@@ -90,7 +88,7 @@ void requireRestorable(const WorldSnapshot& snapshot) {
       requireFinite(slot + ".velocity." + axis, b.velocity[k]);
       requireFinite(slot + ".angularVelocity." + axis, b.angularVelocity[k]);
     }
-    requireUnit(slot + ".orientation", b.orientation.data());
+    requireUnit(slot + ".principalOrientation", b.principalOrientation);
     require(b.calm < (1u << 30), slot + ".calm", b.calm, "must be < 2^30");
   }
   for (std::size_t p = 0; p < snapshot.contacts.size(); ++p) {

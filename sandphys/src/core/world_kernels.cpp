@@ -3,7 +3,9 @@
 // upload of what the CPU changed: granules that emitters add, bodies set from outside).
 #include <algorithm>
 #include <cmath>
+#include <string>
 
+#include "core/assert.h"
 #include "core/world_impl.h"
 
 namespace sandphys {
@@ -179,9 +181,13 @@ void World::Impl::emit(double dt, StepReport* report) {
   for (auto& emitter : emitters) {
     if (!emitter || emitter->finished()) continue;
     bool blocked = false;
-    std::uint32_t room =
-        std::min<std::uint32_t>(bodyCapacity - bodyCount, (particleCapacity - particleCount) / 4u);
+    const auto perGranule = std::uint32_t(granule.offsets.size());
+    const std::uint32_t room =
+        std::min(bodyCapacity - bodyCount, (particleCapacity - particleCount) / perGranule);
     auto spawns = emitter->advance(dt, room, blocked);
+    // step() does not throw: addBodies must find the room it counts.
+    SANDPHYS_ASSERT(spawns.size() <= room, "an emitter spawned " + std::to_string(spawns.size()) +
+                                               " granules with room for " + std::to_string(room));
     if (!spawns.empty()) {
       std::vector<BodyDesc> descs;
       descs.reserve(spawns.size());

@@ -83,7 +83,7 @@ WorldSnapshot World::readSnapshot() const {
     const GpuVec4& omega = stored.spin[i];
     StoredBody& b = snapshot.bodies[i];
     b.position = {p.x, p.y, p.z};
-    b.orientation = {q.x, q.y, q.z, q.w};
+    b.principalOrientation = fromGpu(q);
     b.velocity = {v.x, v.y, v.z};
     b.angularVelocity = {omega.x, omega.y, omega.z};
     b.alive = (stored.info[i].z & kBodyAlive) != 0;

@@ -48,7 +48,8 @@ void World::restoreSnapshot(const WorldSnapshot& snapshot) {
     }
     const StoredBody& b = snapshot.bodies[i];
     position[i] = {b.position[0], b.position[1], b.position[2], position[i].w};
-    orientation[i] = {b.orientation[0], b.orientation[1], b.orientation[2], b.orientation[3]};
+    const Quat& q = b.principalOrientation;
+    orientation[i] = {q.x, q.y, q.z, q.w};
     velocity[i] = {b.velocity[0], b.velocity[1], b.velocity[2], std::bit_cast<float>(b.calm)};
     spin[i] = {b.angularVelocity[0], b.angularVelocity[1], b.angularVelocity[2], spin[i].w};
     info[i].z = b.alive ? (info[i].z | kBodyAlive) : (info[i].z & ~kBodyAlive);

@@ -1,5 +1,9 @@
 #include "gl/kernel_profiler.h"
 
+#include <string>
+
+#include "core/assert.h"
+
 namespace sandphys::gl {
 
 KernelProfiler::~KernelProfiler() {
@@ -26,6 +30,9 @@ void KernelProfiler::begin(const char* kernel) {
 
 void KernelProfiler::end() {
   if (!m_enabled) return;
+  SANDPHYS_ASSERT(!m_pending.empty() && m_pending.back().endQuery == 0,
+                  "KernelProfiler::end without a begin (" + std::to_string(m_pending.size()) +
+                      " dispatches timed)");
   GLuint query = 0;
   if (m_pool.empty()) {
     glGenQueries(1, &query);

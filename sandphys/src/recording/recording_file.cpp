@@ -1,6 +1,7 @@
 // The recording file (docs/recording.md): a header, then records of (tag, length, payload), all
 // little-endian; snapshots compressed with zstd; an end record with an XXH3 checksum of every
 // byte before it. Written as the run goes, so an interrupted run leaves a truncated file.
+#include <array>
 #include <bit>
 #include <cerrno>
 #include <cinttypes>
@@ -18,6 +19,7 @@
 #define XXH_INLINE_ALL
 #include <xxhash.h>
 
+#include "core/assert.h"
 #include "sandphys/error.h"
 #include "sandphys/recording.h"
 #include "sandphys/settings.h"
@@ -217,7 +219,9 @@ WorldSnapshot readSnapshot(Reader& in, const std::string& context) {
   snapshot.bodies.resize(bodies);
   for (StoredBody& b : snapshot.bodies) {
     for (float& v : b.position) v = body.get<float>();
-    for (float& v : b.orientation) v = body.get<float>();
+    std::array<float, 4> words{};
+    for (float& v : words) v = body.get<float>();
+    b.principalOrientation = {words[3], words[0], words[1], words[2]};  // orientationWords' order
     for (float& v : b.velocity) v = body.get<float>();
     for (float& v : b.angularVelocity) v = body.get<float>();
     const auto status = body.get<std::uint32_t>();
@@ -313,7 +317,7 @@ void RecordingWriter::addSnapshot(const WorldSnapshot& snapshot) {
   Bytes raw;
   for (const StoredBody& b : snapshot.bodies) {
     for (float v : b.position) raw.put(v);
-    for (float v : b.orientation) raw.put(v);
+    for (float v : orientationWords(b)) raw.put(v);
     for (float v : b.velocity) raw.put(v);
     for (float v : b.angularVelocity) raw.put(v);
     raw.put(statusWord(b));
@@ -324,6 +328,12 @@ void RecordingWriter::addSnapshot(const WorldSnapshot& snapshot) {
     }
     for (std::uint32_t word : c.pairs) raw.put(word);
   }
+  // The reader (readSnapshot) takes the body and contact counts for the layout of these bytes.
+  SANDPHYS_ASSERT(raw.data().size() == snapshot.bodies.size() * kSnapshotBodyBytes +
+                                           snapshot.contacts.size() * kSnapshotContactBytes,
+                  std::to_string(raw.data().size()) + " snapshot bytes for " +
+                      std::to_string(snapshot.bodies.size()) + " bodies and " +
+                      std::to_string(snapshot.contacts.size()) + " particles");
   std::vector<std::uint8_t> compressed(ZSTD_compressBound(raw.data().size()));
   const std::size_t size = ZSTD_compress(compressed.data(), compressed.size(), raw.data().data(),
                                          raw.data().size(), kZstdLevel);

@@ -44,10 +44,10 @@ constexpr StoredField kStoredFields[] = {
     {"position.x", [](const StoredBody& b) { return b.position[0]; }},
     {"position.y", [](const StoredBody& b) { return b.position[1]; }},
     {"position.z", [](const StoredBody& b) { return b.position[2]; }},
-    {"orientation.x", [](const StoredBody& b) { return b.orientation[0]; }},
-    {"orientation.y", [](const StoredBody& b) { return b.orientation[1]; }},
-    {"orientation.z", [](const StoredBody& b) { return b.orientation[2]; }},
-    {"orientation.w", [](const StoredBody& b) { return b.orientation[3]; }},
+    {"principalOrientation.w", [](const StoredBody& b) { return b.principalOrientation.w; }},
+    {"principalOrientation.x", [](const StoredBody& b) { return b.principalOrientation.x; }},
+    {"principalOrientation.y", [](const StoredBody& b) { return b.principalOrientation.y; }},
+    {"principalOrientation.z", [](const StoredBody& b) { return b.principalOrientation.z; }},
     {"velocity.x", [](const StoredBody& b) { return b.velocity[0]; }},
     {"velocity.y", [](const StoredBody& b) { return b.velocity[1]; }},
     {"velocity.z", [](const StoredBody& b) { return b.velocity[2]; }},
@@ -97,7 +97,7 @@ std::uint64_t stateHash(const WorldSnapshot& snapshot) {
     const StoredBody& b = snapshot.bodies[i];
     Lanes h{fmix(i ^ 0x243f6a88u), fmix(i ^ 0x85a308d3u)};
     for (float v : b.position) h = absorb(h, v);
-    for (float v : b.orientation) h = absorb(h, v);
+    for (float v : orientationWords(b)) h = absorb(h, v);
     for (float v : b.velocity) h = absorb(h, v);
     for (float v : b.angularVelocity) h = absorb(h, v);
     h = absorb(h, statusWord(b));
