@@ -8,9 +8,9 @@
 #include <BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h>
 #include <BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h>
 #include <BulletDynamics/Dynamics/btRigidBody.h>
-#include <LinearMath/btDefaultMotionState.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -19,12 +19,22 @@
 #include <sandphys/bullet/conversions.h>
 #include <sandphys/bullet/shape_mesh.h>
 
+#include "scenes/kit/parameters.h"
+
 namespace sandphys::scenes {
 
 namespace {
 
-// Particles the bridge samples from a box shape: counted by sampling it the same way, so that
-// settings() reserves exactly what build() will add.
+using C = BlockAvalancheConfig;
+const auto kTable = std::to_array<kit::Param<C>>({
+    {"block-distance", &C::blockDistance, "d", 0.0, 1e4,
+     "gap between the slope's foot and the low block"},
+    {"block-density", &C::density, "kg/m^3", 1.0, 1e5, "density of the two wooden blocks"},
+    {"block-friction", &C::blockFriction, "", 0.0, 10.0,
+     "friction between the blocks and with the floor (Bullet)"},
+});
+
+// Particles the bridge samples from a box shape, counted by sampling it the same way.
 std::uint32_t sampledParticles(const btBoxShape& shape, float d) {
   const TriangleMesh mesh = bullet::shapeMesh(shape, bullet::CouplingOptions{}.maxChordError * d);
   return static_cast<std::uint32_t>(sampleMesh(mesh, d).centres.size());
@@ -41,7 +51,6 @@ struct BlockAvalanche::Blocks {
   struct Block {
     std::string name;
     std::unique_ptr<btBoxShape> shape;
-    std::unique_ptr<btDefaultMotionState> motion;
     std::unique_ptr<btRigidBody> body;
     btVector3 start;
   };
@@ -56,27 +65,30 @@ struct BlockAvalanche::Blocks {
   std::vector<Block> blocks;
   std::unique_ptr<bullet::Bridge> bridge;
 
-  explicit Blocks(float floorY) : floorShape(btVector3(0, 1, 0), floorY) {}
+  Blocks(float floorY, float friction, const Vec3& gravity)
+      : floorShape(btVector3(0, 1, 0), floorY) {
+    dynamics.setGravity(bullet::toBullet(gravity));
+    btRigidBody::btRigidBodyConstructionInfo info(0.0f, nullptr, &floorShape);
+    info.m_friction = friction;
+    floor = std::make_unique<btRigidBody>(info);
+    dynamics.addRigidBody(floor.get());
+  }
   ~Blocks() {
     for (Block& block : blocks) dynamics.removeRigidBody(block.body.get());
-    if (floor) dynamics.removeRigidBody(floor.get());
+    dynamics.removeRigidBody(floor.get());
   }
 
   void addBlock(std::string name, const btVector3& half, const btVector3& centre, float density,
                 float friction) {
-    Block block;
-    block.name = std::move(name);
-    block.shape = std::make_unique<btBoxShape>(half);
+    Block block{std::move(name), std::make_unique<btBoxShape>(half), nullptr, centre};
     const float mass = density * 8.0f * float(half.x() * half.y() * half.z());
     btVector3 inertia;
     block.shape->calculateLocalInertia(mass, inertia);
-    block.motion =
-        std::make_unique<btDefaultMotionState>(btTransform(btQuaternion::getIdentity(), centre));
-    btRigidBody::btRigidBodyConstructionInfo info(mass, block.motion.get(), block.shape.get(),
-                                                  inertia);
+    // No motion state: nothing draws from Bullet's interpolated poses.
+    btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, block.shape.get(), inertia);
+    info.m_startWorldTransform.setOrigin(centre);
     info.m_friction = friction;
     block.body = std::make_unique<btRigidBody>(info);
-    block.start = centre;
     dynamics.addRigidBody(block.body.get());
     blocks.push_back(std::move(block));
   }
@@ -85,13 +97,18 @@ struct BlockAvalanche::Blocks {
 BlockAvalanche::BlockAvalanche() = default;
 BlockAvalanche::~BlockAvalanche() = default;
 
+std::vector<SceneParameter> BlockAvalanche::parameters() {
+  std::vector<SceneParameter> out = m_slope.parameters();
+  for (SceneParameter& own : kit::bind<C>(kTable, m_config)) out.push_back(std::move(own));
+  return out;
+}
+
 WorldSettings BlockAvalanche::worldSettings() const {
   WorldSettings settings = m_slope.settings();
   const float d = this->d();
-  const btBoxShape low(halfExtents(m_config.lowBlock, d));
-  const btBoxShape plank(halfExtents(m_config.plank, d));
   settings.maxBodies += 2;
-  settings.maxParticles += sampledParticles(low, d) + sampledParticles(plank, d);
+  settings.maxParticles += sampledParticles(btBoxShape(halfExtents(m_config.lowBlock, d)), d) +
+                           sampledParticles(btBoxShape(halfExtents(m_config.plank, d)), d);
   return settings;
 }
 
@@ -103,13 +120,7 @@ void BlockAvalanche::build(World& world) {
   const float floorY = -foot * std::tan(slope.slopeAngle * std::numbers::pi_v<float> / 180.0f);
 
   m_blocks.reset();  // the old bridge refers to the old World
-  m_blocks = std::make_unique<Blocks>(floorY);
-  m_blocks->dynamics.setGravity(bullet::toBullet(world.settings().gravity));
-  btRigidBody::btRigidBodyConstructionInfo floorInfo(0.0f, nullptr, &m_blocks->floorShape);
-  floorInfo.m_friction = m_config.blockFriction;
-  m_blocks->floor = std::make_unique<btRigidBody>(floorInfo);
-  m_blocks->dynamics.addRigidBody(m_blocks->floor.get());
-
+  m_blocks = std::make_unique<Blocks>(floorY, m_config.blockFriction, world.settings().gravity);
   const btVector3 low = halfExtents(m_config.lowBlock, d);
   const btVector3 plank = halfExtents(m_config.plank, d);
   const float lowX = foot + m_config.blockDistance * d + low.x();
@@ -122,21 +133,12 @@ void BlockAvalanche::build(World& world) {
 }
 
 StepReport BlockAvalanche::step(World& world, float frameDt) {
-  if (!m_blocks) return world.step(frameDt);
-  return m_blocks->bridge->step(frameDt);
-}
-
-void BlockAvalanche::update(World& world, const StepReport& report, double simTime) {
-  m_slope.update(world, report, simTime);
+  return m_blocks ? m_blocks->bridge->step(frameDt) : world.step(frameDt);
 }
 
 std::vector<RecordedInput> BlockAvalanche::externalInputs() const {
-  if (!m_blocks || !m_blocks->bridge) return {};
+  if (!m_blocks) return {};
   return m_blocks->bridge->pushes();
-}
-
-std::vector<SceneBody> BlockAvalanche::bodies(const World& /*world*/) const {
-  return blockBodies();
 }
 
 std::vector<SceneBody> BlockAvalanche::blockBodies() const {
@@ -144,12 +146,11 @@ std::vector<SceneBody> BlockAvalanche::blockBodies() const {
   if (!m_blocks) return out;
   for (const Blocks::Block& block : m_blocks->blocks) {
     const btTransform& pose = block.body->getCenterOfMassTransform();
-    const btQuaternion q = pose.getRotation();
     // The blocks start upright: the tilt is the angle of the body's y axis from the world's.
     const btScalar up = std::clamp(pose.getBasis().getColumn(1).y(), btScalar(-1), btScalar(1));
     out.push_back({.name = block.name,
                    .position = bullet::toSand(pose.getOrigin()),
-                   .orientation = bullet::toSand(q),
+                   .orientation = bullet::toSand(pose.getRotation()),
                    .speed = float(block.body->getLinearVelocity().length()),
                    .tiltDegrees = float(std::acos(up) * 180.0 / std::numbers::pi)});
   }
@@ -157,39 +158,24 @@ std::vector<SceneBody> BlockAvalanche::blockBodies() const {
 }
 
 std::string BlockAvalanche::status() const {
-  std::string text = m_slope.status();
-  for (const SceneBody& body : blockBodies()) {
-    if (body.name == "plank")
-      text += ", plank tilt " + std::to_string(int(body.tiltDegrees)) + " deg";
-  }
-  return text;
+  const std::vector<SceneBody> blocks = blockBodies();
+  if (blocks.empty()) return m_slope.status();
+  return m_slope.status() + ", plank tilt " + std::to_string(int(blocks[1].tiltDegrees)) + " deg";
 }
 
 std::vector<SceneMetric> BlockAvalanche::metrics(std::span<const BodyState> bodies) const {
   std::vector<SceneMetric> out = m_slope.metrics(bodies);
-  if (!m_blocks) return out;
   const std::vector<SceneBody> now = blockBodies();
   for (std::size_t i = 0; i < now.size(); ++i) {
     const btVector3& start = m_blocks->blocks[i].start;
     const Vec3& p = now[i].position;
-    const float moved =
-        std::hypot(p.x - float(start.x()), p.y - float(start.y()), p.z - float(start.z()));
     std::string key = now[i].name;
     std::replace(key.begin(), key.end(), '-', '_');
     out.push_back({key + "_tilt_deg", now[i].tiltDegrees});
-    out.push_back({key + "_displacement_m", moved});
+    out.push_back(
+        {key + "_displacement_m",
+         std::hypot(p.x - float(start.x()), p.y - float(start.y()), p.z - float(start.z()))});
   }
-  return out;
-}
-
-std::vector<SceneParameter> BlockAvalanche::parameters() {
-  std::vector<SceneParameter> out = m_slope.parameters();
-  out.push_back({"block-distance", "gap between the slope's foot and the low block, d",
-                 &m_config.blockDistance, 0.0, 1e4});
-  out.push_back(
-      {"block-density", "density of the two wooden blocks, kg/m^3", &m_config.density, 1.0, 1e5});
-  out.push_back({"block-friction", "friction between the blocks and with the floor (Bullet)",
-                 &m_config.blockFriction, 0.0, 10.0});
   return out;
 }
 
