@@ -43,7 +43,7 @@ void writeGranulesCsv(std::ostream& out, std::span<const BodyState> bodies) {
   out << "id,x,y,z,qw,qx,qy,qz,vx,vy,vz\n";
   std::string line;
   for (const BodyState* body : aliveGranules(bodies)) {
-    line = std::to_string(body->index);
+    line = std::to_string(body->id.index);
     for (float value : {body->position.x, body->position.y, body->position.z, body->orientation.w,
                         body->orientation.x, body->orientation.y, body->orientation.z,
                         body->velocity.x, body->velocity.y, body->velocity.z}) {
@@ -85,7 +85,7 @@ void writeGranulesVtk(std::ostream& out, std::span<const BodyState> bodies,
 
   out << "POINT_DATA " << n << '\n';
   out << "SCALARS id unsigned_int 1\nLOOKUP_TABLE default\n";
-  for (const BodyState* body : granules) out << body->index << '\n';
+  for (const BodyState* body : granules) out << body->id.index << '\n';
   out << "VECTORS velocity float\n";
   for (const BodyState* body : granules) {
     writeRow({body->velocity.x, body->velocity.y, body->velocity.z});

@@ -235,7 +235,7 @@ std::vector<SceneMetric> Bulldozer::metrics(std::span<const BodyState> bodies) c
   std::size_t ahead = 0;
   float bladeX = bladeStart().x;
   for (const BodyState& body : bodies) {
-    if (m_blade.isValid() && body.index == m_blade.index && !body.granule) {
+    if (m_blade.isValid() && body.id.index == m_blade.index && !body.granule) {
       bladeX = body.position.x;
       continue;
     }

@@ -331,7 +331,7 @@ std::vector<SceneMetric> RockDrop::metrics(std::span<const BodyState> bodies) co
   const BodyState* rock = nullptr;
   for (const BodyState& body : bodies) {
     if (body.granule && body.alive) ++granules;
-    if (dropped() && body.index == m_run.rock.index) rock = &body;
+    if (dropped() && body.id.index == m_run.rock.index) rock = &body;
   }
   const LoadedRock& loaded = loadedRock();
   const float extent = largestExtent(loaded.mesh);

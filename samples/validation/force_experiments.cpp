@@ -30,7 +30,7 @@ struct ContactSet {
 std::map<std::uint32_t, const BodyState*> granulesByIndex(const scenes::Compression::Snapshot& s) {
   std::map<std::uint32_t, const BodyState*> granules;
   for (const BodyState& body : s.bodies) {
-    if (body.granule && body.alive) granules[body.index] = &body;
+    if (body.granule && body.alive) granules[body.id.index] = &body;
   }
   return granules;
 }
@@ -39,7 +39,7 @@ ContactSet particleLevel(const scenes::Compression::Snapshot& snapshot) {
   const auto granules = granulesByIndex(snapshot);
   ContactSet set;
   for (const ContactRecord& c : snapshot.contacts) {
-    if (c.bodyB == ContactRecord::kNone || !granules.count(c.bodyA) || !granules.count(c.bodyB)) {
+    if (!c.bodyB.isValid() || !granules.count(c.bodyA.index) || !granules.count(c.bodyB.index)) {
       continue;
     }
     set.normal.push_back(c.normalForce);
@@ -56,12 +56,14 @@ ContactSet granuleLevel(const scenes::Compression::Snapshot& snapshot) {
   const auto granules = granulesByIndex(snapshot);
   std::map<std::pair<std::uint32_t, std::uint32_t>, Vec3> sums;
   for (const ContactRecord& c : snapshot.contacts) {
-    if (c.bodyB == ContactRecord::kNone || !granules.count(c.bodyA) || !granules.count(c.bodyB)) {
+    if (!c.bodyB.isValid() || !granules.count(c.bodyA.index) || !granules.count(c.bodyB.index)) {
       continue;
     }
     const Vec3 force = c.normalForce * c.normal + c.tangentialForce;  // on A
-    const bool aFirst = c.bodyA < c.bodyB;
-    Vec3& sum = sums[aFirst ? std::pair{c.bodyA, c.bodyB} : std::pair{c.bodyB, c.bodyA}];
+    const std::uint32_t a = c.bodyA.index;
+    const std::uint32_t b = c.bodyB.index;
+    const bool aFirst = a < b;
+    Vec3& sum = sums[aFirst ? std::pair{a, b} : std::pair{b, a}];
     sum = sum + (aFirst ? force : -1.0f * force);
   }
   ContactSet set;

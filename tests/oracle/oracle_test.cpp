@@ -58,8 +58,8 @@ class OracleScene {
   }
   void addGranules(const GranuleBlock& block) {
     const BodyRange range = m_world->addGranules(block);
-    m_shapes.resize(range.first + range.count, granule());
-    m_motions.resize(range.first + range.count, Motion::Dynamic);
+    m_shapes.resize(m_shapes.size() + range.size(), granule());
+    m_motions.resize(m_motions.size() + range.size(), Motion::Dynamic);
   }
   ParticleTemplate granule() {
     return tetrahedronTemplate(m_world->settings().particleDiameter,
@@ -74,7 +74,7 @@ class OracleScene {
   CpuOracle oracle() {
     std::vector<OracleBody> bodies;
     for (const BodyState& s : m_world->readBodies()) {
-      bodies.push_back(OracleBody::from(s, m_shapes[s.index], m_motions[s.index]));
+      bodies.push_back(OracleBody::from(s, m_shapes[s.id.index], m_motions[s.id.index]));
     }
     return CpuOracle(OracleModel::fromWorld(*m_world), std::move(bodies), m_colliders,
                      oracle::historyFromSnapshot(m_world->readSnapshot().contacts));
@@ -336,9 +336,9 @@ std::vector<OracleParticle> gpuParticles(const std::vector<ParticleState>& gpu,
                                          const CpuOracle& before) {
   std::vector<OracleParticle> particles;
   for (const ParticleState& p : gpu) {
-    const OracleBody& body = before.bodies()[p.body];
-    particles.push_back({p.body, toDouble(p.position), toDouble(p.velocity), body.angularVelocity,
-                         body.particleInverseMass(before.model().law)});
+    const OracleBody& body = before.bodies()[p.body.index];
+    particles.push_back({p.body.index, toDouble(p.position), toDouble(p.velocity),
+                         body.angularVelocity, body.particleInverseMass(before.model().law)});
   }
   return particles;
 }
@@ -667,7 +667,7 @@ Divergence compareBodies(const World& world, const CpuOracle& oracle) {
   Divergence d;
   const std::vector<BodyState> gpu = world.readBodies();
   for (const BodyState& s : gpu) {
-    const OracleBody& b = oracle.bodies()[s.index];
+    const OracleBody& b = oracle.bodies()[s.id.index];
     d.position = std::max(d.position, (toDouble(s.position) - b.position).norm());
     d.velocity = std::max(d.velocity, (toDouble(s.velocity) - b.velocity).norm());
     d.angularVelocity =

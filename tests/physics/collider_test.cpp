@@ -16,7 +16,7 @@ struct Case {
   Vec3 gravity;  // points into the surface
   Vec3 start;    // sphere centre, touching the surface
   Vec3 normal;   // expected contact normal (out of the surface)
-  void (*add)(World&);
+  ColliderId (*add)(World&);
 };
 
 double norm(Vec3 v) {
@@ -30,7 +30,7 @@ TEST_P(ColliderRest, SphereSettlesAtTheHertzOverlapOfItsWeight) {
   WorldSettings s = testing::smallSettings();
   s.gravity = c.gravity;
   testing::TestWorld w(s);
-  c.add(*w);
+  const ColliderId collider = c.add(*w);
   BodyId sphere = w.addSphere(c.start);
   w.simulate(0.25);
   const ContactModel& m = w->contactModel();
@@ -40,7 +40,7 @@ TEST_P(ColliderRest, SphereSettlesAtTheHertzOverlapOfItsWeight) {
   ASSERT_EQ(contacts.size(), 1u) << c.name;
   const ContactRecord& k = contacts[0];
   EXPECT_EQ(k.particleB, ContactRecord::kNone);
-  EXPECT_EQ(k.collider, 0u);
+  EXPECT_EQ(k.collider, collider);
   EXPECT_NEAR(k.overlap, expected, 0.02 * expected) << c.name;
   EXPECT_NEAR(k.normalForce, load, 0.02 * load) << c.name;
   EXPECT_NEAR(k.normal.x, c.normal.x, 1e-3) << c.name;
@@ -59,27 +59,27 @@ INSTANTIATE_TEST_SUITE_P(
              {0, -9.81f, 0},
              {0, r, 0},
              {0, 1, 0},
-             [](World& w) { w.addCollider(Plane{}); }},
+             [](World& w) { return w.addCollider(Plane{}); }},
         Case{"tilted plane",
              {-9.81f * kCos45, -9.81f * kCos45, 0},
              {r * kCos45, r* kCos45, 0},
              {kCos45, kCos45, 0},
              [](World& w) {
-               w.addCollider(Plane{.normal = {1, 1, 0}, .offset = 0});
+               return w.addCollider(Plane{.normal = {1, 1, 0}, .offset = 0});
              }},
         Case{"box container wall",
              {9.81f, 0, 0},
              {0.1f - r, 0, 0},
              {-1, 0, 0},
              [](World& w) {
-               w.addCollider(Box{.halfExtents = {0.1f, 0.1f, 0.1f}, .inside = true});
+               return w.addCollider(Box{.halfExtents = {0.1f, 0.1f, 0.1f}, .inside = true});
              }},
         Case{"box obstacle top",
              {0, -9.81f, 0},
              {0.02f, 0.1f + r, 0.03f},
              {0, 1, 0},
              [](World& w) {
-               w.addCollider(Box{.halfExtents = {0.1f, 0.1f, 0.1f}, .inside = false});
+               return w.addCollider(Box{.halfExtents = {0.1f, 0.1f, 0.1f}, .inside = false});
              }},
         Case{"rotated box obstacle",
              {0, 0, -9.81f},
@@ -87,22 +87,22 @@ INSTANTIATE_TEST_SUITE_P(
              {0, 0, 1},
              [](World& w) {
                // 90 degrees about y: the box's x face now faces +z.
-               w.addCollider(Box{.halfExtents = {0.1f, 0.3f, 0.4f},
-                                 .orientation = {kCos45, 0, kCos45, 0},
-                                 .inside = false});
+               return w.addCollider(Box{.halfExtents = {0.1f, 0.3f, 0.4f},
+                                        .orientation = {kCos45, 0, kCos45, 0},
+                                        .inside = false});
              }},
         Case{"cylinder wall",
              {0, 0, 9.81f},
              {0, 0.5f, 0.2f - r},
              {0, 0, -1},
-             [](World& w) { w.addCollider(Cylinder{.radius = 0.2f, .height = 1.0f}); }},
+             [](World& w) { return w.addCollider(Cylinder{.radius = 0.2f, .height = 1.0f}); }},
         Case{"funnel wall",
              {9.81f * kCos45, -9.81f * kCos45, 0},
              {0.15f - r * kCos45, 0.1f + r* kCos45, 0},
              {-kCos45, kCos45, 0},
              // Outlet radius 0.05 at y = 0, 45 degrees: the cone passes through (0.15, 0.1).
              [](World& w) {
-               w.addCollider(
+               return w.addCollider(
                    Funnel{.outletRadius = 0.05f, .halfAngle = 0.785398163f, .height = 0.5f});
              }}),
     [](const ::testing::TestParamInfo<Case>& param) {
@@ -120,14 +120,14 @@ TEST(ContactList, GranuleOnAFloorCarriesItsWeightOnThreeContacts) {
   // Face down (see closed_form_test.cpp).
   const double angle = std::acos(1.0 / std::sqrt(3.0));
   const double sn = std::sin(angle / 2.0) / std::sqrt(2.0);
-  w.addGranule({0, 0.5f * d + d * std::sqrt(6.0f) / 12.0f, 0},
-               {float(std::cos(angle / 2.0)), float(-sn), 0, float(sn)});
+  const BodyId granule = w.addGranule({0, 0.5f * d + d * std::sqrt(6.0f) / 12.0f, 0},
+                                      {float(std::cos(angle / 2.0)), float(-sn), 0, float(sn)});
   w.simulate(0.3);
   auto contacts = w->readContacts();
   ASSERT_EQ(contacts.size(), 3u);
   double total = 0.0;
   for (const auto& c : contacts) {
-    EXPECT_EQ(c.bodyA, 0u);
+    EXPECT_EQ(c.bodyA, granule);
     EXPECT_NEAR(c.normal.y, 1.0, 1e-4);
     total += c.normalForce;
   }

@@ -269,16 +269,15 @@ TEST(ContactMechanics, BlockOfGranulesOnATiltedFloorDoesNotCreep) {
   auto centroid = [&] {
     Vec3 sum{};
     const auto bodies = w->readBodies();
-    for (std::uint32_t i = block.first; i < block.first + block.count; ++i)
-      sum = sum + bodies[i].position;
-    return (1.0f / float(block.count)) * sum;
+    for (const BodyId id : block) sum = sum + bodies[id.index].position;
+    return (1.0f / float(block.size())) * sum;
   };
   w.simulate(1.5);  // falls, piles up and settles
   const Vec3 before = centroid();
   w.simulate(1.0);
   const double drift = norm(centroid() - before);
   std::printf("block of %u granules on a 10 deg floor: centroid drift over 1 s %.3g d\n",
-              block.count, drift / d);
+              block.size(), drift / d);
   EXPECT_LT(drift, 0.01 * d);
 }
 

@@ -13,17 +13,17 @@ namespace {
 
 std::vector<BodyState> sampleBodies() {
   std::vector<BodyState> bodies;
-  BodyState floor{.index = 0, .position = {0.0f, 0.0f, 0.0f}};
+  BodyState floor{.id = {.index = 0}, .position = {0.0f, 0.0f, 0.0f}};
   floor.granule = false;  // a rough floor is not exported
   bodies.push_back(floor);
-  bodies.push_back({.index = 1,
+  bodies.push_back({.id = {.index = 1},
                     .position = {0.1f, 1.0f / 3.0f, -2.5e-7f},
                     .orientation = {0.5f, -0.5f, 0.5f, 0.5f},
                     .velocity = {1e-9f, -9.81f, 123456.789f}});
-  BodyState dead{.index = 2, .position = {5.0f, 5.0f, 5.0f}};
+  BodyState dead{.id = {.index = 2}, .position = {5.0f, 5.0f, 5.0f}};
   dead.alive = false;  // killed by a sink: not exported
   bodies.push_back(dead);
-  bodies.push_back({.index = 3, .position = {-0.25f, 0.75f, 0.0f}});
+  bodies.push_back({.id = {.index = 3}, .position = {-0.25f, 0.75f, 0.0f}});
   return bodies;
 }
 

@@ -226,7 +226,7 @@ TEST_F(BulldozerRun, IdleBladeFeelsOnlyTheSandLeaningOnIt) {
   std::vector<double> moved;
   for (const BodyState& body : scene().atPushStart()) {
     if (!body.granule) continue;
-    const BodyState& before = s_still.at(body.index);
+    const BodyState& before = s_still.at(body.id.index);
     moved.push_back(std::hypot(body.position.x - before.position.x,
                                body.position.y - before.position.y,
                                body.position.z - before.position.z) /
@@ -361,7 +361,7 @@ TEST_F(BulldozerRun, SandComesToRestAfterTheStop) {
   EXPECT_LT(std::abs(drag.back().drag), 0.02 * push.bladeX / push.seconds);
   for (const BodyState& body : s_end) {
     if (body.granule) {
-      EXPECT_TRUE(scene().contains(body.position)) << "granule " << body.index;
+      EXPECT_TRUE(scene().contains(body.position)) << "granule " << body.id.index;
     }
   }
   const Momentum pushed = momentum(scene().atPushEnd(), scene().granuleMass());

@@ -92,8 +92,8 @@ TEST(CylinderPile, SixteenThousandGranulesSettle) {
   const float radius = pile.config().cylinderRadius * d;
   for (const BodyState& b : world.readBodies()) {
     if (!b.granule) continue;
-    ASSERT_LT(std::hypot(b.position.x, b.position.z), radius) << "granule " << b.index;
-    ASSERT_GT(b.position.y, 0.0f) << "granule " << b.index;
+    ASSERT_LT(std::hypot(b.position.x, b.position.z), radius) << "granule " << b.id.index;
+    ASSERT_GT(b.position.y, 0.0f) << "granule " << b.id.index;
   }
 }
 

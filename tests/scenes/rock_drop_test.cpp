@@ -146,7 +146,7 @@ TEST(RockDrop, RockSinksIntoTheBedAndComesToRestOnSand) {
   EXPECT_EQ(inside, 0u) << "granule centres inside the rock";
   for (const BodyState& body : bodies) {
     if (!body.granule) continue;
-    EXPECT_TRUE(scene.contains(body.position)) << "granule " << body.index;
+    EXPECT_TRUE(scene.contains(body.position)) << "granule " << body.id.index;
   }
 }
 

@@ -65,8 +65,8 @@ float pourUntilSettled(std::uint32_t granules) {
   const std::vector<BodyState> bodies = world.readBodies();
   for (const BodyState& body : bodies) {
     EXPECT_TRUE(pour.contains(body.position))
-        << "granule " << body.index << " escaped to (" << body.position.x << ", " << body.position.y
-        << ", " << body.position.z << ")";
+        << "granule " << body.id.index << " escaped to (" << body.position.x << ", "
+        << body.position.y << ", " << body.position.z << ")";
   }
   const float d = pour.config().particleDiameter;
   const float height = pour.pileHeight(bodies);

@@ -119,17 +119,17 @@ TEST(CylinderPile, PileTopIsARobustHighPointOfTheContainedGranules) {
   const CylinderPile pile;  // not built: the granule radius is not added
   std::vector<BodyState> bodies;
   for (int i = 0; i < 200; ++i) {
-    bodies.push_back({.index = static_cast<std::uint32_t>(i),
+    bodies.push_back({.id = {.index = static_cast<std::uint32_t>(i)},
                       .position = {0.0f, 0.001f * static_cast<float>(i), 0.0f}});
   }
-  BodyState floor{.index = 200, .position = {0.0f, 5.0f, 0.0f}};
+  BodyState floor{.id = {.index = 200}, .position = {0.0f, 5.0f, 0.0f}};
   floor.granule = false;
-  bodies.push_back(floor);                                           // not a granule: ignored
-  bodies.push_back({.index = 201, .position = {3.0f, 9.0f, 0.0f}});  // outside: ignored
-  BodyState dead{.index = 202, .position = {0.0f, 8.0f, 0.0f}};
+  bodies.push_back(floor);  // not a granule: ignored
+  bodies.push_back({.id = {.index = 201}, .position = {3.0f, 9.0f, 0.0f}});  // outside: ignored
+  BodyState dead{.id = {.index = 202}, .position = {0.0f, 8.0f, 0.0f}};
   dead.alive = false;
   bodies.push_back(dead);
-  BodyState bouncer{.index = 203, .position = {0.0f, 3.0f, 0.0f}};  // one outlier: ignored
+  BodyState bouncer{.id = {.index = 203}, .position = {0.0f, 3.0f, 0.0f}};  // one outlier: ignored
   bodies.push_back(bouncer);
   const float top = pile.pileTop(bodies);
   EXPECT_GT(top, 0.190f);

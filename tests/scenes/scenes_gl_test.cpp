@@ -22,7 +22,7 @@ TEST_P(RegisteredScene, BuildsInsideItsContainerAndSteps) {
   for (const BodyState& body : world.readBodies()) {
     if (!body.granule) continue;
     ++granules;
-    EXPECT_TRUE(scene->contains(body.position)) << "granule " << body.index << " starts outside";
+    EXPECT_TRUE(scene->contains(body.position)) << "granule " << body.id.index << " starts outside";
   }
 
   // A frame, or as many as a pouring scene takes to emit its first layer (at most 0.1 s).

@@ -61,7 +61,8 @@ AvalancheRun run(SlopeAvalanche& scene, double settledAt, double afterRelease, d
   if (result.beforeRelease.empty()) result.beforeRelease = world.readBodies();
   result.end = world.readBodies();
   for (const BodyState& body : result.end) {
-    EXPECT_TRUE(scene.contains(body.position)) << "granule " << body.index << " left the channel";
+    EXPECT_TRUE(scene.contains(body.position))
+        << "granule " << body.id.index << " left the channel";
   }
   return result;
 }
@@ -115,7 +116,7 @@ TEST(SlopeAvalanche, WithoutReleaseTheSandStaysBehindTheWall) {
   std::printf("30 deg, held: %.3f d\n", held / d);
   EXPECT_LT(std::abs(held), 0.5 * d);
   for (const BodyState& body : r.end) {
-    EXPECT_LT(body.position.x, -0.5f * d) << "granule " << body.index << " passed the wall";
+    EXPECT_LT(body.position.x, -0.5f * d) << "granule " << body.id.index << " passed the wall";
   }
 }
 

@@ -35,14 +35,14 @@ Reference::Reference(std::vector<BodyState> bodies) : m_bodies(std::move(bodies)
   for (std::size_t i = 0; i < m_bodies.size(); ++i) {
     const BodyState& body = m_bodies[i];
     if (!body.granule) continue;
-    if (body.index >= m_bySlot.size()) m_bySlot.resize(body.index + 1, kNone);
-    m_bySlot[body.index] = static_cast<std::uint32_t>(i);
+    if (body.id.index >= m_bySlot.size()) m_bySlot.resize(body.id.index + 1, kNone);
+    m_bySlot[body.id.index] = static_cast<std::uint32_t>(i);
   }
 }
 
 const BodyState* Reference::before(const BodyState& now) const {
-  if (now.index >= m_bySlot.size() || m_bySlot[now.index] == kNone) return nullptr;
-  return &m_bodies[m_bySlot[now.index]];
+  if (now.id.index >= m_bySlot.size() || m_bySlot[now.id.index] == kNone) return nullptr;
+  return &m_bodies[m_bySlot[now.id.index]];
 }
 
 }  // namespace sandphys::scenes::kit

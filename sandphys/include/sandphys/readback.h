@@ -9,42 +9,43 @@ namespace sandphys {
 
 /// One body as read back from the GPU (World::readBodies, a sync point).
 struct BodyState {
-  std::uint32_t index = 0;  ///< body slot (BodyId::index)
-  Vec3 position{};          ///< centre of mass, m
-  Quat orientation{};       ///< orientation of the template's original frame
-  Vec3 velocity{};          ///< m/s
-  Vec3 angularVelocity{};   ///< rad/s, world frame
-  bool alive = true;        ///< false once a sink removed it
-  bool granule = true;      ///< a sand granule (not a floor or sampled body)
+  BodyId id;               ///< the body, as addBody or addGranules returned it
+  Vec3 position{};         ///< centre of mass, m
+  Quat orientation{};      ///< orientation of the template's original frame
+  Vec3 velocity{};         ///< m/s
+  Vec3 angularVelocity{};  ///< rad/s, world frame
+  bool alive = true;       ///< false once a sink removed it
+  bool granule = true;     ///< a sand granule (not a floor or sampled body)
 };
 
 /// One particle as read back from the GPU (World::readParticles, a sync point). Position and
 /// velocity are the state the next substep starts from (its body's, now); the force is the one
 /// the last substep computed, from the state before it.
 struct ParticleState {
-  std::uint32_t body = 0;  ///< owning body slot
-  Vec3 position{};         ///< m
-  Vec3 velocity{};         ///< m/s
-  Vec3 force{};            ///< contact + collider force of the last substep, N (no gravity)
+  BodyId body;      ///< the body the particle belongs to
+  Vec3 position{};  ///< m
+  Vec3 velocity{};  ///< m/s
+  Vec3 force{};     ///< contact + collider force of the last substep, N (no gravity)
 };
 
 /// One contact as read back from the GPU (World::readContacts, a sync point): the contacts the
 /// next substep applies, at the state it starts from (ParticleState), with the tangential springs
 /// advanced as it advances them. Particle-particle contacts appear once (from the side that keeps
 /// history: particleA < particleB, or the movable one against a static particle); collider
-/// contacts have particleB = kNone.
+/// contacts have particleB = kNone, an invalid bodyB and the collider's id.
 struct ContactRecord {
   static constexpr std::uint32_t kNone = 0xffffffffu;
+  /// Particles by their position in World::readParticles (plain indices: particles have no ids).
   std::uint32_t particleA = 0;
   std::uint32_t particleB = kNone;
-  std::uint32_t bodyA = 0;
-  std::uint32_t bodyB = kNone;
-  std::uint32_t collider = kNone;  ///< collider index for collider contacts
-  Vec3 point{};                    ///< midpoint of the overlap, m
-  Vec3 normal{};                   ///< unit, from B (or the collider) towards A
-  float normalForce = 0.0f;        ///< F_n on A, N (>= 0)
-  Vec3 tangentialForce{};          ///< F_s on A, N
-  float overlap = 0.0f;            ///< ξ, m
+  BodyId bodyA;              ///< particleA's body
+  BodyId bodyB;              ///< particleB's body; invalid for a collider contact
+  ColliderId collider;       ///< the collider of a collider contact; invalid for two particles
+  Vec3 point{};              ///< midpoint of the overlap, m
+  Vec3 normal{};             ///< unit, from B (or the collider) towards A
+  float normalForce = 0.0f;  ///< F_n on A, N (>= 0)
+  Vec3 tangentialForce{};    ///< F_s on A, N
+  float overlap = 0.0f;      ///< ξ, m
   /// ContactLaw::HertzMindlin: A's tangential spring displacement δ after that substep, m (in
   /// the tangent plane; its length times k_t is the stick force). Zero under PaperViscous.
   Vec3 tangentialDisplacement{};

@@ -25,12 +25,6 @@ namespace detail {
 struct WorldAccess;
 }
 
-/// A contiguous run of body slots, as returned by World::addGranules.
-struct BodyRange {
-  std::uint32_t first = 0;
-  std::uint32_t count = 0;
-};
-
 /// GPU time of one kernel, summed over the substeps of the last World::step (profileKernels).
 struct KernelTime {
   std::string name;
@@ -98,6 +92,7 @@ class World {
   /// out (nothing is added then).
   BodyId addBody(const ParticleTemplate& shape, const BodyDesc& desc);
   /// Adds a block of tetrahedral granules; all or nothing (CapacityExceeded names the limit).
+  /// Returns their ids.
   BodyRange addGranules(const GranuleBlock& block);
   /// Adds one tetrahedral granule at each pose (orientation of the granule template, as
   /// readBodies gives it back), in one upload; all or nothing. Every desc must be
@@ -162,8 +157,13 @@ class World {
   std::vector<ColliderShape> colliders() const;
 
   // --- Read-back (every one is a sync point) ------------------------------------------------
+  /// One state per body slot, in slot order (readBodies()[id.index] is body `id`), each with its
+  /// typed id.
   std::vector<BodyState> readBodies() const;
+  /// Throws InvalidId for an invalid or stale id.
   BodyState readBody(BodyId id) const;
+  /// Every particle, each body's consecutively in the order the bodies were added; the position
+  /// in this list is the particle index that ContactRecord uses.
   std::vector<ParticleState> readParticles() const;
   std::vector<ContactRecord> readContacts() const;
   /// Counts, energies and the peak overlap (WorldStats); changes nothing, so two calls in a row

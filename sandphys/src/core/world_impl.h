@@ -157,7 +157,7 @@ struct World::Impl {
   /// One past the last particle of body slot `body`.
   std::uint32_t particleEnd(std::uint32_t body) const { return particleEnds[body]; }
 
-  // Bodies (world_bodies.cpp)
+  // Bodies (world_body_slots.cpp)
   std::uint32_t addBodies(const ParticleTemplate& shape, const std::vector<BodyDesc>& descs,
                           bool granule);
   /// Throws CapacityExceeded naming the limit unless this many more bodies and particles fit.
@@ -171,6 +171,7 @@ struct World::Impl {
   /// surfaceSpacing) at maxSpeed would get between its samples (HertzMindlin;
   /// surfacePassOverlap).
   void requireImpenetrableSurface(const ParticleTemplate& shape) const;
+  /// Throws InvalidId naming `id` unless it is a body of this World.
   void requireBody(BodyId id) const;
   /// Sets body slot `body`'s pose and velocities (its motion as added); its particles follow
   /// before the next contacts. Safe between the substeps of a step.
@@ -178,6 +179,8 @@ struct World::Impl {
   /// Places every body whose move covers the substep count now (world_moves.cpp); nothing when
   /// no move does.
   void followMoves();
+  /// The id of body slot `slot` (< bodyCount), with the slot's generation.
+  BodyId bodyId(std::uint32_t slot) const;
   /// The particles of the bodies from slot `firstBody` on, just added from the CPU, are checked
   /// for deep initial overlaps at the next step.
   void checkOverlapsFrom(std::uint32_t firstBody);

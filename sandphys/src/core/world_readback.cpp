@@ -4,7 +4,10 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <string>
+#include <tuple>
 
+#include "core/assert.h"
 #include "core/contact_state.h"
 #include "core/log.h"
 #include "core/world_impl.h"
@@ -56,7 +59,7 @@ std::vector<BodyState> World::readBodies() const {
   std::vector<BodyState> out(w.bodyCount);
   for (std::uint32_t i = 0; i < w.bodyCount; ++i) {
     BodyState& s = out[i];
-    s.index = i;
+    s.id = w.bodyId(i);
     s.position = xyz(stored.position[i]);
     s.orientation = fromGpu(stored.orientation[i]) * conjugate(w.principalRotations[i]);
     s.velocity = xyz(stored.velocity[i]);
@@ -131,7 +134,7 @@ std::vector<ParticleState> World::readParticles() const {
   gl::check("World::readParticles");
   std::vector<ParticleState> out(w.particleCount);
   for (std::uint32_t i = 0; i < w.particleCount; ++i) {
-    out[i] = {owner[i], xyz(position[i]), xyz(velocity[i]), xyz(force[i])};
+    out[i] = {w.bodyId(owner[i]), xyz(position[i]), xyz(velocity[i]), xyz(force[i])};
   }
   return out;
 }
@@ -171,11 +174,15 @@ std::vector<ContactRecord> World::Impl::listContacts(std::uint32_t first, std::u
     std::vector<ContactRecord> out(count);
     for (std::uint32_t i = 0; i < count; ++i) {
       const auto& r = raw[i];
+      const bool withCollider = r.particleB == ContactRecord::kNone;
+      SANDPHYS_ASSERT(!withCollider || r.collider < colliders.size(),
+                      "contact_list names collider " + std::to_string(r.collider) + " of " +
+                          std::to_string(colliders.size()));
       out[i] = {r.particleA,
                 r.particleB,
-                r.bodyA,
-                r.bodyB,
-                r.collider,
+                bodyId(r.bodyA),
+                withCollider ? BodyId{} : bodyId(r.bodyB),
+                withCollider ? ColliderId{r.collider} : ColliderId{},
                 {r.px, r.py, r.pz},
                 {r.nx, r.ny, r.nz},
                 r.normalForce,
@@ -185,8 +192,8 @@ std::vector<ContactRecord> World::Impl::listContacts(std::uint32_t first, std::u
     }
     // Appends happen in thread order: sort so that the list is the same on every call.
     std::sort(out.begin(), out.end(), [](const ContactRecord& a, const ContactRecord& b) {
-      return std::tie(a.particleA, a.particleB, a.collider) <
-             std::tie(b.particleA, b.particleB, b.collider);
+      return std::tie(a.particleA, a.particleB, a.collider.index) <
+             std::tie(b.particleA, b.particleB, b.collider.index);
     });
     return out;
   }
@@ -209,10 +216,9 @@ InitialOverlaps World::Impl::checkInitialOverlaps() {
     particles.push_back(c.particleA);
     if (c.overlap > result.worstOverlap) {
       result.worstOverlap = c.overlap;
-      result.body = BodyId{c.bodyA, generations[c.bodyA]};
-      result.otherBody =
-          c.bodyB == ContactRecord::kNone ? BodyId{} : BodyId{c.bodyB, generations[c.bodyB]};
-      result.collider = c.collider == ContactRecord::kNone ? ColliderId{} : ColliderId{c.collider};
+      result.body = c.bodyA;
+      result.otherBody = c.bodyB;
+      result.collider = c.collider;
     }
   }
   particles.erase(std::unique(particles.begin(), particles.end()), particles.end());
@@ -264,7 +270,7 @@ std::vector<BodyForce> World::takeBodyForces() {
   out.reserve(count);
   for (std::uint32_t i = 0; i < count; ++i) {
     const std::uint32_t slot = w.largeBodies[i];
-    out.push_back({BodyId{slot, w.generations[slot]}, xyz(sums[2 * i]), xyz(sums[2 * i + 1]),
+    out.push_back({w.bodyId(slot), xyz(sums[2 * i]), xyz(sums[2 * i + 1]),
                    std::uint32_t(std::lround(sums[2 * i].w))});
   }
   return out;

@@ -43,10 +43,10 @@ int main() {
     // Loose bounds on purpose: this test is about packaging; tests/physics checks the numbers.
     const double t = world.simulatedTime();
     const double expected = 0.5 * 9.81 * t * t;
-    if (granules.count != 8 || before.size() != 8 || after.size() != 8 || t <= 0.0) {
+    if (granules.size() != 8 || before.size() != 8 || after.size() != 8 || t <= 0.0) {
       std::fprintf(stderr,
                    "FAIL: expected 8 granules and some simulated time, got %u/%zu/%zu, %g s\n",
-                   granules.count, before.size(), after.size(), t);
+                   granules.size(), before.size(), after.size(), t);
       return 1;
     }
     for (std::size_t i = 0; i < after.size(); ++i) {
