@@ -238,6 +238,7 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
   std::vector<std::string> assignments;
   std::string metrics;
   std::vector<std::string> exports;
+  std::string lammps;
   std::string screenshot;
   std::optional<std::string> size;
   std::string screenshots;
@@ -267,6 +268,10 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
   app.add_option("--metrics", metrics, "write run metrics to this JSON file");
   app.add_option("--export", exports,
                  "write the granules at the end to FILE.csv or FILE.vtk (repeatable)");
+  app.add_option("--export-lammps", lammps,
+                 "write a LAMMPS deck of the World at the end to folder DIR (in.sandphys; run it "
+                 "with lmp -in in.sandphys, or mpirun -np N lmp -in in.sandphys)")
+      ->type_name("DIR");
   app.add_option("--batches", batches, "cylinder-pile: batches dropped in total");
   app.add_option(
          "--batch,--batch-size", batch,
@@ -490,6 +495,7 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
     if (!screenshot.empty()) outputs.push_back({"--screenshot", screenshot});
     if (!record.empty()) outputs.push_back({"--record", record});
     if (!screenshots.empty()) outputs.push_back({"--screenshots", screenshots});
+    if (!lammps.empty()) outputs.push_back({"--export-lammps", lammps});
     std::vector<NamedPath> inputs;
     if (!play.empty()) inputs.push_back({"--play", play});
     if (options.scene) {
@@ -513,6 +519,10 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
       }
       checkWritable("--export", path);
       options.exportPaths.emplace_back(path);
+    }
+    if (!lammps.empty()) {
+      options.lammpsDir = lammps;
+      checkWritableDirectory("--export-lammps", options.lammpsDir);
     }
     if (!screenshot.empty()) {
       if (!endsWithPng(screenshot)) {

@@ -50,6 +50,8 @@ struct RunOptions {
   std::filesystem::path metricsPath;
   /// Where to export the granules at the end (.csv or .vtk each).
   std::vector<std::filesystem::path> exportPaths;
+  /// Folder to write a LAMMPS deck of the last frame's World to (--export-lammps); empty for none.
+  std::filesystem::path lammpsDir;
   /// PNG of the last frame (--screenshot); empty for none. Checked writable, ends in .png.
   std::filesystem::path screenshotPath;
   /// Size of screenshots and of the viewer's window (--size WxH).

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <optional>
+#include <string>
 
 #include "app/export.h"
 #include "app/metrics.h"
@@ -89,6 +91,15 @@ class Screenshots {
   double m_gpuMilliseconds = 0.0;
   std::uint64_t m_images = 0;
 };
+
+// The scene's own script runs in sandphys only: the deck says so, with where the scene stood.
+LammpsExportOptions lammpsOptions(const scenes::Scene& scene) {
+  const std::string status = scene.status();
+  return {.notes = {"the " + std::string(scene.name()) + " scene's script" +
+                    (status.empty() ? std::string() : " (it stood at \"" + status + "\")") +
+                    ": what it does next in sandphys (drops, gates, pours, pushes) is not in this "
+                    "deck"}};
+}
 
 std::filesystem::path sequencePath(const std::filesystem::path& directory, std::uint64_t frame) {
   char name[64];
@@ -201,10 +212,13 @@ int runHeadless(RunOptions& options) {
     };
   }
   std::uint64_t recordingBytes = 0;
-  if (!options.screenshotPath.empty() || recorder) {
+  std::optional<LammpsExportSummary> lammps;
+  if (!options.screenshotPath.empty() || recorder || !options.lammpsDir.empty()) {
     hooks.atEnd = [&](World& world, std::uint64_t) {
       if (recorder) recordingBytes = recorder->finish(world);
       if (!options.screenshotPath.empty()) screenshots->write(world, options.screenshotPath);
+      if (!options.lammpsDir.empty())
+        lammps = exportLammps(world, options.lammpsDir, lammpsOptions(*options.scene));
     };
   }
   const RunSummary summary = runScene(gpu, *options.scene, options.frames, options.frameDt,
@@ -228,6 +242,14 @@ int runHeadless(RunOptions& options) {
                  static_cast<unsigned long long>(summary.stats.steps),
                  static_cast<double>(summary.timeStep), summary.stats.granulesAlive,
                  summary.granulesLost);
+    if (lammps) {
+      std::fprintf(stderr,
+                   "%s: LAMMPS deck %s: %u rigid clumps of %u particles, %u frozen particles, %u "
+                   "walls, %u sinks, %zu lines on what does not map (run: lmp -in %s)\n",
+                   summary.scene.c_str(), lammps->deck.string().c_str(), lammps->clumps,
+                   lammps->clumpAtoms, lammps->frozenAtoms, lammps->walls, lammps->sinks,
+                   lammps->notMapped.size(), lammps->deck.filename().string().c_str());
+    }
     if (recorder) {
       const double seconds = std::max(summary.stats.simulatedTime, 1e-9);
       std::fprintf(stderr,

@@ -9,6 +9,7 @@
 #include "sandphys/gpu_context.h"
 #include "sandphys/ids.h"
 #include "sandphys/kinematic_move.h"
+#include "sandphys/lammps_export.h"
 #include "sandphys/log.h"
 #include "sandphys/math.h"
 #include "sandphys/mesh.h"

@@ -7,6 +7,7 @@
 #include <mutex>
 #include <numbers>
 
+#include "core/impact.h"
 #include "core/overlap_check.h"
 #include "core/validation.h"
 #include "core/world_checks.h"
@@ -15,21 +16,25 @@ namespace sandphys {
 namespace {
 
 // The dimensionless impact x'' = -max(0, x^{3/2} + c x^{1/4} x'), x(0) = 0, x'(0) = 1, in units
-// ξ0 = (m* v² / k_n)^{2/5} and ξ0 / v. Integrated with RK4 until the surfaces separate.
+// ξ0 = (m* v² / k_n)^{2/5} and ξ0 / v. Integrated with RK4 until the surfaces separate. With
+// `adhesive`, the force is not clamped at zero (the damping pulls near the end, as LAMMPS's pair
+// granular lets it) and the contact lasts until the overlap is gone.
 struct ImpactResult {
   double restitution;
   double duration;
 };
 
-ImpactResult integrateImpact(double c) {
-  auto accel = [c](double x, double v) {
+ImpactResult integrateImpact(double c, bool adhesive = false) {
+  auto accel = [c, adhesive](double x, double v) {
     if (x <= 0.0) return 0.0;
-    return -std::max(0.0, x * std::sqrt(x) + c * std::sqrt(std::sqrt(x)) * v);
+    const double force = x * std::sqrt(x) + c * std::sqrt(std::sqrt(x)) * v;
+    return adhesive ? -force : -std::max(0.0, force);
   };
   // The contact ends when the (non-adhesive) force vanishes on the way out: from then on the
   // bodies move apart freely, whatever overlap remains.
-  auto released = [c](double x, double v) {
-    return v < 0.0 && x * std::sqrt(x) + c * std::sqrt(std::sqrt(std::max(x, 0.0))) * v <= 0.0;
+  auto released = [c, adhesive](double x, double v) {
+    return !adhesive && v < 0.0 &&
+           x * std::sqrt(x) + c * std::sqrt(std::sqrt(std::max(x, 0.0))) * v <= 0.0;
   };
   const double h = 2.0e-4;
   double x = 0.0;
@@ -61,6 +66,18 @@ double requireRestitution(double e, const std::string& field) {
   return e;
 }
 
+// e(c) falls monotonically from 1 at c = 0; bisect.
+double solveDampingFactor(double restitution, bool adhesive) {
+  double lo = 0.0;
+  double hi = 1.0;
+  while (integrateImpact(hi, adhesive).restitution > restitution) hi *= 2.0;
+  for (int i = 0; i < 48; ++i) {
+    double mid = 0.5 * (lo + hi);
+    (integrateImpact(mid, adhesive).restitution > restitution ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
 }  // namespace
 
 double hertzDampingFactor(double restitution) {
@@ -70,18 +87,23 @@ double hertzDampingFactor(double restitution) {
   static std::map<double, double> cache;
   std::lock_guard lock(mutex);
   if (auto it = cache.find(restitution); it != cache.end()) return it->second;
-  // e(c) falls monotonically from 1 at c = 0; bisect.
-  double lo = 0.0;
-  double hi = 1.0;
-  while (integrateImpact(hi).restitution > restitution) hi *= 2.0;
-  for (int i = 0; i < 48; ++i) {
-    double mid = 0.5 * (lo + hi);
-    (integrateImpact(mid).restitution > restitution ? lo : hi) = mid;
-  }
-  double c = 0.5 * (lo + hi);
+  double c = solveDampingFactor(restitution, false);
   cache[restitution] = c;
   return c;
 }
+
+namespace detail {
+
+double adhesiveHertzDampingFactor(double restitution) {
+  requireRestitution(restitution, "restitution");
+  return restitution >= 1.0 ? 0.0 : solveDampingFactor(restitution, true);
+}
+
+double adhesiveHertzRestitution(double dampingFactor) {
+  return integrateImpact(dampingFactor, true).restitution;
+}
+
+}  // namespace detail
 
 double hertzContactTime(double effectiveMass, double stiffness, double dampingFactor,
                         double speed) {

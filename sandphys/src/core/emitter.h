@@ -28,6 +28,7 @@ class EmitterState {
   /// Granules per second the lattice can take at this speed.
   double maxRate() const { return double(m_slots.size()) / m_layerInterval; }
   std::uint32_t emitted() const { return m_emitted; }
+  const EmitterSettings& settings() const { return m_settings; }
 
  private:
   void shuffleLayer();

@@ -1,0 +1,114 @@
+// exportLammps: the deck, the data file and the clumps' infile (docs/lammps.md says what maps to
+// what and why).
+#include "sandphys/lammps_export.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <string>
+
+#include "core/validation.h"
+#include "core/world_access.h"
+#include "export/lammps_deck.h"
+#include "export/lammps_scene.h"
+
+namespace sandphys {
+
+using namespace detail;
+
+namespace {
+
+std::string number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", v);
+  return text;
+}
+
+std::ofstream openFile(const std::filesystem::path& path) {
+  std::ofstream out(path);
+  if (!out) throw Error("exportLammps: cannot write '" + path.string() + "'");
+  out.imbue(std::locale::classic());
+  return out;
+}
+
+void closeFile(std::ofstream& out, const std::filesystem::path& path) {
+  out.close();
+  if (!out) throw Error("exportLammps: writing '" + path.string() + "' failed");
+}
+
+// sandphys.data: every particle as a sphere of atom_style hybrid sphere molecular (id type x y z
+// diameter density molecule); type 1 for the clumps' particles, 2 for the frozen ones.
+void writeData(const std::filesystem::path& path, const LammpsScene& scene, double diameter,
+               const std::array<Vec3d, 2>& box) {
+  std::ofstream out = openFile(path);
+  out << "sandphys World: " << scene.clumps.size() << " rigid clumps, "
+      << scene.atoms.size() - scene.clumpAtoms << " frozen particles\n\n"
+      << scene.atoms.size() << " atoms\n2 atom types\n\n";
+  const char* axes[] = {"x", "y", "z"};
+  for (int k = 0; k < 3; ++k) {
+    out << number(box[0][k]) << ' ' << number(box[1][k]) << ' ' << axes[k] << "lo " << axes[k]
+        << "hi\n";
+  }
+  out << "\nAtoms # hybrid\n\n";
+  const double volume = std::numbers::pi * diameter * diameter * diameter / 6.0;
+  for (std::size_t i = 0; i < scene.atoms.size(); ++i) {
+    const LammpsAtom& a = scene.atoms[i];
+    out << i + 1 << ' ' << (a.molecule > 0 ? 1 : 2) << ' ' << number(a.position[0]) << ' '
+        << number(a.position[1]) << ' ' << number(a.position[2]) << ' ' << number(diameter) << ' '
+        << number(a.mass / volume) << ' ' << a.molecule << '\n';
+  }
+  closeFile(out, path);
+}
+
+// bodies.rigid: fix rigid/small's infile, a line per clump in molecule order.
+void writeBodies(const std::filesystem::path& path, const LammpsScene& scene) {
+  std::ofstream out = openFile(path);
+  out << "# molecule mass xcm ycm zcm ixx iyy izz ixy ixz iyz vxcm vycm vzcm lx ly lz ixcm iycm "
+         "izcm (sandphys body slot in the data file's order: molecule k is the k-th clump)\n"
+      << scene.clumps.size() << '\n';
+  for (std::size_t k = 0; k < scene.clumps.size(); ++k) {
+    const LammpsClump& c = scene.clumps[k];
+    out << k + 1 << ' ' << number(c.mass);
+    for (double v : c.centre) out << ' ' << number(v);
+    for (double v : c.inertia) out << ' ' << number(v);
+    for (double v : c.velocity) out << ' ' << number(v);
+    for (double v : c.angularMomentum) out << ' ' << number(v);
+    out << " 0 0 0\n";
+  }
+  closeFile(out, path);
+}
+
+}  // namespace
+
+LammpsExportSummary exportLammps(const World& world, const std::filesystem::path& directory,
+                                 const LammpsExportOptions& options) {
+  requirePositive("LammpsExportOptions.runSeconds", options.runSeconds, "(s)");
+  requirePositive("LammpsExportOptions.outputSeconds", options.outputSeconds, "(s)");
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error) {
+    throw Error("exportLammps: cannot create the folder '" + directory.string() +
+                "': " + error.message());
+  }
+  const LammpsScene scene = gatherLammpsScene(world);
+  const LammpsDeck deck = composeLammpsDeck(world, scene, options);
+
+  writeData(directory / "sandphys.data", scene, world.settings().particleDiameter, deck.box);
+  writeBodies(directory / "bodies.rigid", scene);
+  LammpsExportSummary summary;
+  summary.deck = directory / "in.sandphys";
+  std::ofstream out = openFile(summary.deck);
+  out << deck.text;
+  closeFile(out, summary.deck);
+  summary.clumps = static_cast<std::uint32_t>(scene.clumps.size());
+  summary.clumpAtoms = scene.clumpAtoms;
+  summary.frozenAtoms = static_cast<std::uint32_t>(scene.atoms.size()) - scene.clumpAtoms;
+  summary.walls = deck.walls;
+  summary.sinks = deck.sinks;
+  summary.notMapped = deck.notMapped;
+  return summary;
+}
+
+}  // namespace sandphys
