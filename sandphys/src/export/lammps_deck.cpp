@@ -251,7 +251,7 @@ LammpsDeck composeLammpsDeck(const World& world, const LammpsScene& scene,
       << "variable every equal " << std::max<long long>(1, std::llround(options.outputSeconds / dt))
       << "\n\n"
       << "units si\natom_style hybrid sphere molecular\natom_modify map array\n"
-      << "boundary m m m\nnewton off\ncomm_modify vel yes cutoff " << number(ghostCutoff) << '\n'
+      << "boundary m m m\nnewton on\ncomm_modify vel yes cutoff " << number(ghostCutoff) << '\n'
       << (verticalY ? "# Ranks split the scene across gravity, not along it.\nprocessors * 1 *\n"
                     : "")
       << "read_data sandphys.data\n"
@@ -297,8 +297,7 @@ LammpsDeck composeLammpsDeck(const World& world, const LammpsScene& scene,
       << "compute contactsum all reduce sum c_contacts\n"
       << "variable contacts equal c_contactsum/2\n"
       << "compute pairs all pair/local force\n"
-      << "compute forcesum all reduce sum c_pairs\n"
-      << "variable meanforce equal c_forcesum/(v_contacts+(v_contacts==0))\n";
+      << "compute meanforce all reduce ave c_pairs\n";
   if (!scene.clumps.empty()) {
     out << "compute translation clumps ke/rigid rigid\n"
         << "compute rotation clumps erotate/rigid rigid\n"
@@ -306,7 +305,7 @@ LammpsDeck composeLammpsDeck(const World& world, const LammpsScene& scene,
   } else {
     out << "variable energy equal 0\n";
   }
-  out << "thermo_style custom step time atoms v_energy v_contacts v_meanforce\n"
+  out << "thermo_style custom step time atoms v_energy v_contacts c_meanforce\n"
       << "thermo_modify norm no format float %.9g\n"
       << "thermo ${every}\n"
       << "dump trajectory all custom $(10*v_every) traj.dump id mol type x y z\n"
