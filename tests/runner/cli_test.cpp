@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "process.h"
@@ -121,6 +122,28 @@ TEST(SamplesCli, AnyMeshFitsTheRockDrop) {
         std::string("--headless --quiet --scene rock-drop --fit 0.2 --frames 2 --mesh ") + model);
     EXPECT_EQ(result.exitCode, 0) << model << "\n" << result.output;
   }
+}
+
+// --export-lammps writes the deck of the last frame's World, its scene's script named among what
+// does not map; a folder that is a file is refused before anything runs.
+TEST(SamplesCli, ExportLammpsWritesTheDeckOfTheLastFrame) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("sandphys-cli-lammps-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  const ProcessResult result = runSamples(
+      "--headless --scene box-drop --param block=2,2,2 --frames 3 --export-lammps " + dir.string());
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_NE(result.output.find("LAMMPS deck"), std::string::npos) << result.output;
+  std::ifstream deck(dir / "in.sandphys");
+  const std::string text((std::istreambuf_iterator<char>(deck)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("8 rigid clumps of 32 particles"), std::string::npos) << text;
+  EXPECT_NE(text.find("the box-drop scene's script"), std::string::npos) << text;
+  EXPECT_TRUE(std::filesystem::exists(dir / "sandphys.data"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "bodies.rigid"));
+  std::filesystem::remove_all(dir);
+  const TemporaryFile file("not-a-folder", "x");
+  expectUsageError("--headless --scene box-drop --export-lammps " + file.path(),
+                   {"--export-lammps", file.path().c_str()});
 }
 
 TEST(SamplesCli, MeshOnASceneWithoutOne) {
