@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <vector>
 
 #include <sandphys/sandphys.h>
@@ -80,6 +81,21 @@ struct ScupperOptions {
 };
 nlohmann::json scupperAgainstFriction(const ExperimentContext& context,
                                       const ScupperOptions& options);
+
+/// The angle of repose of the reservoir-and-scupper setup (as ScupperOptions, the scene's default
+/// geometry) run by sandphys and by LAMMPS from one state: for each μ, the World is exported with
+/// exportLammps the frame the gate rises; sandphys runs on to the scene's end, LAMMPS runs the
+/// deck for the same simulated span on `ranks` MPI ranks; both final states are measured with
+/// ReposeScupper::heapAngle and its granule counts. Not run by default (it needs lmp and mpirun).
+struct LammpsReposeOptions {
+  std::vector<double> frictions{0.3, 0.6};
+  int ranks = 2;
+  /// The decks and LAMMPS's outputs, one folder mu_<μ> per μ; kept.
+  std::filesystem::path dir = "build/validation/lammps";
+  /// At rest below this rms speed, m/s (as ScupperOptions).
+  float settleSpeed = ScupperOptions{}.settleSpeed;
+};
+nlohmann::json lammpsRepose(const ExperimentContext& context, const LammpsReposeOptions& options);
 
 /// Two columns of sand poured side by side (the paper's Fig. 25): the dune's profile, its two
 /// crests and the saddle between them.

@@ -22,8 +22,11 @@ namespace {
 using namespace sandphys;
 using namespace sandphys::validation;
 
+// Run by default.
 const std::vector<std::string> kExperiments{"flow-friction",  "flow-outlet", "repose",
                                             "repose-scupper", "dunes",       "compression"};
+// Run only when named in --only: lammps-repose needs lmp and mpirun.
+const std::vector<std::string> kOnDemand{"lammps-repose"};
 
 std::string utcNow() {
   const std::time_t now = std::time(nullptr);
@@ -71,17 +74,22 @@ int main(int argc, char** argv) {
       "scripts/validation/make_report.py"};
   std::string out = "build/validation/results.json";
   std::vector<std::string> only = kExperiments;
+  std::vector<std::string> allExperiments = kExperiments;
+  allExperiments.insert(allExperiments.end(), kOnDemand.begin(), kOnDemand.end());
   FlowFrictionOptions flowFriction;
   FlowOutletOptions flowOutlet;
   ReposeOptions repose;
   ScupperOptions scupper;
   DuneOptions dunes;
   CompressionOptions compression;
+  LammpsReposeOptions lammps;
   bool quiet = false;
   app.add_option("--out", out, "results file (JSON)")->capture_default_str();
-  app.add_option("--only", only, "experiments to run, comma-separated")
+  app.add_option("--only", only,
+                 "experiments to run, comma-separated (lammps-repose, which needs lmp and "
+                 "mpirun, runs only when named)")
       ->delimiter(',')
-      ->check(CLI::IsMember(kExperiments))
+      ->check(CLI::IsMember(allExperiments))
       ->capture_default_str();
   app.add_option("--hourglass-granules", flowFriction.granules,
                  "granules in the funnel of every hourglass run")
@@ -146,6 +154,18 @@ int main(int argc, char** argv) {
                  "hertz-mindlin (the default) or paper (Longmore et al. 2013 as published)")
       ->check(CLI::IsMember({"hertz-mindlin", "paper"}))
       ->capture_default_str();
+  app.add_option("--lammps-frictions", lammps.frictions,
+                 "lammps-repose: the grains' friction coefficients, comma-separated")
+      ->delimiter(',')
+      ->check(CLI::Range(0.0, 10.0))
+      ->capture_default_str();
+  app.add_option("--lammps-ranks", lammps.ranks,
+                 "lammps-repose: MPI ranks of LAMMPS (1: no mpirun)")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
+  app.add_option("--lammps-dir", lammps.dir,
+                 "lammps-repose: folder of the decks and LAMMPS's outputs (one mu_<μ> per μ; kept)")
+      ->capture_default_str();
   app.add_flag("--quiet", quiet, "no progress lines");
   CLI11_PARSE(app, argc, argv);
   flowOutlet.granules = flowFriction.granules;
@@ -176,6 +196,7 @@ int main(int argc, char** argv) {
     run("repose-scupper", [&] { return scupperAgainstFriction(context, scupper); });
     run("dunes", [&] { return duneProfile(context, dunes); });
     run("compression", [&] { return compressionAndForces(context, compression); });
+    run("lammps-repose", [&] { return lammpsRepose(context, lammps); });
     std::fprintf(stderr, "sandphys-validation: wrote %s\n", out.c_str());
     return 0;
   } catch (const std::exception& error) {
