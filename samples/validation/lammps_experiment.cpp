@@ -2,23 +2,18 @@
 // exported state (issue 20, point 4): each μ's run is exported (exportLammps) the frame its gate
 // rises; sandphys runs on to the scene's end, LAMMPS the same simulated span from the deck; both
 // final states are measured with the scene's own heapAngle and granule counts.
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <map>
-#include <optional>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <sandphys/analysis.h>
 #include <sandphys/lammps_export.h>
+#include <sandphys/lammps_run.h>
 
 #include "experiments.h"
 #include "scenes/repose_scupper.h"
@@ -42,74 +37,11 @@ std::string number(double value, const char* format = "%.9g") {
   return text;
 }
 
-// What LAMMPS left in its folder: the clumps' centres at the end, the last thermo line's kinetic
-// energy, and the version line of its log.
-struct LammpsResult {
-  std::vector<BodyState> bodies;
-  std::optional<double> kineticEnergy;
-  double simulatedSeconds = 0.0;
-  std::string version;
-};
-
-LammpsResult readLammps(const std::filesystem::path& dir) {
-  LammpsResult result;
-  std::ifstream log(dir / "log.lammps");
-  if (!log) throw std::runtime_error("no " + (dir / "log.lammps").string());
-  std::string line;
-  bool thermo = false;
-  while (std::getline(log, line)) {
-    if (result.version.empty() && line.rfind("LAMMPS (", 0) == 0) result.version = line;
-    if (line.rfind("Step Time Atoms v_energy", 0) == 0) {
-      thermo = true;
-      continue;
-    }
-    if (line.rfind("Loop time", 0) == 0) thermo = false;
-    if (!thermo) continue;
-    std::istringstream fields(line);
-    double step = 0.0, time = 0.0, atoms = 0.0, energy = 0.0;
-    fields >> step >> time >> atoms >> energy;
-    if (!fields) continue;  // a warning in the thermo block
-    result.kineticEnergy = energy;
-    result.simulatedSeconds = time;
-  }
-  // final.dump: id mol type x y z vx vy vz; the clumps' particles have mol > 0, and a clump's
-  // centre of mass is the mean of its 4 particles.
-  std::ifstream dump(dir / "final.dump");
-  if (!dump) throw std::runtime_error("no " + (dir / "final.dump").string());
-  struct Sum {
-    double x = 0.0, y = 0.0, z = 0.0;
-    int particles = 0;
-  };
-  std::map<long, Sum> clumps;
-  bool atoms = false;
-  while (std::getline(dump, line)) {
-    if (line.rfind("ITEM: ATOMS", 0) == 0) {
-      atoms = true;
-      continue;
-    }
-    if (!atoms) continue;
-    std::istringstream fields(line);
-    long id = 0, mol = 0;
-    int type = 0;
-    double x = 0.0, y = 0.0, z = 0.0;
-    fields >> id >> mol >> type >> x >> y >> z;
-    if (!fields || mol <= 0) continue;
-    Sum& sum = clumps[mol];
-    sum.x += x;
-    sum.y += y;
-    sum.z += z;
-    ++sum.particles;
-  }
-  for (const auto& [mol, sum] : clumps) {
-    BodyState body;
-    const double n = sum.particles;
-    body.position = {static_cast<float>(sum.x / n), static_cast<float>(sum.y / n),
-                     static_cast<float>(sum.z / n)};
-    body.alive = true;
-    body.granule = true;
-    result.bodies.push_back(body);
-  }
-  return result;
+// The clumps of a LAMMPS run as the scene's measures take granules.
+std::vector<BodyState> granulesAt(const std::vector<Vec3>& centres) {
+  std::vector<BodyState> bodies(centres.size());
+  for (std::size_t i = 0; i < centres.size(); ++i) bodies[i].position = centres[i];
+  return bodies;
 }
 
 // The angle and the granule counts of one code's final state, as the scene measures its own.
@@ -198,14 +130,9 @@ nlohmann::json compareAt(const ExperimentContext& context, const LammpsReposeOpt
   // LAMMPS: the deck for the same span, from its folder.
   std::filesystem::remove(dir / "log.lammps");
   std::filesystem::remove(dir / "final.dump");
-  std::string lmp;
-  if (options.ranks > 1) {
-    lmp = "mpirun " + std::string(geteuid() == 0 ? "--allow-run-as-root " : "") +
-          "--oversubscribe -np " + std::to_string(options.ranks) + ' ';
-  }
-  lmp += "lmp -in in.sandphys -var seconds " + number(span);
-  const std::string command = "cd '" + dir.string() + "' && " + lmp + " > lammps.out 2>&1";
-  std::fprintf(stderr, "lammps-repose: mu = %g: %s (%.3f s simulated)\n", mu, lmp.c_str(), span);
+  const std::string command = lammpsCommand(dir, options.ranks, span);
+  std::fprintf(stderr, "lammps-repose: mu = %g: %s (%.3f s simulated)\n", mu, command.c_str(),
+               span);
   const Clock::time_point lammpsStart = Clock::now();
   const int status = std::system(command.c_str());
   const double lammpsWall = std::chrono::duration<double>(Clock::now() - lammpsStart).count();
@@ -213,21 +140,19 @@ nlohmann::json compareAt(const ExperimentContext& context, const LammpsReposeOpt
     throw std::runtime_error("lammps-repose: `" + command + "` failed (status " +
                              std::to_string(status) + "); see " + (dir / "lammps.out").string());
   }
-  const LammpsResult lammpsRun = readLammps(dir);
-  nlohmann::json theirs = measure(scene, lammpsRun.bodies, config.granules);
-  theirs.update(
-      {{"wall_seconds", lammpsWall},
-       {"kinetic_energy_j", lammpsRun.kineticEnergy ? nlohmann::json(*lammpsRun.kineticEnergy)
-                                                    : nlohmann::json(nullptr)},
-       {"end_time_s", exportTime + lammpsRun.simulatedSeconds},
-       {"ranks", options.ranks},
-       {"version", lammpsRun.version}});
+  const LammpsRun lammpsRun = readLammpsRun(dir);
+  nlohmann::json theirs = measure(scene, granulesAt(lammpsRun.clumpCentres), config.granules);
+  theirs.update({{"wall_seconds", lammpsWall},
+                 {"kinetic_energy_j", lammpsRun.thermo.back().kineticEnergy},
+                 {"end_time_s", exportTime + lammpsRun.thermo.back().time},
+                 {"ranks", options.ranks},
+                 {"version", lammpsRun.version}});
 
   nlohmann::json entry = {{"friction", mu},
                           {"export_time_s", exportTime},
                           {"span_s", span},
                           {"dir", dir.string()},
-                          {"lammps_command", "cd " + dir.string() + " && " + lmp},
+                          {"lammps_command", command},
                           {"deck_not_mapped", deck.notMapped},
                           {"sandphys", ours},
                           {"lammps", theirs}};

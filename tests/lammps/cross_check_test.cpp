@@ -10,7 +10,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -107,69 +106,29 @@ std::string exportedPile(const std::filesystem::path& dir) {
 
 // Runs the deck in `dir` on `ranks` MPI ranks (1: lmp alone) and reads its thermo and final state.
 PileRecord runLammps(const std::filesystem::path& dir, int ranks) {
-  std::string command = "cd '" + dir.string() + "' && ";
-  if (ranks > 1) {
-    command += "mpirun " + std::string(geteuid() == 0 ? "--allow-run-as-root " : "") +
-               "--oversubscribe -np " + std::to_string(ranks) + ' ';
-  }
-  command += "lmp -in in.sandphys > lammps.out 2>&1";
-  const int status = std::system(command.c_str());
-  std::ifstream out(dir / "lammps.out");
-  std::stringstream text;
-  text << out.rdbuf();
-  if (status != 0) {
+  const std::string command = lammpsCommand(dir, ranks, kSeconds);
+  if (const int status = std::system(command.c_str()); status != 0) {
+    std::ifstream out(dir / "lammps.out");
+    std::stringstream text;
+    text << out.rdbuf();
     ADD_FAILURE() << "`" << command << "` failed (status " << status
                   << "; lammps and openmpi-bin come with scripts/install-deps.sh):\n"
                   << text.str();
     return {};
   }
+  const LammpsRun run = readLammpsRun(dir);
   PileRecord r;
-  std::ifstream log(dir / "log.lammps");
-  std::string line;
-  bool thermo = false;
-  double contacts = 0.0;
-  double atoms = 0.0;
-  while (std::getline(log, line)) {
-    if (line.rfind("Step Time Atoms v_energy", 0) == 0) {
-      thermo = true;
-      continue;
-    }
-    if (line.rfind("Loop time", 0) == 0) thermo = false;
-    if (!thermo) continue;
-    std::istringstream fields(line);
-    double step, time, energy, force;
-    fields >> step >> time >> atoms >> energy >> contacts >> force;
-    if (!fields) continue;
-    if (step > 0) {
-      r.time.push_back(time);
-      r.kineticEnergy.push_back(energy);
-    }
-    r.meanNormalForce = force;
+  for (const LammpsThermo& t : run.thermo) {
+    if (t.step == 0.0) continue;
+    r.time.push_back(t.time);
+    r.kineticEnergy.push_back(t.kineticEnergy);
   }
-  r.contactsPerParticle = contacts / std::max(atoms, 1.0);
-  // final.dump: id mol type x y z vx vy vz, the clumps' particles with mol > 0.
-  std::ifstream dump(dir / "final.dump");
-  std::map<int, std::pair<double, int>> molecules;  // sum of y, particles
-  bool atomsSection = false;
-  while (std::getline(dump, line)) {
-    if (line.rfind("ITEM: ATOMS", 0) == 0) {
-      atomsSection = true;
-      continue;
-    }
-    if (!atomsSection) continue;
-    std::istringstream fields(line);
-    int id, mol, type;
-    double x, y, z;
-    fields >> id >> mol >> type >> x >> y >> z;
-    if (fields && mol > 0) {
-      molecules[mol].first += y;
-      ++molecules[mol].second;
-    }
-  }
-  double height = 0.0;
-  for (const auto& [mol, sum] : molecules) height += sum.first / sum.second;
-  r.meanHeight = molecules.empty() ? 0.0 : height / double(molecules.size());
-  EXPECT_EQ(molecules.size(), std::size_t(kSide * kSide * kSide)) << "clumps in final.dump";
+  const LammpsThermo& last = run.thermo.back();
+  r.contactsPerParticle = last.contacts / std::max(last.atoms, 1.0);
+  r.meanNormalForce = last.meanNormalForce;
+  EXPECT_EQ(run.clumpCentres.size(), std::size_t(kSide * kSide * kSide)) << "clumps at the end";
+  for (const Vec3& centre : run.clumpCentres) r.meanHeight += centre.y;
+  r.meanHeight /= std::max<double>(1.0, double(run.clumpCentres.size()));
   return r;
 }
 

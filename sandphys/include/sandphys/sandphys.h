@@ -10,6 +10,7 @@
 #include "sandphys/ids.h"
 #include "sandphys/kinematic_move.h"
 #include "sandphys/lammps_export.h"
+#include "sandphys/lammps_run.h"
 #include "sandphys/log.h"
 #include "sandphys/math.h"
 #include "sandphys/mesh.h"
