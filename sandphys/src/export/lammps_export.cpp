@@ -13,18 +13,13 @@
 #include "core/world_access.h"
 #include "export/lammps_deck.h"
 #include "export/lammps_scene.h"
+#include "export/lammps_text.h"
 
 namespace sandphys {
 
 using namespace detail;
 
 namespace {
-
-std::string number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.9g", v);
-  return text;
-}
 
 std::ofstream openFile(const std::filesystem::path& path) {
   std::ofstream out(path);
@@ -48,16 +43,17 @@ void writeData(const std::filesystem::path& path, const LammpsScene& scene, doub
       << scene.atoms.size() << " atoms\n2 atom types\n\n";
   const char* axes[] = {"x", "y", "z"};
   for (int k = 0; k < 3; ++k) {
-    out << number(box[0][k]) << ' ' << number(box[1][k]) << ' ' << axes[k] << "lo " << axes[k]
-        << "hi\n";
+    out << lammpsNumber(box[0][k]) << ' ' << lammpsNumber(box[1][k]) << ' ' << axes[k] << "lo "
+        << axes[k] << "hi\n";
   }
   out << "\nAtoms # hybrid\n\n";
   const double volume = std::numbers::pi * diameter * diameter * diameter / 6.0;
   for (std::size_t i = 0; i < scene.atoms.size(); ++i) {
     const LammpsAtom& a = scene.atoms[i];
-    out << i + 1 << ' ' << (a.molecule > 0 ? 1 : 2) << ' ' << number(a.position[0]) << ' '
-        << number(a.position[1]) << ' ' << number(a.position[2]) << ' ' << number(diameter) << ' '
-        << number(a.mass / volume) << ' ' << a.molecule << '\n';
+    out << i + 1 << ' ' << (a.molecule > 0 ? 1 : 2) << ' ' << lammpsNumber(a.position[0]) << ' '
+        << lammpsNumber(a.position[1]) << ' ' << lammpsNumber(a.position[2]) << ' '
+        << lammpsNumber(diameter) << ' ' << lammpsNumber(a.mass / volume) << ' ' << a.molecule
+        << '\n';
   }
   closeFile(out, path);
 }
@@ -74,11 +70,11 @@ void writeBodies(const std::filesystem::path& path, const LammpsScene& scene, do
       << scene.clumps.size() << '\n';
   for (std::size_t k = 0; k < scene.clumps.size(); ++k) {
     const LammpsClump& c = scene.clumps[k];
-    out << k + 1 << ' ' << number(c.mass);
-    for (double v : c.centre) out << ' ' << number(v);
-    for (double v : c.inertia) out << ' ' << number(v);
-    for (int i = 0; i < 3; ++i) out << ' ' << number(c.velocity[i] + kick[i]);
-    for (double v : c.angularMomentum) out << ' ' << number(v);
+    out << k + 1 << ' ' << lammpsNumber(c.mass);
+    for (double v : c.centre) out << ' ' << lammpsNumber(v);
+    for (double v : c.inertia) out << ' ' << lammpsNumber(v);
+    for (int i = 0; i < 3; ++i) out << ' ' << lammpsNumber(c.velocity[i] + kick[i]);
+    for (double v : c.angularMomentum) out << ' ' << lammpsNumber(v);
     out << " 0 0 0\n";
   }
   closeFile(out, path);
