@@ -16,7 +16,7 @@ std::vector<RenderTiming> measureRender(const World& world, const scenes::SceneB
   if (options.width <= 0 || options.height <= 0) return timings;
   render::OffscreenTarget target(options.width, options.height);
   const render::Camera camera =
-      render::Camera::framing(bounds, float(options.width) / float(options.height));
+      render::Camera::framing({bounds}, float(options.width) / float(options.height));
   render::Renderer renderer;
   for (const render::RenderQuality quality :
        {render::RenderQuality::Low, render::RenderQuality::Medium, render::RenderQuality::High}) {

@@ -49,11 +49,13 @@ class Screenshots {
   }
 
   void write(World& world, const std::filesystem::path& path) {
-    const scenes::SceneBounds bounds = contentBounds(world);
+    // The scene's own view of what it holds now: one read-back per image (a sync point, as
+    // writing a file is anyway).
     const render::Camera camera =
-        render::Camera::framing(bounds, float(m_size.width) / float(m_size.height));
+        render::Camera::framing(m_scene.view(scenes::contentsOf(m_scene, world)),
+                                float(m_size.width) / float(m_size.height));
     m_target.bind();
-    m_renderer.draw(world, camera, bounds, m_size.width, m_size.height);
+    m_renderer.draw(world, camera, m_scene.bounds(), m_size.width, m_size.height);
     const std::vector<std::uint8_t> pixels = m_target.readRgba();
     const render::RenderStats& stats = m_renderer.finishStats();
     m_gpuMilliseconds += stats.totalMs;
@@ -65,25 +67,6 @@ class Screenshots {
   double gpuMillisecondsPerImage() const { return m_images ? m_gpuMilliseconds / m_images : 0.0; }
 
  private:
-  // The scene's box, with its top lowered to a little above the highest granule: a tall empty
-  // container (the paper's cylinder is 100 d high) would otherwise leave the sand a strip at the
-  // bottom of the picture. One read-back per image (a sync point, as writing a file is anyway).
-  scenes::SceneBounds contentBounds(const World& world) const {
-    scenes::SceneBounds bounds = m_scene.bounds();
-    float top = bounds.min.y;
-    bool any = false;
-    for (const BodyState& body : world.readBodies()) {
-      if (!body.alive || !body.granule || !m_scene.contains(body.position)) continue;
-      top = std::max(top, body.position.y);
-      any = true;
-    }
-    if (any) {
-      const float across = std::max(bounds.max.x - bounds.min.x, bounds.max.z - bounds.min.z);
-      bounds.max.y = std::min(bounds.max.y, top + 0.25f * across);
-    }
-    return bounds;
-  }
-
   const scenes::Scene& m_scene;
   ImageSize m_size;
   render::OffscreenTarget m_target;

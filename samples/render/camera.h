@@ -28,9 +28,11 @@ struct Camera {
   /// distance (1/100 and 100 times it), which keeps depth precise around the target.
   Eigen::Matrix4f projection(float aspect) const;
 
-  /// A camera that shows all of `bounds` in a viewport of the given aspect ratio (width /
-  /// height), seen from a three-quarter view above.
-  static Camera framing(const scenes::SceneBounds& bounds, float aspect = 16.0f / 9.0f);
+  /// A camera that looks at `view.focus` from the view's direction and fits its eight corners
+  /// into a viewport of the given aspect ratio (width / height), leaving out its left
+  /// `coveredLeft` fraction (a panel drawn over it): the focus sits in the middle of the rest.
+  static Camera framing(const scenes::SceneView& view, float aspect = 16.0f / 9.0f,
+                        float coveredLeft = 0.0f);
 };
 
 /// Right-handed look-at view matrix.

@@ -386,7 +386,9 @@ void Renderer::Impl::draw(const World& world, const Camera& camera,
 
   std::vector<MeshVertex> mesh;
   if (settings.drawColliders) {
-    mesh = buildColliderMesh(world.colliders(), camera.target, 40.0f * camera.distance);
+    // Planes as a patch around the scene's bounds, not out to the horizon: a floor or wall
+    // seen edge-on would otherwise fill the picture.
+    mesh = buildColliderMesh(world.colliders(), 0.5f * (lo + hi), 0.6f * (hi - lo).norm());
   }
   uploadMesh(mesh);
 

@@ -55,6 +55,9 @@ class BlockAvalanche final : public Scene {
   /// The slope's parameters, then the blocks'.
   std::vector<SceneParameter> parameters() override;
   SceneBounds bounds() const override { return m_slope.bounds(); }
+  SceneView view(const std::optional<SceneBounds>& contents) const override {
+    return m_slope.view(contents);
+  }
   /// "low-block" and "plank", as Bullet has them now.
   std::vector<SceneBody> bodies(const World& /*world*/) const override { return blockBodies(); }
   std::vector<RecordedInput> externalInputs() const override;

@@ -57,6 +57,8 @@ class Dunes final : public kit::SceneWith<DunesConfig> {
   /// "dune_profile": [x, height] in d, of the settled sand (empty before it settles).
   std::vector<SceneSeries> series() const override;
   SceneBounds bounds() const override;
+  /// The floor the two dunes grow on.
+  SceneView view(const std::optional<SceneBounds>&) const override { return {bounds()}; }
 
   Profile profile(std::span<const BodyState> bodies) const;
 

@@ -68,6 +68,8 @@ class Hourglass final : public kit::SceneWith<HourglassConfig> {
   std::vector<SceneMetric> metrics(std::span<const BodyState> bodies) const override;
   std::vector<SceneSeries> series() const override;
   SceneBounds bounds() const override;
+  /// The funnel and the sink below its outlet.
+  SceneView view(const std::optional<SceneBounds>&) const override { return {bounds()}; }
 
   /// Makes the next build() place these granules (packingAtRelease() of an earlier run) instead
   /// of settling a lattice of `granules`; those that would reach below this run's outlet are left

@@ -50,6 +50,8 @@ class ReposeHeap final : public kit::SceneWith<ReposeHeapConfig> {
   /// The angle of repose and its fit, the heap's height, the granules on and off the floor.
   std::vector<SceneMetric> metrics(std::span<const BodyState> bodies) const override;
   SceneBounds bounds() const override;
+  /// The floor and the pour above it: the heap grows there.
+  SceneView view(const std::optional<SceneBounds>&) const override { return {bounds()}; }
 
   /// The heap's surface and angle from the granules in `bodies`; throws InvalidArgument when the
   /// heap is too small to have a flank.

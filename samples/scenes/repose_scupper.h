@@ -63,6 +63,10 @@ class ReposeScupper final : public kit::SceneWith<ReposeScupperConfig> {
   /// The angle of repose and its fit, the granules in the reservoir, the sump and lost.
   std::vector<SceneMetric> metrics(std::span<const BodyState> bodies) const override;
   SceneBounds bounds() const override;
+  /// From the side (+z, a little above): the reservoir, the slot and the sump's pile in profile.
+  SceneView view(const std::optional<SceneBounds>&) const override {
+    return {bounds(), 0.25f, 0.3f};
+  }
 
   /// The sump's pile and its angle (flank read wallMargin clear of the side walls); throws
   /// InvalidArgument when the pile is too small to have a flank.

@@ -44,6 +44,8 @@ class SandBoxPour final : public kit::SceneWith<SandBoxPourConfig> {
   bool contains(const Vec3& centre) const override;
   std::vector<SceneMetric> metrics(std::span<const BodyState> bodies) const override;
   SceneBounds bounds() const override;
+  /// The box the sand is poured into.
+  SceneView view(const std::optional<SceneBounds>&) const override { return {bounds()}; }
 
   std::uint32_t bedGranules() const;
   /// Granules in one layer of the emitter's lattice: the most its count can lag rate × time.

@@ -158,6 +158,26 @@ WorldSettings Scene::settings() const {
   return settings;
 }
 
+SceneView Scene::view(const std::optional<SceneBounds>& contents) const {
+  return {contents ? *contents : bounds()};
+}
+
+std::optional<SceneBounds> contentsOf(const Scene& scene, const World& world) {
+  const std::vector<BodyState> bodies = world.readBodies();
+  const float radius = 0.5f * world.settings().particleDiameter;
+  std::optional<SceneBounds> box;
+  for (const ParticleState& particle : world.readParticles()) {
+    const BodyState& body = bodies[particle.body.index];
+    if (!body.alive || body.motion == Motion::Static || !scene.contains(body.position)) continue;
+    const Vec3 lo = particle.position - Vec3{radius, radius, radius};
+    const Vec3 hi = particle.position + Vec3{radius, radius, radius};
+    if (!box) box = SceneBounds{lo, hi};
+    box->min = {std::min(box->min.x, lo.x), std::min(box->min.y, lo.y), std::min(box->min.z, lo.z)};
+    box->max = {std::max(box->max.x, hi.x), std::max(box->max.y, hi.y), std::max(box->max.z, hi.z)};
+  }
+  return box;
+}
+
 bool runUntilFinished(Scene& scene, World& world, float frameDt, double maxSeconds) {
   while (!scene.finished() && world.simulatedTime() < maxSeconds) {
     const StepReport report = scene.step(world, frameDt);

@@ -72,6 +72,14 @@ struct SceneBounds {
   Vec3 max{};  ///< largest corner, m
 };
 
+/// How the camera looks at a scene first, and again on Home: the box it frames (the sand and the
+/// bodies, not the containers) and the direction it looks from.
+struct SceneView {
+  SceneBounds focus;    ///< what the picture must hold, m
+  float yaw = 0.6f;     ///< the eye's turn about the vertical, rad; 0 puts it on +z
+  float pitch = 0.45f;  ///< the eye's height above the horizontal, rad
+};
+
 /// A sample scene: world settings, the initial contents and the scene's own logic over time
 /// (dropping the next batch, moving a plunger, ...). Shared by the samples app, the viewer, the
 /// tests and the benchmark, which all drive it the same way:
@@ -156,13 +164,22 @@ class Scene {
   /// The scene's tunable values (see SceneParameter). The default has none.
   virtual std::vector<SceneParameter> parameters() { return {}; }
 
-  /// Where the scene's contents are, for the viewer's camera.
+  /// Where the scene's contents are, containers included (shadows, planes drawn as patches).
   virtual SceneBounds bounds() const = 0;
+
+  /// The view to open on, given `contents`: the bounds of its granules and movable bodies now
+  /// (contentsOf). The default frames them, or the whole scene while it holds none; a scene whose
+  /// action goes elsewhere (a run-out, a pour still to come) widens the focus or turns the eye.
+  virtual SceneView view(const std::optional<SceneBounds>& contents) const;
 
  private:
   ContactLaw m_contactLaw = ContactLaw::HertzMindlin;
   bool m_sleep = false;
 };
+
+/// The bounds of `world`'s alive bodies that `scene` contains, but for static ones (floors), each
+/// grown by its reach; nothing when there are none. Sync point (reads the bodies back).
+std::optional<SceneBounds> contentsOf(const Scene& scene, const World& world);
 
 /// Runs `scene` in `world` (the one its build() filled) frame by frame, Scene::step then
 /// Scene::update, until the scene finishes or the world has simulated `maxSeconds` s in all.

@@ -75,6 +75,12 @@ void Input::onKey(int key, int action, int mods) {
       case GLFW_KEY_ESCAPE:
         m_frame.commands.push_back(Command::Quit);
         break;
+      case GLFW_KEY_HOME:
+        m_frame.commands.push_back(Command::HomeView);
+        break;
+      case GLFW_KEY_TAB:
+        m_frame.commands.push_back(Command::TogglePanel);
+        break;
       case GLFW_KEY_LEFT:
         m_frame.commands.push_back(Command::PreviousSnapshot);
         break;

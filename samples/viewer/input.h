@@ -15,6 +15,8 @@ enum class Command {
   Restart,      ///< R: rebuild the scene on a fresh World
   Screenshot,   ///< F: write the next frame to a PNG
   Quit,         ///< Esc
+  HomeView,     ///< Home: the scene's own view again (Scene::view)
+  TogglePanel,  ///< Tab: hide or show the panel
   /// Left and Right arrows, --play: the recorded snapshot before or after the frame shown.
   PreviousSnapshot,
   NextSnapshot,

@@ -73,24 +73,18 @@ bool editParameter(const scenes::SceneParameter& parameter) {
 PanelRequests Panel::draw(Session& session, const FrameStats& stats, const StatsHistory& history,
                           const PanelView& view) {
   PanelRequests requests;
-  ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(430.0f, 0.0f), ImGuiCond_FirstUseEver);
-  ImGui::Begin("sandphys");
+  const float windowWidth = ImGui::GetIO().DisplaySize.x;
+  ImGui::SetNextWindowPos(ImVec2(kPanelMargin, kPanelMargin), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(panelWidth(windowWidth), 0.0f), ImGuiCond_FirstUseEver);
+  ImGui::Begin("sandphys (Tab hides)");
   // Fields leave room on their right for labels as long as "Young's modulus, Pa".
-  ImGui::PushItemWidth(-170.0f);
+  ImGui::PushItemWidth(-0.4f * ImGui::GetWindowWidth());
   drawScene(session, view, requests);
-  if (ImGui::CollapsingHeader("Pacing and rendering", ImGuiTreeNodeFlags_DefaultOpen)) {
-    drawPacing(session, stats);
-  }
-  if (ImGui::CollapsingHeader("Scene parameters", ImGuiTreeNodeFlags_DefaultOpen)) {
-    drawParameters(session);
-  }
-  if (ImGui::CollapsingHeader("Material and time step", ImGuiTreeNodeFlags_DefaultOpen)) {
-    drawControls(session);
-  }
-  if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) {
-    drawStats(session, stats, history);
-  }
+  // The scene, its state and the buttons show; every section below opens on a click.
+  if (ImGui::CollapsingHeader("Pacing and rendering")) drawPacing(session, stats);
+  if (ImGui::CollapsingHeader("Scene parameters")) drawParameters(session);
+  if (ImGui::CollapsingHeader("Material and time step")) drawControls(session);
+  if (ImGui::CollapsingHeader("Statistics")) drawStats(session, stats, history);
   if (ImGui::CollapsingHeader("Controls")) drawHelp(view);
   ImGui::PopItemWidth();
   ImGui::End();
@@ -120,10 +114,10 @@ void Panel::drawScene(Session& session, const PanelView& view, PanelRequests& re
   const std::string status = session.scene().status();
   ImGui::Text("t = %.3f s  %s", session.world().simulatedTime(), status.c_str());
 
+  // Two buttons a row: the panel opens a quarter of the window wide.
   if (ImGui::Button(view.paused ? "Run (Space)" : "Pause (Space)")) requests.togglePause = true;
   ImGui::SameLine();
   if (ImGui::Button("Step (S)")) requests.step = true;
-  ImGui::SameLine();
   if (ImGui::Button("Restart (R)")) requests.restart = true;
   ImGui::SameLine();
   if (ImGui::Button("Screenshot (F)")) requests.screenshot = true;
@@ -291,7 +285,8 @@ void Panel::drawHelp(const PanelView& view) {
       "wheel: zoom\n"
       "right button or P held: pour sand under the cursor\n"
       "Ctrl+left button or B held: push sand with a sphere\n"
-      "Space: pause    S: step    R: restart    Esc: quit");
+      "Space: pause    S: step    R: restart    Esc: quit    Home: the scene's view    Tab: "
+      "hide the panel");
   ImGui::TextUnformatted(view.panelInScreenshots
                              ? "F: screenshot of the window, panel included"
                              : "F: screenshot of the scene (no panel; --panel-in-screenshots)");

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <algorithm>
+
 #include <string>
 
 #include "scenes/registry.h"
@@ -32,6 +34,14 @@ struct PanelRequests {
 /// once), material and time step (applied on restart), statistics and live plots. Edits to the
 /// scene's parameters and the controls go straight into the session and take effect at the next
 /// restart.
+/// Left and top margin of the panel's window, px.
+inline constexpr float kPanelMargin = 8.0f;
+/// The panel's width when it first shows in a window `windowWidth` px wide: a quarter of it, at
+/// most 430 px; the user may drag it wider.
+inline float panelWidth(float windowWidth) {
+  return std::min(430.0f, 0.25f * windowWidth);
+}
+
 class Panel {
  public:
   /// Draws the panel inside the current ImGui frame.

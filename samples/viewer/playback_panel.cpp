@@ -1,5 +1,7 @@
 #include "viewer/playback_panel.h"
 
+#include "viewer/panel.h"
+
 #include <imgui.h>
 
 #include <string>
@@ -87,9 +89,10 @@ PlaybackRequests drawPlaybackPanel(Player& player, const FrameStats& stats,
   PlaybackRequests requests;
   const samples::Playback& playback = player.playback();
   const Recording& recording = playback.recording();
-  ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(430.0f, 0.0f), ImGuiCond_FirstUseEver);
-  ImGui::Begin("sandphys");
+  ImGui::SetNextWindowPos(ImVec2(kPanelMargin, kPanelMargin), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(panelWidth(ImGui::GetIO().DisplaySize.x), 0.0f),
+                           ImGuiCond_FirstUseEver);
+  ImGui::Begin("sandphys (Tab hides)");
   ImGui::PushItemWidth(-120.0f);
   const std::string scene(player.scene().name());
   ImGui::Text("playing %s", scene.c_str());

@@ -106,11 +106,16 @@ struct RunTotals {
   }
 };
 
-render::Camera framingCamera(const scenes::Scene& scene, Extent framebuffer) {
+// The scene's own view (Scene::view) of what it holds now, clear of the panel's strip on the
+// left when the panel shows. One read-back of the bodies (a sync point), on demand only.
+render::Camera framingCamera(const scenes::Scene& scene, const World& world, Extent framebuffer,
+                             bool panelShown) {
   const float aspect = framebuffer.height > 0 ? static_cast<float>(framebuffer.width) /
                                                     static_cast<float>(framebuffer.height)
                                               : 16.0f / 9.0f;
-  return render::Camera::framing(scene.bounds(), aspect);
+  const float width = static_cast<float>(std::max(framebuffer.width, 1));
+  const float covered = panelShown ? (kPanelMargin + panelWidth(width)) / width : 0.0f;
+  return render::Camera::framing(scene.view(scenes::contentsOf(scene, world)), aspect, covered);
 }
 
 // The viewer's state between frames and the frame itself: a live Session, or a Player of a
@@ -136,7 +141,7 @@ class ViewerLoop {
     if (!m_options.recordPath.empty()) {
       m_session->startRecording(m_options.recordPath, m_options.snapshotEvery);
     }
-    m_camera = framingCamera(scene(), m_window.framebufferSize());
+    home();
     m_window.setTitle(windowTitle(scene()));
     if (!m_script.empty()) {
       // Scripted runs (tests) act on the middle of the window wherever the pointer was.
@@ -209,6 +214,12 @@ class ViewerLoop {
         case Command::Quit:
           quit = true;
           break;
+        case Command::HomeView:
+          home();
+          break;
+        case Command::TogglePanel:
+          m_panelShown = !m_panelShown;
+          break;
       }
     }
     camera_control::orbit(m_camera, input.orbitX, input.orbitY);
@@ -263,7 +274,9 @@ class ViewerLoop {
     m_view.vsync = m_window.vsync();
     m_view.panelInScreenshots = m_options.panelInScreenshots;
     // The panel's requests apply once the frame is shown.
-    if (m_player) {
+    if (!m_panelShown) {
+      present(size);
+    } else if (m_player) {
       const PlaybackRequests requests = drawPlaybackPanel(*m_player, m_stats, m_history, m_view);
       present(size);
       apply(requests);
@@ -281,6 +294,11 @@ class ViewerLoop {
     m_gui.render();
     if (m_options.panelInScreenshots) saveScreenshots(size);
     m_window.swapBuffers();
+  }
+
+  // Home: the camera back on the scene's own view of what it holds now.
+  void home() {
+    m_camera = framingCamera(scene(), world(), m_window.framebufferSize(), m_panelShown);
   }
 
   World& world() { return m_player ? m_player->world() : m_session->world(); }
@@ -345,7 +363,7 @@ class ViewerLoop {
   void apply(const PanelRequests& requests) {
     if (requests.switchTo) {
       m_session->switchScene(*requests.switchTo);
-      m_camera = framingCamera(scene(), m_window.framebufferSize());
+      home();
       m_window.setTitle(windowTitle(scene()));
       m_history.clear();
       m_view.message.clear();
@@ -381,6 +399,7 @@ class ViewerLoop {
   Gui m_gui;
   KeyScript m_script;
   std::unique_ptr<Session> m_session;
+  bool m_panelShown = true;  // Tab hides it
   std::unique_ptr<Player> m_player;
   render::Renderer m_renderer;
   render::Camera m_camera;

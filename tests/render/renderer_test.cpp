@@ -496,7 +496,7 @@ TEST(RenderPng, UnwritablePathThrowsNamingIt) {
 
 TEST(RenderCamera, FramingShowsTheWholeBox) {
   const scenes::SceneBounds box{{-1.0f, 0.0f, -0.5f}, {1.0f, 2.0f, 0.5f}};
-  const render::Camera camera = render::Camera::framing(box, 16.0f / 9.0f);
+  const render::Camera camera = render::Camera::framing({box}, 16.0f / 9.0f);
   const Eigen::Matrix4f m = camera.projection(16.0f / 9.0f) * camera.view();
   for (int corner = 0; corner < 8; ++corner) {
     const Eigen::Vector4f p((corner & 1) ? 1.0f : -1.0f, (corner & 2) ? 2.0f : 0.0f,
@@ -505,6 +505,50 @@ TEST(RenderCamera, FramingShowsTheWholeBox) {
     EXPECT_LE(std::abs(clip.x() / clip.w()), 1.0f) << corner;
     EXPECT_LE(std::abs(clip.y() / clip.w()), 1.0f) << corner;
     EXPECT_LE(std::abs(clip.z() / clip.w()), 1.0f) << corner;
+  }
+}
+
+// A view from any direction, with a panel over the left third: every corner of the focus lands
+// in the rest of the picture, and the box fills it (no corner far inside on every side).
+TEST(RenderCamera, FramingFitsTheFocusBesideThePanel) {
+  const scenes::SceneBounds box{{-2.0f, 0.0f, -0.3f}, {1.0f, 0.5f, 0.7f}};
+  for (const float covered : {0.0f, 0.25f, 1.0f / 3.0f}) {
+    for (const float yaw : {0.0f, 0.6f, 2.5f, -1.2f}) {
+      for (const float pitch : {0.1f, 0.45f, 1.2f}) {
+        SCOPED_TRACE(::testing::Message()
+                     << "covered " << covered << ", yaw " << yaw << ", pitch " << pitch);
+        const float aspect = 16.0f / 10.0f;
+        const render::Camera camera = render::Camera::framing({box, yaw, pitch}, aspect, covered);
+        EXPECT_FLOAT_EQ(camera.yaw, yaw);
+        EXPECT_FLOAT_EQ(camera.pitch, pitch);
+        const Eigen::Matrix4f m = camera.projection(aspect) * camera.view();
+        float left = 1.0f, right = -1.0f, bottom = 1.0f, top = -1.0f;
+        float nearest = camera.distance;  // the nearest corner's depth, m
+        for (int corner = 0; corner < 8; ++corner) {
+          const Eigen::Vector4f p((corner & 1) ? box.max.x : box.min.x,
+                                  (corner & 2) ? box.max.y : box.min.y,
+                                  (corner & 4) ? box.max.z : box.min.z, 1.0f);
+          const Eigen::Vector4f clip = m * p;
+          nearest = std::min(nearest, clip.w());
+          left = std::min(left, clip.x() / clip.w());
+          right = std::max(right, clip.x() / clip.w());
+          bottom = std::min(bottom, clip.y() / clip.w());
+          top = std::max(top, clip.y() / clip.w());
+        }
+        // Clear of the panel (NDC x from -1 to -1 + 2 covered) and of the edges.
+        EXPECT_GE(left, -1.0f + 2.0f * covered - 1e-4f);
+        EXPECT_LE(right, 1.0f + 1e-4f);
+        EXPECT_GE(bottom, -1.0f - 1e-4f);
+        EXPECT_LE(top, 1.0f + 1e-4f);
+        // Tight: in one direction at least the box spans nearly the free part, unless the eye
+        // is as near as it can come (a long box seen end-on: its near end almost at the eye).
+        const float freeWidth = 2.0f * (1.0f - covered);
+        const float fill = std::max((right - left) / freeWidth, (top - bottom) / 2.0f);
+        if (nearest > 0.1f * camera.distance) {
+          EXPECT_GT(fill, 0.85f) << "nearest " << nearest;
+        }
+      }
+    }
   }
 }
 

@@ -299,14 +299,14 @@ BoxLook look(const Image& image, const PixelBox& box) {
 
 // The same short run twice, each frame simulating its whole frame dt (--frame-budget 0) so that
 // both worlds and pictures match, once with --panel-in-screenshots: the pictures (the one of
-// --screenshot and the one of the F key) differ exactly where the panel is, a window of 430 px
-// at (8, 8) drawn in ImGui's dark style, and nowhere else.
+// --screenshot and the one of the F key) differ exactly where the panel is, a window a quarter
+// of the window wide at (8, 8) drawn in ImGui's dark style, and nowhere else.
 TEST(ViewerScreenshots, PanelInScreenshotsAddsThePanelAndLeavesTheScene) {
   ASSERT_NE(std::getenv("DISPLAY"), nullptr) << "run through xvfb-run (CTest does)";
   constexpr int kWidth = 960, kHeight = 600;
-  // The panel's place and width at first use (samples/viewer/panel.cpp); its height follows its
-  // contents, at most the window's.
-  constexpr int kPanelX = 8, kPanelY = 8, kPanelWidth = 430;
+  // The panel's place and width at first use (viewer/panel.h: a quarter of the window, at most
+  // 430 px); its height follows its contents, at most the window's.
+  constexpr int kPanelX = 8, kPanelY = 8, kPanelWidth = kWidth / 4;
   // Edges are allowed this much play, px (ImGui's border and rounding).
   constexpr int kEdgeSlack = 4;
   const fs::path dir = freshDirectory("panel_in_screenshots");

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 
+#include "sandphys/body.h"
 #include "sandphys/ids.h"
 #include "sandphys/math.h"
 
@@ -9,13 +10,14 @@ namespace sandphys {
 
 /// One body as read back from the GPU (World::readBodies, a sync point).
 struct BodyState {
-  BodyId id;               ///< the body, as addBody or addGranules returned it
-  Vec3 position{};         ///< centre of mass, m
-  Quat orientation{};      ///< orientation of the template's original frame
-  Vec3 velocity{};         ///< m/s
-  Vec3 angularVelocity{};  ///< rad/s, world frame
-  bool alive = true;       ///< false once a sink removed it
-  bool granule = true;     ///< a sand granule (not a floor or sampled body)
+  BodyId id;                        ///< the body, as addBody or addGranules returned it
+  Vec3 position{};                  ///< centre of mass, m
+  Quat orientation{};               ///< orientation of the template's original frame
+  Vec3 velocity{};                  ///< m/s
+  Vec3 angularVelocity{};           ///< rad/s, world frame
+  bool alive = true;                ///< false once a sink removed it
+  bool granule = true;              ///< a sand granule (not a floor or sampled body)
+  Motion motion = Motion::Dynamic;  ///< as added: a rough floor is Static
 };
 
 /// One particle as read back from the GPU (World::readParticles, a sync point). Position and

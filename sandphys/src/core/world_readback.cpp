@@ -66,6 +66,7 @@ std::vector<BodyState> World::readBodies() const {
     s.angularVelocity = xyz(stored.spin[i]);
     s.alive = (stored.info[i].z & kBodyAlive) != 0;
     s.granule = (stored.info[i].z & kBodyGranule) != 0;
+    s.motion = w.bodyMotions[i];
   }
   return out;
 }
