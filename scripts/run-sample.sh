@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
-# The main job: installs what is missing, builds the `release` preset and runs the cylinder-pile
-# scene (the paper's benchmark). With a display it opens the viewer. Without one it runs headless
-# until the batch has settled and writes the run's metrics (JSON), the granules at the end (CSV)
-# and a picture of the last frame, rendered offscreen (PNG), to out/.
+# The main job: installs what is missing, builds the `release` preset and runs the avalanche: a
+# block of sand released down a slope onto two wooden blocks that Bullet simulates; it runs over
+# the low one and topples the plank standing on it. With a display it opens the viewer. Without
+# one it runs headless until the sand has come to rest and writes the run's metrics (JSON, with
+# the plank's tilt), the granules at the end (CSV) and a picture of the last frame, rendered
+# offscreen (PNG), to out/, and prints what happened in one line.
 # Usage: scripts/run-sample.sh [extra sandphys-samples options]
 # Environment:
-#   FRAMES   most frames of 1/60 s to run (default 150; the run stops earlier once settled)
-#   BATCH    cylinder-pile granules per batch "X Y Z" (default "8 4 8", 256 granules, a few
-#            minutes on llvmpipe with 2 cores; BATCH= uses the scene's own 32 16 32)
-#   SCENE    scene to run (default cylinder-pile; `sandphys-samples --list` shows them)
+#   FRAMES   most frames of 1/60 s to run (default 600; the run stops earlier once at rest)
+#   SCENE    scene to run (default avalanche; `sandphys-samples --list` shows them)
+#   BATCH    cylinder-pile only: granules per batch "X Y Z" (default "8 4 8", 256 granules;
+#            BATCH= uses the scene's own 32 16 32)
 #   OUT_DIR  where the outputs go (default out, in the repository)
 #   HEADLESS set to anything: run headless (and write the PNG) even with a display
 set -euo pipefail
@@ -16,8 +18,8 @@ set -euo pipefail
 cd -- "$(dirname -- "${BASH_SOURCE[0]}")/.."
 repo_root="$(pwd)"
 
-scene="${SCENE:-cylinder-pile}"
-frames="${FRAMES:-150}"
+scene="${SCENE:-avalanche}"
+frames="${FRAMES:-600}"
 out_dir="${OUT_DIR:-out}"
 default_batch=""
 if [[ "${scene}" == "cylinder-pile" ]]; then default_batch="8 4 8"; fi
@@ -43,7 +45,7 @@ if [[ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" && -z "${HEADLESS:-}" ]]; then
 else
   mode="headless"
   args=(--scene "${scene}" --headless --frames "${frames}" --until-done
-    --metrics "${metrics}" --export "${export_csv}" --screenshot "${picture}")
+    --metrics "${metrics}" --export "${export_csv}" --screenshot "${picture}" --size 960x540)
 fi
 if [[ -n "${batch}" ]]; then
   read -r -a batch_counts <<<"${batch}"

@@ -225,6 +225,8 @@ int runHeadless(RunOptions& options) {
                  static_cast<unsigned long long>(summary.stats.steps),
                  static_cast<double>(summary.timeStep), summary.stats.granulesAlive,
                  summary.granulesLost);
+    const std::string status = options.scene->status();
+    if (!status.empty()) std::fprintf(stderr, "%s: %s\n", summary.scene.c_str(), status.c_str());
     if (lammps) {
       std::fprintf(stderr,
                    "%s: LAMMPS deck %s: %u rigid clumps of %u particles, %u frozen particles, %u "

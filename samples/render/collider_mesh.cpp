@@ -26,20 +26,45 @@ struct MeshBuilder {
     for (int i : {0, 1, 2, 0, 2, 3}) vertex(p[i], n[i]);
   }
 
+  // A plane is infinite: it is drawn as its cut through the scene's box (`clipLo`, `clipHi`), the
+  // part the scene can show, so that a floor or wall seen edge-on does not fill the picture.
   void operator()(const Plane& plane) {
     Eigen::Vector3f n(plane.normal.x, plane.normal.y, plane.normal.z);
     const float length = n.norm();
     if (!(length > 0.0f)) return;
     n /= length;
     const float offset = plane.offset / length;
-    const Eigen::Vector3f centre = planeCentre - (n.dot(planeCentre) - offset) * n;
+    const Eigen::Vector3f middle = 0.5f * (clipLo + clipHi);
+    const Eigen::Vector3f centre = middle - (n.dot(middle) - offset) * n;
     Eigen::Vector3f u =
         n.cross(std::abs(n.y()) < 0.9f ? Eigen::Vector3f::UnitY() : Eigen::Vector3f::UnitX());
-    u = u.normalized() * planeExtent;
+    u = u.normalized() * (clipHi - clipLo).norm();
     const Eigen::Vector3f v = n.cross(u);
+    std::vector<Eigen::Vector3f> polygon{centre - u - v, centre + u - v, centre + u + v,
+                                         centre - u + v};
+    // Sutherland-Hodgman against the box's six faces.
+    for (int axis = 0; axis < 3; ++axis) {
+      for (const float side : {-1.0f, 1.0f}) {
+        const float limit = side < 0.0f ? clipLo[axis] : clipHi[axis];
+        auto inside = [&](const Eigen::Vector3f& p) { return side * (p[axis] - limit) <= 0.0f; };
+        std::vector<Eigen::Vector3f> kept;
+        for (std::size_t i = 0; i < polygon.size(); ++i) {
+          const Eigen::Vector3f& a = polygon[i];
+          const Eigen::Vector3f& b = polygon[(i + 1) % polygon.size()];
+          if (inside(a)) kept.push_back(a);
+          if (inside(a) != inside(b)) {
+            kept.push_back(a + (b - a) * ((limit - a[axis]) / (b[axis] - a[axis])));
+          }
+        }
+        polygon = std::move(kept);
+        if (polygon.size() < 3) return;  // the plane misses the box
+      }
+    }
     // The normal points into the free half-space, where the sand and usually the eye are.
     cutaway = kOneSided;
-    quad({centre - u - v, centre + u - v, centre + u + v, centre - u + v}, {n, n, n, n});
+    for (std::size_t i = 1; i + 1 < polygon.size(); ++i) {
+      for (const Eigen::Vector3f& p : {polygon[0], polygon[i], polygon[i + 1]}) vertex(p, n);
+    }
     cutaway = 0.0f;
   }
 
@@ -102,18 +127,19 @@ struct MeshBuilder {
                f.height);
   }
 
-  Eigen::Vector3f planeCentre;
-  float planeExtent = 1.0f;
+  Eigen::Vector3f clipLo;
+  Eigen::Vector3f clipHi;
 };
 
 }  // namespace
 
 std::vector<MeshVertex> buildColliderMesh(const std::vector<ColliderShape>& colliders,
-                                          const Eigen::Vector3f& planeCentre, float planeExtent) {
+                                          const Eigen::Vector3f& clipLo,
+                                          const Eigen::Vector3f& clipHi) {
   std::vector<MeshVertex> vertices;
   MeshBuilder builder{vertices};
-  builder.planeCentre = planeCentre;
-  builder.planeExtent = planeExtent;
+  builder.clipLo = clipLo;
+  builder.clipHi = clipHi;
   for (const ColliderShape& shape : colliders) std::visit(builder, shape);
   return vertices;
 }

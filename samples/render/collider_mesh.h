@@ -18,9 +18,10 @@ struct MeshVertex {
   float unused;
 };
 
-/// Triangles (no index buffer) for every collider, with outward normals. A plane becomes a
-/// square of half-side `planeExtent` (m) centred on the point of the plane nearest `planeCentre`.
+/// Triangles (no index buffer) for every collider, with outward normals. A plane becomes its cut
+/// through the box [clipLo, clipHi] (m), nothing when it misses it.
 std::vector<MeshVertex> buildColliderMesh(const std::vector<ColliderShape>& colliders,
-                                          const Eigen::Vector3f& planeCentre, float planeExtent);
+                                          const Eigen::Vector3f& clipLo,
+                                          const Eigen::Vector3f& clipHi);
 
 }  // namespace sandphys::render

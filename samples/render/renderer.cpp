@@ -386,9 +386,10 @@ void Renderer::Impl::draw(const World& world, const Camera& camera,
 
   std::vector<MeshVertex> mesh;
   if (settings.drawColliders) {
-    // Planes as a patch around the scene's bounds, not out to the horizon: a floor or wall
-    // seen edge-on would otherwise fill the picture.
-    mesh = buildColliderMesh(world.colliders(), 0.5f * (lo + hi), 0.6f * (hi - lo).norm());
+    // Planes cut to the scene's bounds (a little wider, so that a floor at their bottom face
+    // is not cut at a rounding's whim).
+    const Eigen::Vector3f room = 0.02f * (hi - lo) + Eigen::Vector3f::Constant(1e-4f);
+    mesh = buildColliderMesh(world.colliders(), lo - room, hi + room);
   }
   uploadMesh(mesh);
 

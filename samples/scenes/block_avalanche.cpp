@@ -160,7 +160,12 @@ std::vector<SceneBody> BlockAvalanche::blockBodies() const {
 std::string BlockAvalanche::status() const {
   const std::vector<SceneBody> blocks = blockBodies();
   if (blocks.empty()) return m_slope.status();
-  return m_slope.status() + ", plank tilt " + std::to_string(int(blocks[1].tiltDegrees)) + " deg";
+  const std::string degrees = std::to_string(int(blocks[1].tiltDegrees)) + " deg";
+  if (!m_slope.finished()) return m_slope.status() + ", plank tilt " + degrees;
+  // A plank leaning past 45 degrees has fallen: it cannot stand on its end again.
+  return "came to rest; the plank " +
+         std::string(blocks[1].tiltDegrees > 45.0f ? "toppled" : "still stands") + " (tilt " +
+         degrees + ")";
 }
 
 std::vector<SceneMetric> BlockAvalanche::metrics(std::span<const BodyState> bodies) const {

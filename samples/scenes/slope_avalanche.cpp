@@ -158,8 +158,14 @@ void SlopeAvalanche::update(World& world, const StepReport& report, double simTi
 
 std::string SlopeAvalanche::status() const {
   if (!released()) return "held";
-  if (m_course.done()) return "stopped";
+  if (m_course.done()) return "came to rest";
   return "released at " + std::to_string(releasedAt()).substr(0, 5) + " s";
+}
+
+SceneView SlopeAvalanche::view(const std::optional<SceneBounds>& contents) const {
+  SceneBounds focus = bounds();
+  if (contents) focus.max.y = std::min(focus.max.y, contents->max.y + 4.0f * d());
+  return {focus, 0.35f, 0.35f};
 }
 
 bool SlopeAvalanche::contains(const Vec3& centre) const {

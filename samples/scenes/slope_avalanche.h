@@ -53,10 +53,9 @@ class SlopeAvalanche final : public kit::SceneWith<SlopeAvalancheConfig> {
   /// fraction of granules that moved more than movedDistance.
   std::vector<SceneMetric> metrics(std::span<const BodyState> bodies) const override;
   SceneBounds bounds() const override;
-  /// The slope and its run-out from the side (+z, a little above): where the sand goes.
-  SceneView view(const std::optional<SceneBounds>&) const override {
-    return {bounds(), 0.35f, 0.35f};
-  }
+  /// The slope and its run-out from the side (+z, a little above), up to a little over the sand:
+  /// where the sand goes, not the walls' empty tops.
+  SceneView view(const std::optional<SceneBounds>& contents) const override;
 
   std::uint32_t blockGranules() const;
   /// Unit vector down the slope.
