@@ -69,5 +69,36 @@ TEST(ReadbackIds, AreTheIdsTheBodiesWereAddedWith) {
   EXPECT_EQ(w->readBody(between->bodyB).position, bodies[high.index].position);
 }
 
+// Bodies placed before any step (or between steps) show in readParticles where the next substep
+// starts them, and so do their motion and the floor's: Static, Kinematic, Dynamic in BodyState.
+TEST(ReadbackIds, ParticlesOfBodiesJustPlacedAreWhereTheirBodiesAre) {
+  testing::TestWorld w;
+  const float d = w->settings().particleDiameter;
+  const BodyId floor = w->addRoughFloor(RoughFloor{.center = {0.0f, -0.1f, 0.0f}, .radius = 3 * d});
+  const BodyId sphere = w.addSphere({0.25f, 0.5f, -0.125f});
+  const BodyId carried = w->addBody(makeParticleTemplate({{0.0f, 0.0f, 0.0f}}, d, 2600.0f),
+                                    {.position = {0.5f, 0.25f, 0.0f}, .motion = Motion::Kinematic});
+  for (const ParticleState& p : w->readParticles()) {
+    if (p.body == sphere) {
+      EXPECT_EQ(p.position, (Vec3{0.25f, 0.5f, -0.125f}));
+    } else if (p.body == carried) {
+      EXPECT_EQ(p.position, (Vec3{0.5f, 0.25f, 0.0f}));
+    } else if (p.body == floor) {
+      EXPECT_FLOAT_EQ(p.position.y, -0.1f);
+    }
+  }
+  const std::vector<BodyState> bodies = w->readBodies();
+  EXPECT_EQ(bodies[floor.index].motion, Motion::Static);
+  EXPECT_EQ(bodies[sphere.index].motion, Motion::Dynamic);
+  EXPECT_EQ(bodies[carried.index].motion, Motion::Kinematic);
+  // Moved by the CPU between steps: read where it was put.
+  w->setBodyState(carried, {.position = {0.5f, 0.3f, 0.0f}, .motion = Motion::Kinematic});
+  for (const ParticleState& p : w->readParticles()) {
+    if (p.body == carried) {
+      EXPECT_EQ(p.position, (Vec3{0.5f, 0.3f, 0.0f}));
+    }
+  }
+}
+
 }  // namespace
 }  // namespace sandphys

@@ -119,6 +119,43 @@ TEST_P(ViewerScene, RunsAndTakesAKeyScreenshot) {
   expectPicture(dir / "last.png", 320, 240);
 }
 
+// The window opens on the scene's own view (Scene::view), clear of the panel: in the first
+// picture, panel included, the sand shows beside the panel's place, and hardly any of it under
+// that place (it is framed in the rest of the window). Sand is told by its colour: the
+// renderer's grains are tan to orange (red over green over blue), the colliders, bodies, panel and
+// sky grey or blue.
+TEST_P(ViewerScene, OpensOnItsSandBesideThePanel) {
+  ASSERT_NE(std::getenv("DISPLAY"), nullptr) << "run through xvfb-run (CTest does)";
+  const scenes::SceneEntry& entry = *GetParam();
+  const std::string name(entry.name);
+  const fs::path dir = freshDirectory(name + "_view");
+  constexpr int kWidth = 640, kHeight = 400;
+  // The panel's place at first use: (8, 8), a quarter of the window wide (viewer/panel.h).
+  constexpr int kPanelRight = 8 + kWidth / 4 + 4;
+  const testing::ProcessResult result =
+      runViewer(dir, "",
+                // Frames of 0.02 s run whole (no frame budget): a pour has begun by the last.
+                "--scene " + name + smallSceneParameters(entry) +
+                    " --frames 8 --frame-dt 0.02 --frame-budget 0 --size " +
+                    std::to_string(kWidth) + "x" + std::to_string(kHeight) +
+                    " --panel-in-screenshots --screenshot " + quoted((dir / "last.png").string()));
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  const Image image = readPng(dir / "last.png");
+  ASSERT_EQ(image.width, kWidth);
+  long beside = 0, under = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const unsigned char* p = &image.rgb[3 * (static_cast<std::size_t>(y) * image.width + x)];
+      const bool sand = p[0] > 90 && p[0] > p[1] + 12 && p[1] > p[2] + 12;
+      if (sand) ++(x < kPanelRight ? under : beside);
+    }
+  }
+  std::printf("%s: %ld sand pixels beside the panel, %ld under its place\n", name.c_str(), beside,
+              under);
+  EXPECT_GT(beside, 200) << "no sand beside the panel";
+  EXPECT_LT(under, beside / 10) << "the sand is framed under the panel";
+}
+
 INSTANTIATE_TEST_SUITE_P(AllScenes, ViewerScene, ::testing::ValuesIn(testing::registeredScenes()),
                          testing::sceneTestName);
 

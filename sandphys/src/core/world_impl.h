@@ -216,6 +216,9 @@ struct World::Impl {
   /// Its parts: the particles the CPU changed (and a build request when it changed bodies), and
   /// the build's passes, which run with zero groups when the decision found no build due.
   void prepareBodies();
+  /// The particles of bodies the CPU set since the last substep, from their bodies (the same pass
+  /// the next substep would run first, so running it earlier changes no bit); `name` as dispatch.
+  void writeDirtyParticles(const char* name);
   void buildLists();
   void runSubstep();
   /// `name` nullptr: not timed by the profiler (a pass outside the substeps).

@@ -110,18 +110,20 @@ void World::Impl::prepareBodies() {
   if (paramsDirty) uploadParams();
   // 0. The particles of bodies the CPU set, from their bodies (eq. 7, 8); the integration writes
   // the others'.
-  if (dirtyEnd > dirtyBegin) {
-    glUseProgram(kernels.bodiesToParticles);
-    glUniform2ui(0, dirtyBegin, dirtyEnd - dirtyBegin);
-    dispatch(kernels.bodiesToParticles, "bodies_to_particles", dirtyEnd - dirtyBegin,
-             kWorkgroupSize);
-    dirtyBegin = dirtyEnd = 0;
-  }
+  writeDirtyParticles("bodies_to_particles");
   // The CPU asks for a list build when it changed the bodies (added, restored) or the table.
   if (listsStale) {
     buffers[kCounters].upload(4 * kCounterListRequested, 4, &kListRequestAll);
     listsStale = false;
   }
+}
+
+void World::Impl::writeDirtyParticles(const char* name) {
+  if (dirtyEnd <= dirtyBegin) return;
+  glUseProgram(kernels.bodiesToParticles);
+  glUniform2ui(0, dirtyBegin, dirtyEnd - dirtyBegin);
+  dispatch(kernels.bodiesToParticles, name, dirtyEnd - dirtyBegin, kWorkgroupSize);
+  dirtyBegin = dirtyEnd = 0;
 }
 
 void World::Impl::buildLists() {

@@ -127,6 +127,14 @@ BodyState World::readBody(BodyId id) const {
 std::vector<ParticleState> World::readParticles() const {
   const Impl& w = impl();
   w.gpu->makeCurrent();
+  // Bodies placed since the last substep: their particles as the next substep will start from
+  // them (not profiled: no step's work).
+  if (w.dirtyEnd > w.dirtyBegin) {
+    Impl& writable = const_cast<Impl&>(w);
+    if (writable.paramsDirty) writable.uploadParams();
+    writable.buffers.bindAll();
+    writable.writeDirtyParticles(nullptr);
+  }
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   auto owner = download<std::uint32_t>(w.buffers[kParticleBody], w.particleCount);
   auto position = download<GpuVec4>(w.buffers[kParticlePosition], w.particleCount);
