@@ -26,13 +26,6 @@ Vec3 xyz(const GpuVec4& v) {
   return {v.x, v.y, v.z};
 }
 
-template <typename T>
-std::vector<T> download(const gl::Buffer& buffer, std::uint32_t count) {
-  std::vector<T> out(count);
-  buffer.download(0, count * sizeof(T), out.data());
-  return out;
-}
-
 // Every body slot in use, as the GPU stores it.
 struct StoredBodies {
   std::vector<GpuVec4> position, orientation, velocity, spin;
@@ -42,11 +35,11 @@ struct StoredBodies {
 StoredBodies downloadBodies(const World::Impl& w, const char* call) {
   w.gpu->makeCurrent();
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  StoredBodies b{download<GpuVec4>(w.buffers[kBodyPosition], w.bodyCount),
-                 download<GpuVec4>(w.buffers[kBodyOrientation], w.bodyCount),
-                 download<GpuVec4>(w.buffers[kBodyVelocity], w.bodyCount),
-                 download<GpuVec4>(w.buffers[kBodyAngularVelocity], w.bodyCount),
-                 download<GpuUVec4>(w.buffers[kBodyInfo], w.bodyCount)};
+  StoredBodies b{w.buffers[kBodyPosition].downloadArray<GpuVec4>(w.bodyCount),
+                 w.buffers[kBodyOrientation].downloadArray<GpuVec4>(w.bodyCount),
+                 w.buffers[kBodyVelocity].downloadArray<GpuVec4>(w.bodyCount),
+                 w.buffers[kBodyAngularVelocity].downloadArray<GpuVec4>(w.bodyCount),
+                 w.buffers[kBodyInfo].downloadArray<GpuUVec4>(w.bodyCount)};
   gl::check(call);
   return b;
 }
@@ -136,10 +129,10 @@ std::vector<ParticleState> World::readParticles() const {
     writable.writeDirtyParticles(nullptr);
   }
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  auto owner = download<std::uint32_t>(w.buffers[kParticleBody], w.particleCount);
-  auto position = download<GpuVec4>(w.buffers[kParticlePosition], w.particleCount);
-  auto velocity = download<GpuVec4>(w.buffers[kParticleVelocity], w.particleCount);
-  auto force = download<GpuVec4>(w.buffers[kParticleForce], w.particleCount);
+  auto owner = w.buffers[kParticleBody].downloadArray<std::uint32_t>(w.particleCount);
+  auto position = w.buffers[kParticlePosition].downloadArray<GpuVec4>(w.particleCount);
+  auto velocity = w.buffers[kParticleVelocity].downloadArray<GpuVec4>(w.particleCount);
+  auto force = w.buffers[kParticleForce].downloadArray<GpuVec4>(w.particleCount);
   gl::check("World::readParticles");
   std::vector<ParticleState> out(w.particleCount);
   for (std::uint32_t i = 0; i < w.particleCount; ++i) {
@@ -274,7 +267,7 @@ std::vector<BodyForce> World::takeBodyForces() {
   if (w.largeBodies.empty()) return out;
   w.gpu->makeCurrent();
   const auto count = std::uint32_t(w.largeBodies.size());
-  const std::vector<GpuVec4> sums = download<GpuVec4>(w.buffers[kLargeBodyForces], 2 * count);
+  const std::vector<GpuVec4> sums = w.buffers[kLargeBodyForces].downloadArray<GpuVec4>(2 * count);
   w.buffers[kLargeBodyForces].zero();
   out.reserve(count);
   for (std::uint32_t i = 0; i < count; ++i) {

@@ -15,13 +15,6 @@ namespace sandphys::detail {
 
 namespace {
 
-template <typename T>
-std::vector<T> download(const gl::Buffer& buffer, std::uint32_t count) {
-  std::vector<T> out(count);
-  if (count > 0) buffer.download(0, count * sizeof(T), out.data());
-  return out;
-}
-
 Eigen::Vector3d vec(const GpuVec4& v) {
   return {v.x, v.y, v.z};
 }
@@ -36,13 +29,13 @@ LammpsScene gatherLammpsScene(const World& world) {
   const World::Impl& w = WorldAccess::impl(world);
   w.gpu->makeCurrent();
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  const auto position = download<GpuVec4>(w.buffers[kBodyPosition], w.bodyCount);
-  const auto orientation = download<GpuVec4>(w.buffers[kBodyOrientation], w.bodyCount);
-  const auto velocity = download<GpuVec4>(w.buffers[kBodyVelocity], w.bodyCount);
-  const auto spin = download<GpuVec4>(w.buffers[kBodyAngularVelocity], w.bodyCount);
-  const auto inertia = download<GpuVec4>(w.buffers[kBodyInertia], w.bodyCount);
-  const auto info = download<GpuUVec4>(w.buffers[kBodyInfo], w.bodyCount);
-  const auto local = download<GpuVec4>(w.buffers[kParticleLocal], w.particleCount);
+  const auto position = w.buffers[kBodyPosition].downloadArray<GpuVec4>(w.bodyCount);
+  const auto orientation = w.buffers[kBodyOrientation].downloadArray<GpuVec4>(w.bodyCount);
+  const auto velocity = w.buffers[kBodyVelocity].downloadArray<GpuVec4>(w.bodyCount);
+  const auto spin = w.buffers[kBodyAngularVelocity].downloadArray<GpuVec4>(w.bodyCount);
+  const auto inertia = w.buffers[kBodyInertia].downloadArray<GpuVec4>(w.bodyCount);
+  const auto info = w.buffers[kBodyInfo].downloadArray<GpuUVec4>(w.bodyCount);
+  const auto local = w.buffers[kParticleLocal].downloadArray<GpuVec4>(w.particleCount);
   gl::check("exportLammps");
 
   LammpsScene scene;

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 namespace sandphys::gl {
 
@@ -25,6 +26,13 @@ class Buffer {
   void upload(std::size_t offset, std::size_t bytes, const void* data);
   /// Sync point: waits for the GPU.
   void download(std::size_t offset, std::size_t bytes, void* data) const;
+  /// The first `count` elements of type T. Sync point.
+  template <typename T>
+  std::vector<T> downloadArray(std::size_t count) const {
+    std::vector<T> out(count);
+    if (count > 0) download(0, count * sizeof(T), out.data());
+    return out;
+  }
   void zero();
   /// Copies this buffer's first `bytes` into a new, larger buffer, which replaces it.
   void grow(std::size_t newBytes, std::size_t bytesToKeep);
