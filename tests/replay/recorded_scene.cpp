@@ -1,13 +1,20 @@
 #include "replay/recorded_scene.h"
 
+#include <unistd.h>
+
+#include <string>
+
 #include "app/progress.h"
 #include "app/recording.h"
 #include "support/test_world.h"
 
 namespace sandphys::samples {
 
+// The process id in the name: CTest runs each test in a process of its own, several at once,
+// and two tests recording the same scene must not write one file.
 std::filesystem::path tempRecording(const std::string& name) {
-  return std::filesystem::temp_directory_path() / ("sandphys_replay_" + name + ".sprec");
+  return std::filesystem::temp_directory_path() /
+         ("sandphys_replay_" + std::to_string(::getpid()) + "_" + name + ".sprec");
 }
 
 RunSummary recordScene(scenes::Scene& scene, const std::filesystem::path& file,
