@@ -110,8 +110,16 @@ BodyId Bridge::couple(btRigidBody* body, const TriangleMesh& surface,
   desc.angularVelocity = toSand(body->getAngularVelocity());
   desc.motion = isStatic ? Motion::Static : Motion::Kinematic;
   const BodyId id = m_sand.addBody(shape, desc);
-  m_coupled.push_back(
-      {body, id, std::uint32_t(shape.offsets.size()), {}, {}, shape.boundingRadius + 0.5f * d});
+  Coupled coupled{body, id, std::uint32_t(shape.offsets.size()),
+                  {},   {}, shape.boundingRadius + 0.5f * d};
+  coupled.surface = surface;
+  coupled.principalRotation = shape.principalRotation;
+  if (isStatic) {
+    // The sampled template is about the surface's own centre of mass.
+    const auto& com = sampled.massProperties.centreOfMass;
+    for (Vec3& v : coupled.surface.vertices) v -= Vec3{float(com[0]), float(com[1]), float(com[2])};
+  }
+  m_coupled.push_back(std::move(coupled));
   m_frameForce.emplace_back();
   m_frameTorque.emplace_back();
   m_lastForce.emplace_back();

@@ -55,7 +55,8 @@ class Screenshots {
         render::Camera::framing(m_scene.view(scenes::contentsOf(m_scene, world)),
                                 float(m_size.width) / float(m_size.height));
     m_target.bind();
-    m_renderer.draw(world, camera, m_scene.bounds(), m_size.width, m_size.height);
+    m_renderer.draw(world, camera, m_scene.bounds(), m_size.width, m_size.height,
+                    m_scene.surfaces());
     const std::vector<std::uint8_t> pixels = m_target.readRgba();
     const render::RenderStats& stats = m_renderer.finishStats();
     m_gpuMilliseconds += stats.totalMs;

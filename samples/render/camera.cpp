@@ -25,6 +25,7 @@ Camera Camera::framing(const scenes::SceneView& view, float aspect, float covere
   const Eigen::Vector3f hi(view.focus.max.x, view.focus.max.y, view.focus.max.z);
   const Eigen::Vector3f centre = 0.5f * (lo + hi);
   Camera camera;
+  camera.focus = view.focus;
   camera.yaw = view.yaw;
   camera.pitch = view.pitch;
   camera.target = centre;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 
 #include "scenes/scene.h"
 
@@ -19,6 +20,9 @@ struct Camera {
   float pitch = 0.45f;
   /// Vertical field of view, rad; in (0, π).
   float fovY = 0.75f;
+  /// What the camera was framed on (framing sets it; orbiting keeps it): colliders between the
+  /// eye and this box are drawn see-through, so that a wall never hides the sand.
+  std::optional<scenes::SceneBounds> focus;
 
   /// Eye position, m (world).
   Eigen::Vector3f eye() const;

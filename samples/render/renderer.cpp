@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <string>
 
@@ -14,6 +15,7 @@
 #include "gl/shader_library.h"
 #include "render/collider_mesh.h"
 #include "render/render_shaders.h"
+#include "render/surface_mesh.h"
 
 namespace sandphys::render {
 
@@ -43,6 +45,9 @@ constexpr GLuint kBodyInfoBinding = 2;
 constexpr GLuint kParticleLocalBinding = 3;
 constexpr GLuint kParticleBodyBinding = 4;
 constexpr GLuint kBodyVelocityBinding = 5;
+// The renderer's own: shaders/render/particles.vert's surfaceBodies.
+constexpr GLuint kSurfaceBodiesBinding = 6;
+constexpr GLint kVertexStorageBlocks = 7;
 constexpr GLuint kFrameParamsBinding = 0;
 
 // Timestamps per frame: before the shadow pass, then after each of the three passes.
@@ -73,6 +78,11 @@ struct Renderer::Impl {
   float maxPointSize = 1.0f;  // px
   GLuint meshShadow = 0;
   GLuint meshScene = 0;
+  GLuint surfaceShadow = 0;
+  GLuint surfaceScene = 0;
+  GLint surfaceAlbedo = -1;
+  GLint meshFocusMin = -1;
+  GLint meshFocusMax = -1;
   GLuint composite = 0;
   GLuint upscale = 0;
   GLint compositeAoSamples = -1;
@@ -82,7 +92,15 @@ struct Renderer::Impl {
   GLuint meshVao = 0;
   GLuint meshBuffer = 0;
   std::size_t meshCapacity = 0;  // vertices
-  GLuint frameParams[2] = {};    // 0: light's pass, 1: eye's passes
+  // The bodies' surfaces (surface_mesh.h) as last uploaded, and which bodies have one.
+  GLuint surfaceVao = 0;
+  GLuint surfaceBuffer = 0;
+  GLsizei surfaceVertices = 0;
+  std::uint64_t surfaceHash = 0;
+  bool surfacesUploaded = false;
+  GLuint surfaceBodies = 0;
+  GLuint surfaceBodyWords = 0;
+  GLuint frameParams[2] = {};  // 0: light's pass, 1: eye's passes
 
   int shadowSize = 0;
   GLuint shadowFramebuffer = 0;
@@ -110,11 +128,11 @@ struct Renderer::Impl {
   Impl() {
     GLint vertexBlocks = 0;
     glGetIntegerv(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS, &vertexBlocks);
-    if (vertexBlocks < 5) {
-      throw GpuError(
-          "the renderer reads the World's buffers in its vertex shader and needs 5 "
-          "shader storage blocks there; this GL offers " +
-          std::to_string(vertexBlocks));
+    if (vertexBlocks < kVertexStorageBlocks) {
+      throw GpuError("the renderer reads the World's buffers in its vertex shader and needs " +
+                     std::to_string(kVertexStorageBlocks) +
+                     " shader storage blocks there; this GL offers " +
+                     std::to_string(vertexBlocks));
     }
     gl::ShaderLibrary library(gl::renderShaders());
     const std::vector<gl::ShaderStage> particles = {{GL_VERTEX_SHADER, "render/particles.vert"},
@@ -133,6 +151,13 @@ struct Renderer::Impl {
     }
     meshShadow = library.compileProgram(mesh, {"SHADOW_PASS 1"});
     meshScene = library.compileProgram(mesh);
+    meshFocusMin = glGetUniformLocation(meshScene, "focusMin");
+    meshFocusMax = glGetUniformLocation(meshScene, "focusMax");
+    const std::vector<gl::ShaderStage> surface = {{GL_VERTEX_SHADER, "render/surface.vert"},
+                                                  {GL_FRAGMENT_SHADER, "render/surface.frag"}};
+    surfaceShadow = library.compileProgram(surface, {"SHADOW_PASS 1"});
+    surfaceScene = library.compileProgram(surface);
+    surfaceAlbedo = glGetUniformLocation(surfaceScene, "materialAlbedo");
     composite = library.compileProgram({{GL_VERTEX_SHADER, "render/fullscreen.vert"},
                                         {GL_FRAGMENT_SHADER, "render/composite.frag"}});
     upscale = library.compileProgram({{GL_VERTEX_SHADER, "render/fullscreen.vert"},
@@ -142,6 +167,7 @@ struct Renderer::Impl {
 
     glCreateVertexArrays(1, &emptyVao);
     glCreateVertexArrays(1, &meshVao);
+    glCreateVertexArrays(1, &surfaceVao);
     glCreateBuffers(2, frameParams);
     for (GLuint buffer : frameParams) {
       glNamedBufferStorage(buffer, sizeof(FrameParams), nullptr, GL_DYNAMIC_STORAGE_BIT);
@@ -151,12 +177,15 @@ struct Renderer::Impl {
 
   ~Impl() {
     for (GLuint program : {pointsShadow, pointsScene, particlesShadow, particlesScene, meshShadow,
-                           meshScene, composite, upscale}) {
+                           meshScene, surfaceShadow, surfaceScene, composite, upscale}) {
       glDeleteProgram(program);
     }
     glDeleteVertexArrays(1, &emptyVao);
     glDeleteVertexArrays(1, &meshVao);
+    glDeleteVertexArrays(1, &surfaceVao);
     glDeleteBuffers(1, &meshBuffer);
+    glDeleteBuffers(1, &surfaceBuffer);
+    glDeleteBuffers(1, &surfaceBodies);
     glDeleteBuffers(2, frameParams);
     releaseShadowMap();
     releaseSceneTargets();
@@ -266,6 +295,47 @@ struct Renderer::Impl {
     }
   }
 
+  // Uploads the surfaces' triangles and the bit set of the bodies they cover, when they are not
+  // those of the last upload.
+  void uploadSurfaces(std::span<const scenes::SceneSurface> surfaces) {
+    const std::uint64_t hash = surfacesHash(surfaces);
+    if (surfacesUploaded && hash == surfaceHash) return;
+    surfaceHash = hash;
+    surfacesUploaded = true;
+    const std::vector<SurfaceVertex> vertices = buildSurfaceMesh(surfaces);
+    std::vector<GLuint> bits;
+    for (const scenes::SceneSurface& s : surfaces) {
+      if (!s.body.isValid()) continue;
+      const std::size_t word = s.body.index / 32u;
+      if (bits.size() <= word) bits.resize(word + 1, 0u);
+      bits[word] |= 1u << (s.body.index % 32u);
+    }
+    glDeleteBuffers(1, &surfaceBuffer);
+    glDeleteBuffers(1, &surfaceBodies);
+    surfaceBuffer = surfaceBodies = 0;
+    surfaceVertices = GLsizei(vertices.size());
+    surfaceBodyWords = GLuint(bits.size());
+    if (!vertices.empty()) {
+      glCreateBuffers(1, &surfaceBuffer);
+      glNamedBufferStorage(surfaceBuffer, GLsizeiptr(vertices.size() * sizeof(SurfaceVertex)),
+                           vertices.data(), 0);
+      glVertexArrayVertexBuffer(surfaceVao, 0, surfaceBuffer, 0, sizeof(SurfaceVertex));
+      glVertexArrayAttribFormat(surfaceVao, 0, 3, GL_FLOAT, GL_FALSE, offsetof(SurfaceVertex, x));
+      glVertexArrayAttribIFormat(surfaceVao, 1, 1, GL_UNSIGNED_INT, offsetof(SurfaceVertex, body));
+      glVertexArrayAttribFormat(surfaceVao, 2, 3, GL_FLOAT, GL_FALSE, offsetof(SurfaceVertex, nx));
+      glVertexArrayAttribIFormat(surfaceVao, 3, 1, GL_UNSIGNED_INT,
+                                 offsetof(SurfaceVertex, material));
+      for (GLuint attribute = 0; attribute < 4; ++attribute) {
+        glEnableVertexArrayAttrib(surfaceVao, attribute);
+        glVertexArrayAttribBinding(surfaceVao, attribute, 0);
+      }
+    }
+    // Never empty, so that binding 6 always names a buffer.
+    if (bits.empty()) bits.push_back(0u);
+    glCreateBuffers(1, &surfaceBodies);
+    glNamedBufferStorage(surfaceBodies, GLsizeiptr(bits.size() * sizeof(GLuint)), bits.data(), 0);
+  }
+
   // Reads a finished set of timestamps into `stats`; waits only when asked to.
   void collect(int set, bool wait) {
     if (!pending[set]) return;
@@ -305,11 +375,20 @@ struct Renderer::Impl {
   }
 
   void draw(const World& world, const Camera& camera, const scenes::SceneBounds& bounds, int w,
-            int h);
+            int h, std::span<const scenes::SceneSurface> surfaces);
+
+  // The surfaces' triangles with `program` (the shadow or the scene pass).
+  void drawSurfaces(GLuint program) const {
+    if (surfaceVertices == 0) return;
+    glUseProgram(program);
+    glBindVertexArray(surfaceVao);
+    glDrawArrays(GL_TRIANGLES, 0, surfaceVertices);
+  }
 };
 
 void Renderer::Impl::draw(const World& world, const Camera& camera,
-                          const scenes::SceneBounds& bounds, int w, int h) {
+                          const scenes::SceneBounds& bounds, int w, int h,
+                          std::span<const scenes::SceneSurface> surfaces) {
   if (w < 1 || h < 1) {
     throw InvalidArgument("Renderer::draw viewport " + std::to_string(w) + "x" + std::to_string(h) +
                           ": each side must be >= 1");
@@ -392,6 +471,7 @@ void Renderer::Impl::draw(const World& world, const Camera& camera,
     mesh = buildColliderMesh(world.colliders(), lo - room, hi + room);
   }
   uploadMesh(mesh);
+  uploadSurfaces(surfaces);
 
   // --- Bind the World's buffers (read-only) ----------------------------------------------------
   // The simulation's last writes must be visible to the vertex shader's storage reads.
@@ -402,10 +482,28 @@ void Renderer::Impl::draw(const World& world, const Camera& camera,
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kParticleLocalBinding, buffers.particleLocal);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kParticleBodyBinding, buffers.particleBody);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBodyVelocityBinding, buffers.bodyVelocity);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSurfaceBodiesBinding, surfaceBodies);
   const GLuint asleepFrom = settings.tintSleeping ? buffers.sleepSubsteps : 0u;
   for (GLuint program : {pointsScene, particlesScene}) {
     glProgramUniform1ui(program, glGetUniformLocation(program, "asleepFrom"), asleepFrom);
   }
+  // The surfaces stand in for their bodies' particles, unless the particles are asked for.
+  const GLuint hiddenWords = settings.bodyParticles ? 0u : surfaceBodyWords;
+  for (GLuint program : {pointsShadow, pointsScene, particlesShadow, particlesScene}) {
+    glProgramUniform1ui(program, glGetUniformLocation(program, "surfaceBodyWords"), hiddenWords);
+  }
+  const GLsizei surfaceCount = settings.bodyParticles ? 0 : surfaceVertices;
+  float albedo[3 * scenes::kBodyMaterials];
+  for (std::size_t m = 0; m < scenes::kBodyMaterials; ++m) {
+    for (int c = 0; c < 3; ++c) {
+      albedo[3 * m + c] = std::pow(std::clamp(settings.materialColours[m][c], 0.0f, 1.0f), 2.2f);
+    }
+  }
+  glProgramUniform3fv(surfaceScene, surfaceAlbedo, GLsizei(scenes::kBodyMaterials), albedo);
+  const scenes::SceneBounds focus = camera.focus.value_or(scenes::SceneBounds{});
+  glProgramUniform4f(meshScene, meshFocusMin, focus.min.x, focus.min.y, focus.min.z,
+                     camera.focus ? 1.0f : 0.0f);
+  glProgramUniform3f(meshScene, meshFocusMax, focus.max.x, focus.max.y, focus.max.z);
   const GLsizei particles = GLsizei(buffers.particleCount);
   // Whether some particle may need a larger square than a point sprite allows, so that the quad
   // draw must follow the points. From the light: every particle has the same size. From the
@@ -444,6 +542,12 @@ void Renderer::Impl::draw(const World& world, const Camera& camera,
       glDrawArrays(GL_TRIANGLES, 0, GLsizei(mesh.size()));
       glDisable(GL_POLYGON_OFFSET_FILL);
     }
+    if (surfaceCount > 0) {
+      glEnable(GL_POLYGON_OFFSET_FILL);
+      glPolygonOffset(2.0f, 4.0f);
+      drawSurfaces(surfaceShadow);
+      glDisable(GL_POLYGON_OFFSET_FILL);
+    }
   }
   glQueryCounter(queries[set][1], GL_TIMESTAMP);
 
@@ -462,6 +566,7 @@ void Renderer::Impl::draw(const World& world, const Camera& camera,
     glBindVertexArray(meshVao);
     glDrawArrays(GL_TRIANGLES, 0, GLsizei(mesh.size()));
   }
+  if (surfaceCount > 0) drawSurfaces(surfaceScene);
   glQueryCounter(queries[set][2], GL_TIMESTAMP);
 
   // --- 3. Composite: ambient occlusion, tone, sRGB, depth into the caller's framebuffer --------
@@ -509,8 +614,9 @@ const RenderSettings& Renderer::settings() const {
 }
 
 void Renderer::draw(const World& world, const Camera& camera,
-                    const scenes::SceneBounds& shadowBounds, int width, int height) {
-  m_impl->draw(world, camera, shadowBounds, width, height);
+                    const scenes::SceneBounds& shadowBounds, int width, int height,
+                    std::span<const scenes::SceneSurface> surfaces) {
+  m_impl->draw(world, camera, shadowBounds, width, height, surfaces);
 }
 
 const RenderStats& Renderer::stats() const {

@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <span>
 
 #include <sandphys/world.h>
 
@@ -45,6 +46,13 @@ struct RenderSettings {
   bool drawColliders = true;
   /// Sleeping granules (WorldSettings::sleep) are drawn tinted blue-grey.
   bool tintSleeping = false;
+  /// Colour of each scenes::BodyMaterial (wood, stone, metal), sRGB in [0, 1].
+  std::array<Eigen::Vector3f, scenes::kBodyMaterials> materialColours = {
+      Eigen::Vector3f{0.46f, 0.26f, 0.14f}, Eigen::Vector3f{0.47f, 0.46f, 0.44f},
+      Eigen::Vector3f{0.40f, 0.44f, 0.50f}};
+  /// Bodies that have a surface (Scene::surfaces) are drawn as their particles instead, as the
+  /// sand sees them (a debug view).
+  bool bodyParticles = false;
 };
 
 /// GPU time of the last frame whose timer queries were ready, measured with GL_TIMESTAMP
@@ -76,9 +84,11 @@ class Renderer {
 
   /// Draws `world` seen by `camera` into the currently bound draw framebuffer at viewport (0, 0,
   /// width, height), writing colour and depth. The shadow map covers `shadowBounds` (m, world):
-  /// give the scene's bounds. No read-back: the timer queries are read a frame later.
+  /// give the scene's bounds. The bodies of `surfaces` (Scene::surfaces) are drawn as those
+  /// surfaces in their materials, the rest as their particles; the surfaces are uploaded when
+  /// they differ from the last draw's. No read-back: the timer queries are read a frame later.
   void draw(const World& world, const Camera& camera, const scenes::SceneBounds& shadowBounds,
-            int width, int height);
+            int width, int height, std::span<const scenes::SceneSurface> surfaces = {});
 
   /// Times of the newest frame whose queries are ready (no wait).
   const RenderStats& stats() const;

@@ -129,7 +129,11 @@ void BlockAvalanche::build(World& world) {
   m_blocks->addBlock("plank", plank, btVector3(lowX, floorY + 2.0f * low.y() + plank.y(), 0.0f),
                      m_config.density, m_config.blockFriction);
   m_blocks->bridge = std::make_unique<bullet::Bridge>(world, m_blocks->dynamics);
+  m_surfaces.clear();
   for (Blocks::Block& block : m_blocks->blocks) m_blocks->bridge->couple(block.body.get());
+  for (const bullet::Bridge::Coupled& c : m_blocks->bridge->coupled()) {
+    m_surfaces.push_back({c.sandBody, c.surface, c.principalRotation, BodyMaterial::Wood});
+  }
 }
 
 StepReport BlockAvalanche::step(World& world, float frameDt) {

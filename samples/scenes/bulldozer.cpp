@@ -86,11 +86,15 @@ float Bulldozer::bladeTravel() const {
   return m_config.bladeSpeed > 0.0f ? m_config.pushDistance * d() : 0.0f;
 }
 
-SampledMesh Bulldozer::bladeShape() const {
+TriangleMesh Bulldozer::bladeMesh() const {
   const Vec3 half = bladeHalfExtents();
   TriangleMesh box = boxMesh({-half.x, -half.y, -half.z}, half);
   box.source = "bulldozer blade";
-  return sampleMesh(box, d());
+  return box;
+}
+
+SampledMesh Bulldozer::bladeShape() const {
+  return sampleMesh(bladeMesh(), d());
 }
 
 WorldSettings Bulldozer::worldSettings() const {
@@ -126,8 +130,9 @@ void Bulldozer::build(World& world) {
                                  .spacing = spacing(),
                                  .seed = m_config.seed});
   const Vec3 start = bladeStart();
-  m_blade =
-      world.addBody(bladeShape().shape, BodyDesc{.position = start, .motion = Motion::Kinematic});
+  const SampledMesh blade = bladeShape();
+  m_blade = world.addBody(blade.shape, BodyDesc{.position = start, .motion = Motion::Kinematic});
+  m_surfaces = {surfaceOf(m_blade, bladeMesh(), blade, BodyMaterial::Metal)};
 
   // A blade that does not move gets a move in place, so that the push still starts at a substep.
   const float travel = bladeTravel();

@@ -74,6 +74,8 @@ class Bulldozer final : public kit::SceneWith<BulldozerConfig> {
   /// The blade in its own frame: its box's faces in square cells of 0.8 d, a particle at every
   /// corner.
   SampledMesh bladeShape() const;
+  /// The blade's box, about its centre.
+  TriangleMesh bladeMesh() const;
   /// Where the blade's centre of mass starts, m.
   Vec3 bladeStart() const;
   /// x of the front of the blade's particles at the start, m.
@@ -84,6 +86,7 @@ class Bulldozer final : public kit::SceneWith<BulldozerConfig> {
   /// The phase the next substep belongs to.
   Phase phase() const { return m_phase; }
   BodyId blade() const { return m_blade; }
+  std::span<const SceneSurface> surfaces() const override { return m_surfaces; }
   const BladeLoad& load(Phase phase) const { return m_loads[static_cast<int>(phase)]; }
   const std::vector<DragSample>& dragSeries() const { return m_drag; }
   /// Substep at which the push starts and how many it lasts (0 when the blade does not move).
@@ -110,6 +113,7 @@ class Bulldozer final : public kit::SceneWith<BulldozerConfig> {
   void measureFrom(std::vector<BodyState> bodies);
 
   BodyId m_blade;
+  std::vector<SceneSurface> m_surfaces;
   Phase m_phase = Phase::Waiting;
   BladeLoad m_loads[3];
   std::vector<DragSample> m_drag;

@@ -72,7 +72,7 @@ double Compression::area() const {
   return std::numbers::pi * r * r;
 }
 
-ParticleTemplate Compression::plungerShape() const {
+std::vector<Vec3> Compression::plungerFace() const {
   // Only the face touches the sand: one layer on a triangular lattice as sampleMesh covers a
   // surface (no hole, and it feels smooth), odd rows half a spacing over.
   const double h = kDefaultMeshSpacing * d();
@@ -88,8 +88,22 @@ ParticleTemplate Compression::plungerShape() const {
       if (x * x + z * z <= r * r) centres.push_back({float(x), 0.0f, float(z)});
     }
   }
+  return centres;
+}
+
+ParticleTemplate Compression::plungerShape() const {
   // A kinematic body: its mass only has to be valid.
-  return makeParticleTemplate(centres, d(), WorldSettings{}.material.density);
+  return makeParticleTemplate(plungerFace(), d(), WorldSettings{}.material.density);
+}
+
+SceneSurface Compression::plungerSurface(BodyId plunger, const ParticleTemplate& shape) const {
+  // A disc one particle thick over the face's particles, about the face's centre of mass.
+  const std::vector<Vec3> face = plungerFace();
+  Vec3 centre{};
+  for (const Vec3& c : face) centre += c / float(face.size());
+  const double radius = (m_config.radius - kPlungerGap) * d() + 0.5 * d();
+  return {plunger, cylinderMesh(radius, d(), 64, Vec3{} - centre), shape.principalRotation,
+          BodyMaterial::Metal};
 }
 
 WorldSettings Compression::worldSettings() const {
@@ -130,8 +144,10 @@ void Compression::build(World& world) {
                                  .seed = m_config.seed});
   // Parked above the wall until the pile has settled.
   m_bottomY = wallHeight + d();
-  m_plunger = world.addBody(plungerShape(), BodyDesc{.position = {0.0f, float(m_bottomY), 0.0f},
-                                                     .motion = Motion::Kinematic});
+  const ParticleTemplate plunger = plungerShape();
+  m_plunger = world.addBody(
+      plunger, BodyDesc{.position = {0.0f, float(m_bottomY), 0.0f}, .motion = Motion::Kinematic});
+  m_surfaces = {plungerSurface(m_plunger, plunger)};
   // Calm means nothing until the lattice has fallen onto the floor and slid a while.
   const double g = gravityMagnitude(world.settings());
   const double landing = 1.5 * fallTime(blockHeight + kClearance * d(), 0.0, g);

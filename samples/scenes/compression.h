@@ -74,6 +74,7 @@ class Compression final : public kit::SceneWith<CompressionConfig> {
   const Snapshot& atPeak() const { return m_atPeak; }
   /// Granules per lattice layer inside the cylinder.
   std::uint32_t granulesPerLayer() const;
+  std::span<const SceneSurface> surfaces() const override { return m_surfaces; }
 
  private:
   enum class Phase { Settling, Approach, Preload, Easing, Loading, Unloading, Done };
@@ -81,7 +82,10 @@ class Compression final : public kit::SceneWith<CompressionConfig> {
   std::uint32_t latticeSide() const;
   double area() const;
   /// The plunger's face: a disc of particles in the body's y = 0 plane.
+  std::vector<Vec3> plungerFace() const;
   ParticleTemplate plungerShape() const;
+  /// The plunger drawn as a disc.
+  SceneSurface plungerSurface(BodyId plunger, const ParticleTemplate& shape) const;
   std::uint32_t granules() const;
   /// Enters `phase`, the plunger moving as it says from where it is.
   void enter(Phase phase, double simTime);
@@ -89,6 +93,7 @@ class Compression final : public kit::SceneWith<CompressionConfig> {
   Phase m_phase = Phase::Settling;
   kit::SettleWait m_settle;
   BodyId m_plunger;
+  std::vector<SceneSurface> m_surfaces;
   float m_granuleMass = 0.0f;
   double m_bottomY = 0.0;  // the plunger's bottom face now, m
   double m_moveFromY = 0.0, m_moveStart = 0.0, m_velocity = 0.0;  // its motion: m, s, m/s

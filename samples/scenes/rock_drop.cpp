@@ -257,6 +257,8 @@ void RockDrop::drop(World& world, double simTime) {
   const float y = m_run.bedTop + m_config.dropHeight * d() + 0.5f * d() + loadedRock().drop.below();
   m_run.rock = world.addBody(loadedRock().sampled.shape,
                              BodyDesc{.position = {0.0f, y, 0.0f}, .orientation = q});
+  m_run.surfaces = {
+      surfaceOf(m_run.rock, loadedRock().mesh, loadedRock().sampled, BodyMaterial::Stone)};
   m_run.startUp = toVec3(toEigen(q).conjugate() * Eigen::Vector3f::UnitY());
   m_course.endAct(simTime);
   // The first check after the fall onto the bed: before it the rock is in the air (and calm at

@@ -63,6 +63,7 @@ class RockDrop final : public kit::SceneWith<RockDropConfig> {
   const TriangleMesh& rockMesh() const;
   bool dropped() const { return m_run.rock.isValid(); }
   BodyId rock() const { return m_run.rock; }
+  std::span<const SceneSurface> surfaces() const override { return m_run.surfaces; }
   double droppedAt() const { return m_course.actStart(); }  // s, negative before the drop
   /// Height of the settled bed's top at the drop, m (0 before): the median, over the bed's inside,
   /// of the highest grain surface in each column 2 d wide.
@@ -95,6 +96,7 @@ class RockDrop final : public kit::SceneWith<RockDropConfig> {
     int calmChecks = 0;              // in a row
     double restedAt = -1.0;          // s, the first of those
     bool finished = false;
+    std::vector<SceneSurface> surfaces;  // the rock's, once dropped
   } m_run;
 };
 

@@ -158,6 +158,15 @@ WorldSettings Scene::settings() const {
   return settings;
 }
 
+SceneSurface surfaceOf(BodyId body, const TriangleMesh& mesh, const SampledMesh& sampled,
+                       BodyMaterial material) {
+  SceneSurface surface{body, mesh, sampled.shape.principalRotation, material};
+  const auto& com = sampled.massProperties.centreOfMass;
+  const Vec3 centre{float(com[0]), float(com[1]), float(com[2])};
+  for (Vec3& vertex : surface.mesh.vertices) vertex -= centre;
+  return surface;
+}
+
 SceneView Scene::view(const std::optional<SceneBounds>& contents) const {
   return {contents ? *contents : bounds()};
 }

@@ -72,6 +72,27 @@ struct SceneBounds {
   Vec3 max{};  ///< largest corner, m
 };
 
+/// What a body that is not sand is made of, for the picture: each has its colour
+/// (render::RenderSettings::materialColours).
+enum class BodyMaterial : std::uint32_t { Wood, Stone, Metal };
+inline constexpr std::size_t kBodyMaterials = 3;
+
+/// How a body that is not sand looks: the triangles its particles were sampled from (a Bullet
+/// shape, a mesh file, a blade), drawn where the body is in place of its particles.
+struct SceneSurface {
+  BodyId body;
+  /// In the frame BodyDesc::orientation turns, with the body's centre of mass at the origin, m.
+  TriangleMesh mesh;
+  /// The body's ParticleTemplate::principalRotation: the World moves the body by its principal
+  /// frame.
+  Quat principalRotation{};
+  BodyMaterial material = BodyMaterial::Stone;
+};
+
+/// The surface of a body added from `sampled` (sampleMesh of `mesh`) with id `body`.
+SceneSurface surfaceOf(BodyId body, const TriangleMesh& mesh, const SampledMesh& sampled,
+                       BodyMaterial material);
+
 /// How the camera looks at a scene first, and again on Home: the box it frames (the sand and the
 /// bodies, not the containers) and the direction it looks from.
 struct SceneView {
@@ -154,6 +175,10 @@ class Scene {
   /// the metrics and their time series. Bodies that sandphys simulates are read back from `world`
   /// (a sync point: the runner asks only every few frames). The default has none.
   virtual std::vector<SceneBody> bodies(const World& /*world*/) const { return {}; }
+
+  /// The surfaces of the scene's bodies that are not sand, for the renderer (the bodies
+  /// build() added; empty before). The default has none: every body is drawn as its particles.
+  virtual std::span<const SceneSurface> surfaces() const { return {}; }
 
   /// Body states set from outside the sand during the last step, in order: what a Bullet bridge
   /// pushed (Bridge::pushes). A recording keeps them as the frame's external inputs and a replay

@@ -215,6 +215,10 @@ void Panel::drawControls(Session& session) {
   settingTooltip("sleep");
   ImGui::SameLine();
   ImGui::Checkbox("tint sleeping", &controls.tintSleeping);
+  ImGui::Checkbox("bodies as particles", &controls.bodyParticles);
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip("draw the bodies (blocks, rocks, tools) as the particles the sand touches");
+  }
   ImGui::Checkbox(settingLabel("profile_kernels").c_str(), &controls.profileKernels);
   settingTooltip("profile_kernels");
   if (!session.lastError().empty()) {

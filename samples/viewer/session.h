@@ -34,6 +34,9 @@ struct SimulationControls {
   bool sleep = false;
   /// Draw sleeping granules tinted (takes effect at once, not at a restart).
   bool tintSleeping = true;
+  /// Draw the bodies that have a surface (Scene::surfaces) as their particles, as the sand sees
+  /// them (takes effect at once).
+  bool bodyParticles = false;
 
   /// The values `settings` (a scene's) and `frameDt` give.
   static SimulationControls from(const WorldSettings& settings, double frameDt);

@@ -245,7 +245,9 @@ class ViewerLoop {
       render::applyRenderQuality(pacer().quality(), m_renderer.settings());
       // Playing a recording there is no panel toggle: sleeping granules are tinted.
       m_renderer.settings().tintSleeping = !m_session || m_session->controls().tintSleeping;
-      m_renderer.draw(world(), m_camera, scene().bounds(), size.width, size.height);
+      m_renderer.settings().bodyParticles = m_session && m_session->controls().bodyParticles;
+      m_renderer.draw(world(), m_camera, scene().bounds(), size.width, size.height,
+                      scene().surfaces());
       ++m_draws;
       const render::RenderStats& renderStats = m_renderer.stats();
       pacer().recordDraw(renderStats.totalMs, renderStats.frame, m_draws);

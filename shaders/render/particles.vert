@@ -39,6 +39,11 @@ vec3 granuleAlbedo(uint body) {
   return pow(colour, vec3(2.2));
 }
 
+// Bodies drawn as their surfaces instead (surface.vert): bit b % 32 of word b / 32 is set for
+// body b; bodies from surfaceBodyWords * 32 on have none.
+layout(std430, binding = 6) readonly buffer SurfaceBodyBuffer { uint surfaceBodies[]; };
+uniform uint surfaceBodyWords;
+
 uniform float maxPointSize;  // px, GL_POINT_SIZE_RANGE's upper end
 // Granules whose calm count is at least this are asleep and tinted (0: no tint).
 uniform uint asleepFrom;
@@ -87,6 +92,9 @@ void main() {
   uvec4 info = bodyInfo[body];
   gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: dropped
   if ((info.z & BODY_ALIVE) == 0u) return;
+  if (body / 32u < surfaceBodyWords && (surfaceBodies[body / 32u] & (1u << (body % 32u))) != 0u) {
+    return;
+  }
   vec3 world = bodyPosition[body].xyz + rotateByQuat(bodyOrientation[body], particleLocal[particle].xyz);
   float r = params.x;
   vec3 centre = (view * vec4(world, 1.0)).xyz;

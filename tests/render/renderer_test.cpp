@@ -310,6 +310,45 @@ TEST_F(RenderScene, ColliderIsDrawnInANeutralMaterial) {
       << "the box's pixel looks like background";
 }
 
+// Seen from behind the obstacle box, the box hides the pile's middle; once the camera is framed
+// on the pile (Camera::focus), the box is drawn see-through and the sand shows through it.
+TEST_F(RenderScene, ColliderBetweenTheEyeAndTheFocusIsSeeThrough) {
+  render::Camera behindBox;
+  behindBox.target = {0.0f, 0.05f, 0.0f};
+  behindBox.yaw = std::atan2(kBoxCentre.x, kBoxCentre.z);  // the eye on the box's side
+  behindBox.pitch = 0.05f;
+  behindBox.distance = 0.9f;
+  // The box's face towards the eye, shrunk by a pixel's worth: what of the picture it covers.
+  const Eigen::Matrix4f m = behindBox.projection(float(kWidth) / kHeight) * behindBox.view();
+  Rect face;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Eigen::Vector4f p(kBoxCentre.x + ((corner & 1) ? 0.8f : -0.8f) * kBoxHalf.x,
+                            kBoxCentre.y + ((corner & 2) ? 0.8f : -0.8f) * kBoxHalf.y,
+                            kBoxCentre.z + ((corner & 4) ? 0.8f : -0.8f) * kBoxHalf.z, 1.0f);
+    const Eigen::Vector4f clip = m * p;
+    face.add((clip.x() / clip.w() * 0.5f + 0.5f) * kWidth,
+             (1.0f - (clip.y() / clip.w() * 0.5f + 0.5f)) * kHeight);
+  }
+  auto sandUnderBox = [&](const Image& image) {
+    long count = 0;
+    for (int y = 0; y < kHeight; ++y) {
+      for (int x = 0; x < kWidth; ++x) {
+        if (face.contains(x, y, -1.0f) && sandColoured(pixelAt(image, x, y))) ++count;
+      }
+    }
+    return count;
+  };
+  const long hidden = sandUnderBox(drawImage(lowSun(), nullptr, "behind_box.png", behindBox));
+  Eigen::Vector3f lo, hi;
+  pileBox(kFloorRadius, &lo, &hi);
+  behindBox.focus = scenes::SceneBounds{{lo.x(), lo.y(), lo.z()}, {hi.x(), hi.y(), hi.z()}};
+  const long shown =
+      sandUnderBox(drawImage(lowSun(), nullptr, "behind_box_see_through.png", behindBox));
+  std::printf("sand pixels over the box's face: %ld opaque, %ld see-through\n", hidden, shown);
+  EXPECT_LT(hidden, 20) << "the box does not hide the pile from this eye";
+  EXPECT_GT(shown, 200) << "the box still hides the pile it stands in front of";
+}
+
 TEST_F(RenderScene, StatsMeasureTheRenderPassesSeparately) {
   render::RenderStats stats;
   drawImage(lowSun(), &stats);

@@ -122,8 +122,8 @@ TEST_P(ViewerScene, RunsAndTakesAKeyScreenshot) {
 // The window opens on the scene's own view (Scene::view), clear of the panel: in the first
 // picture, panel included, the sand shows beside the panel's place, and hardly any of it under
 // that place (it is framed in the rest of the window). Sand is told by its colour: the
-// renderer's grains are tan to orange (red over green over blue), the colliders, bodies, panel and
-// sky grey or blue.
+// renderer's grains are tan to orange (red over green over blue, red under half the sum), the
+// colliders, stone and metal bodies, panel and sky grey or blue, wooden bodies redder.
 TEST_P(ViewerScene, OpensOnItsSandBesideThePanel) {
   ASSERT_NE(std::getenv("DISPLAY"), nullptr) << "run through xvfb-run (CTest does)";
   const scenes::SceneEntry& entry = *GetParam();
@@ -146,7 +146,8 @@ TEST_P(ViewerScene, OpensOnItsSandBesideThePanel) {
   for (int y = 0; y < image.height; ++y) {
     for (int x = 0; x < image.width; ++x) {
       const unsigned char* p = &image.rgb[3 * (static_cast<std::size_t>(y) * image.width + x)];
-      const bool sand = p[0] > 90 && p[0] > p[1] + 12 && p[1] > p[2] + 12;
+      const bool sand = p[0] > 90 && p[0] > p[1] + 12 && p[1] > p[2] + 12 &&
+                        2 * p[0] < p[0] + p[1] + p[2];
       if (sand) ++(x < kPanelRight ? under : beside);
     }
   }

@@ -102,6 +102,11 @@ class Bridge {
     bool asleep = false;
     Vec3 restForce{};   ///< the sand force when it fell asleep, N
     Vec3 restTorque{};  ///< the sand torque then, N m
+    /// The surface the particles were sampled from, about the sand body's centre of mass in the
+    /// frame BodyDesc::orientation turns (Bullet's centre-of-mass frame), m: what to draw.
+    TriangleMesh surface;
+    /// The sand body's ParticleTemplate::principalRotation.
+    Quat principalRotation{};
   };
   const std::vector<Coupled>& coupled() const { return m_coupled; }
   /// The entry of `body`, or nullptr when it is not coupled.

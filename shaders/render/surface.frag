@@ -1,0 +1,23 @@
+#version 450
+// Bodies' surfaces in their material's colour, lit and shadowed like the sand.
+#include "common/frame.glsl"
+
+in vec3 vWorld;
+in vec3 vNormal;
+flat in uint vMaterial;
+
+#ifndef SHADOW_PASS
+#include "common/lighting.glsl"
+
+// Linear albedo of each scenes::BodyMaterial (RenderSettings::materialColours).
+uniform vec3 materialAlbedo[3];
+#endif
+
+void main() {
+#ifndef SHADOW_PASS
+  vec3 n = normalize(vNormal);
+  // A mesh file's open or inward-wound triangles are lit on the side the eye sees.
+  if (dot(n, cameraPosition.xyz - vWorld) < 0.0) n = -n;
+  writeShaded(materialAlbedo[min(vMaterial, 2u)], vWorld, n);
+#endif
+}
