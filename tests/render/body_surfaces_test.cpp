@@ -3,7 +3,7 @@
 // the panel's strip). A body's pixels are those that change when its surface alone is left out
 // (its particles stay hidden), drawn without shadows or ambient occlusion so that nothing else
 // changes. Each body must show beside the panel's place, in its material's colour rather than
-// the sand's.
+// the sand's; RenderSettings::bodyParticles brings its particles back.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -142,6 +142,12 @@ TEST_P(BodySurfaces, ShowBesideThePanelInTheirMaterialColour) {
     EXPECT_LT(toMaterial, 0.05) << param.name << " body " << k << " is not in its material colour";
     EXPECT_LT(toMaterial, toSand) << param.name << " body " << k << " looks like sand";
   }
+
+  // The debug view draws the bodies as their particles, exactly as with no surfaces at all.
+  const Image particles = draw({});
+  EXPECT_NE(particles, all);
+  renderer.settings().bodyParticles = true;
+  EXPECT_EQ(draw(surfaces), particles) << "'bodies as particles' still draws a surface";
 }
 
 INSTANTIATE_TEST_SUITE_P(ScenesWithBodies, BodySurfaces,
