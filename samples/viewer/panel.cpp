@@ -184,11 +184,11 @@ void Panel::drawParameters(Session& session) {
 void Panel::drawControls(Session& session) {
   SimulationControls& controls = session.controls();
   const SimulationControls& applied = session.applied();
-  const bool pending =
-      controls.youngsModulus != applied.youngsModulus || controls.friction != applied.friction ||
-      controls.restitution != applied.restitution ||
-      controls.stepsPerContact != applied.stepsPerContact || controls.frameDt != applied.frameDt ||
-      controls.profileKernels != applied.profileKernels || controls.sleep != applied.sleep;
+  const bool pending = controls.youngsModulus != applied.youngsModulus ||
+                       controls.friction != applied.friction ||
+                       controls.restitution != applied.restitution ||
+                       controls.stepsPerContact != applied.stepsPerContact ||
+                       controls.frameDt != applied.frameDt || controls.sleep != applied.sleep;
   if (pending) {
     ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "changed: applied on restart (R)");
   } else {
@@ -269,7 +269,7 @@ void Panel::drawStats(const Session& session, const FrameStats& stats,
   ImGui::Text("step %.2f ms  render %.2f ms  frame %.2f ms", stats.stepMilliseconds,
               stats.render.totalMs, stats.frameMilliseconds);
   if (stats.kernels.empty()) {
-    ImGui::TextDisabled("kernel times: tick 'profile kernels' and restart");
+    ImGui::TextDisabled("kernel times: tick 'profile kernels'");
   } else if (ImGui::TreeNode("kernels")) {
     double total = 0.0;
     for (const KernelTime& kernel : stats.kernels) {

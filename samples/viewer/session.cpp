@@ -127,6 +127,11 @@ void Session::stepFrame(bool pour, bool push, const Ray& cursorRay, FrameStats& 
   // whatever remainder frameDt / timeStep leaves.
   const float frameDt = stats.slowMotion ? substepsDuration(substeps, m_world->timeStep())
                                          : static_cast<float>(m_applied.frameDt);
+  // Kernel profiling changes no bit of the result: it follows the panel at once.
+  if (m_controls.profileKernels != m_applied.profileKernels) {
+    m_world->setProfileKernels(m_controls.profileKernels);
+    m_applied.profileKernels = m_controls.profileKernels;
+  }
   const Clock::time_point start = Clock::now();
   m_tools.update(*m_world, pour, push, cursorRay, frameDt);
   const StepReport report = m_scene->step(*m_world, frameDt);

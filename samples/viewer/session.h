@@ -20,15 +20,17 @@ using scenes::Ray;
 using scenes::SandTools;
 
 /// Material and time-step values the panel edits. They apply at the next restart, because they
-/// set the World's contact law and time step, which are fixed at creation.
+/// set the World's contact law and time step, which are fixed at creation; kernel profiling and
+/// the drawing switches apply at the next frame.
 struct SimulationControls {
   float youngsModulus = 5.0e6f;   ///< Pa
   float friction = 0.5f;          ///< Coulomb μ between grains
   float restitution = 0.5f;       ///< grain-grain
   float stepsPerContact = 20.0f;  ///< substeps per Hertz contact duration t_n
   double frameDt = 1.0 / 60.0;    ///< simulated seconds per viewer frame
-  /// GL timer queries around every kernel (World::kernelTimes). Off by default: on llvmpipe the
-  /// queries about double the cost of a substep.
+  /// GL timer queries around every kernel (World::kernelTimes), switched at the next frame
+  /// (World::setProfileKernels). Off by default: on llvmpipe the queries about double the cost of
+  /// a substep.
   bool profileKernels = false;
   /// Sleeping sand (WorldSettings::sleep).
   bool sleep = false;

@@ -146,8 +146,8 @@ TEST_P(ViewerScene, OpensOnItsSandBesideThePanel) {
   for (int y = 0; y < image.height; ++y) {
     for (int x = 0; x < image.width; ++x) {
       const unsigned char* p = &image.rgb[3 * (static_cast<std::size_t>(y) * image.width + x)];
-      const bool sand = p[0] > 90 && p[0] > p[1] + 12 && p[1] > p[2] + 12 &&
-                        2 * p[0] < p[0] + p[1] + p[2];
+      const bool sand =
+          p[0] > 90 && p[0] > p[1] + 12 && p[1] > p[2] + 12 && 2 * p[0] < p[0] + p[1] + p[2];
       if (sand) ++(x < kPanelRight ? under : beside);
     }
   }
