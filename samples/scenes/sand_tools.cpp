@@ -65,6 +65,7 @@ void SandTools::attach(const World& world, const scenes::Scene& scene) {
   m_emitter = {};
   m_poured = 0;
   m_sphere = {};
+  m_sphereSurface.reset();
   m_pushing = false;
   m_floorPoint.reset();
 
@@ -85,6 +86,10 @@ void SandTools::addSphere(World& world) {
                                                      world.settings().material.density);
   m_sphere =
       world.addBody(ball, BodyDesc{.position = toVec3(m_parkedAt), .motion = Motion::Kinematic});
+  // The lattice is symmetric about its centre, so the mesh needs no shift; the outermost
+  // particles reach half a diameter beyond their centres.
+  m_sphereSurface = SceneSurface{m_sphere, icosphereMesh(radius + 0.5f * m_diameter, 3),
+                                 ball.principalRotation, BodyMaterial::Metal};
 }
 
 Eigen::Vector3f SandTools::clampToScene(Eigen::Vector3f point, float margin) const {

@@ -49,6 +49,8 @@ class SandTools {
   bool pourBudgetSpent() const { return m_poured >= kPourGranules; }
   /// Counts what an emitter added this frame (from StepReport::granulesEmitted).
   void countEmitted(std::uint32_t granules) { m_poured += granules; }
+  /// The pushing sphere as a metal ball, once it has joined the World; null before.
+  const SceneSurface* surface() const { return m_sphereSurface ? &*m_sphereSurface : nullptr; }
 
  private:
   void updatePour(World& world, bool pour);
@@ -64,6 +66,7 @@ class SandTools {
   Eigen::Vector3f m_emitterCentre = Eigen::Vector3f::Zero();
   std::uint32_t m_poured = 0;
   BodyId m_sphere{};
+  std::optional<SceneSurface> m_sphereSurface;
   Eigen::Vector3f m_parkedAt = Eigen::Vector3f::Zero();
   Eigen::Vector3f m_spherePosition = Eigen::Vector3f::Zero();
   bool m_pushing = false;

@@ -246,8 +246,7 @@ class ViewerLoop {
       // Playing a recording there is no panel toggle: sleeping granules are tinted.
       m_renderer.settings().tintSleeping = !m_session || m_session->controls().tintSleeping;
       m_renderer.settings().bodyParticles = m_session && m_session->controls().bodyParticles;
-      m_renderer.draw(world(), m_camera, scene().bounds(), size.width, size.height,
-                      scene().surfaces());
+      m_renderer.draw(world(), m_camera, scene().bounds(), size.width, size.height, surfaces());
       ++m_draws;
       const render::RenderStats& renderStats = m_renderer.stats();
       pacer().recordDraw(renderStats.totalMs, renderStats.frame, m_draws);
@@ -306,6 +305,15 @@ class ViewerLoop {
   World& world() { return m_player ? m_player->world() : m_session->world(); }
   const scenes::Scene& scene() const { return m_player ? m_player->scene() : m_session->scene(); }
   FramePacer& pacer() { return m_player ? m_player->pacer() : m_session->pacer(); }
+
+  // The scene's surfaces and, once the push tool has joined the World, its ball.
+  std::span<const scenes::SceneSurface> surfaces() {
+    const scenes::SceneSurface* ball = m_player ? nullptr : m_session->tools().surface();
+    if (!ball) return scene().surfaces();
+    m_surfaces.assign(scene().surfaces().begin(), scene().surfaces().end());
+    m_surfaces.push_back(*ball);
+    return m_surfaces;
+  }
 
   // Space: pause or go on; a recording played to its end starts again.
   void togglePause() {
@@ -413,6 +421,7 @@ class ViewerLoop {
   // This frame's screenshot paths, kept to be written before or after the panel is drawn.
   std::vector<std::filesystem::path> m_screenshots;
   std::uint64_t m_draws = 0;
+  std::vector<scenes::SceneSurface> m_surfaces;  // surfaces() with the tool's ball
   bool m_paused = false;
   bool m_pendingStep = false;
   bool m_pendingScreenshot = false;

@@ -2,7 +2,9 @@
 // restart that material and time-step changes wait for.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
+#include <vector>
 
 #include "scenes/registry.h"
 #include "support/test_world.h"
@@ -34,6 +36,39 @@ TEST(Session, KernelProfilingFollowsThePanelWithoutARestart) {
   session.controls().profileKernels = false;
   session.stepFrame(false, false, noCursor, stats);
   EXPECT_TRUE(world->kernelTimes().empty());
+}
+
+// Pushing brings the tool's sphere into the World and, with it, its surface: a metal ball whose
+// outline holds every particle of the sphere (they are half a diameter inside it).
+TEST(Session, ThePushingSphereIsDrawnAsAMetalBallAroundItsParticles) {
+  std::unique_ptr<scenes::Scene> scene = scenes::createScene("box-drop");
+  scenes::useTestSize(*scene);
+  Session session(testing::gpu(), std::move(scene), 0.004);
+  FrameStats stats;
+  EXPECT_EQ(session.tools().surface(), nullptr);
+  // Straight down onto the middle of the scene's floor.
+  const scenes::SceneBounds bounds = session.scene().bounds();
+  scenes::Ray down;
+  down.origin = {0.5f * (bounds.min.x + bounds.max.x), bounds.max.y + 1.0f,
+                 0.5f * (bounds.min.z + bounds.max.z)};
+  down.direction = {0.0f, -1.0f, 0.0f};
+  session.stepFrame(false, true, down, stats);
+  const scenes::SceneSurface* ball = session.tools().surface();
+  ASSERT_NE(ball, nullptr);
+  EXPECT_EQ(ball->material, scenes::BodyMaterial::Metal);
+  const float d = session.world().settings().particleDiameter;
+  float outline = 0.0f;
+  for (const Vec3& v : ball->mesh.vertices) outline = std::max(outline, length(v));
+  EXPECT_NEAR(outline, (SandTools::kSphereRadius + 0.5f) * d, 1e-4f);
+  const std::vector<BodyState> bodies = session.world().readBodies();
+  const Vec3 centre = bodies[ball->body.index].position;
+  int particles = 0;
+  for (const ParticleState& p : session.world().readParticles()) {
+    if (!(p.body == ball->body)) continue;
+    ++particles;
+    EXPECT_LE(length(p.position - centre) + 0.5f * d, outline + 1e-4f);
+  }
+  EXPECT_GT(particles, 100);
 }
 
 }  // namespace
