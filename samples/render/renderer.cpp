@@ -155,8 +155,9 @@ struct Renderer::Impl {
     meshFocusMax = glGetUniformLocation(meshScene, "focusMax");
     const std::vector<gl::ShaderStage> surface = {{GL_VERTEX_SHADER, "render/surface.vert"},
                                                   {GL_FRAGMENT_SHADER, "render/surface.frag"}};
-    surfaceShadow = library.compileProgram(surface, {"SHADOW_PASS 1"});
-    surfaceScene = library.compileProgram(surface);
+    const std::string materials = "BODY_MATERIALS " + std::to_string(scenes::kBodyMaterials);
+    surfaceShadow = library.compileProgram(surface, {"SHADOW_PASS 1", materials});
+    surfaceScene = library.compileProgram(surface, {materials});
     surfaceAlbedo = glGetUniformLocation(surfaceScene, "materialAlbedo");
     composite = library.compileProgram({{GL_VERTEX_SHADER, "render/fullscreen.vert"},
                                         {GL_FRAGMENT_SHADER, "render/composite.frag"}});

@@ -75,7 +75,7 @@ struct SceneBounds {
 /// What a body that is not sand is made of, for the picture: each has its colour
 /// (render::RenderSettings::materialColours).
 enum class BodyMaterial : std::uint32_t { Wood, Stone, Metal };
-inline constexpr std::size_t kBodyMaterials = 3;
+inline constexpr std::size_t kBodyMaterials = std::size_t(BodyMaterial::Metal) + 1;
 
 /// How a body that is not sand looks: the triangles its particles were sampled from (a Bullet
 /// shape, a mesh file, a blade), drawn where the body is in place of its particles.

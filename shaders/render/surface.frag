@@ -9,8 +9,9 @@ flat in uint vMaterial;
 #ifndef SHADOW_PASS
 #include "common/lighting.glsl"
 
-// Linear albedo of each scenes::BodyMaterial (RenderSettings::materialColours).
-uniform vec3 materialAlbedo[3];
+// Linear albedo of each scenes::BodyMaterial (RenderSettings::materialColours); the renderer
+// defines BODY_MATERIALS, their count.
+uniform vec3 materialAlbedo[BODY_MATERIALS];
 #endif
 
 void main() {
@@ -18,6 +19,6 @@ void main() {
   vec3 n = normalize(vNormal);
   // A mesh file's open or inward-wound triangles are lit on the side the eye sees.
   if (dot(n, cameraPosition.xyz - vWorld) < 0.0) n = -n;
-  writeShaded(materialAlbedo[min(vMaterial, 2u)], vWorld, n);
+  writeShaded(materialAlbedo[min(vMaterial, uint(BODY_MATERIALS) - 1u)], vWorld, n);
 #endif
 }
