@@ -18,9 +18,12 @@ flat in float vCutaway;
 uniform vec4 focusMin;
 uniform vec3 focusMax;
 
-// The line of sight through `p` meets the focus box only beyond `p`.
-bool hidesFocus(vec3 p) {
+// The surface at `p`, whose normal `n` faces the eye, has the focus box's centre behind it, and
+// the line of sight through `p` meets the box only beyond `p`. (The first condition spares a
+// floor seen at a grazing angle, whose lines of sight may dip into the box's lowest sliver.)
+bool hidesFocus(vec3 p, vec3 n) {
   if (focusMin.w < 0.5) return false;
+  if (dot(n, 0.5 * (focusMin.xyz + focusMax) - p) >= 0.0) return false;
   vec3 eye = cameraPosition.xyz;
   vec3 inverse = 1.0 / (p - eye);  // the eye at t = 0, p at t = 1
   vec3 t0 = (focusMin.xyz - eye) * inverse;
@@ -43,7 +46,7 @@ void main() {
   if (vCutaway > 0.5 && vCutaway < 1.5 && facesEye) discard;
   if (vCutaway > 1.5 && !facesEye) discard;
   if (!facesEye) n = -n;  // seen from inside: light the inner face
-  if (hidesFocus(vWorld) && ((int(gl_FragCoord.x) | int(gl_FragCoord.y)) & 1) != 0) discard;
+  if (hidesFocus(vWorld, n) && ((int(gl_FragCoord.x) | int(gl_FragCoord.y)) & 1) != 0) discard;
   writeShaded(pow(vec3(0.55, 0.56, 0.58), vec3(2.2)), vWorld, n);
 #endif
 }
