@@ -123,7 +123,9 @@ TEST_P(ViewerScene, RunsAndTakesAKeyScreenshot) {
 // picture, panel included, the sand shows beside the panel's place, and hardly any of it under
 // that place (it is framed in the rest of the window). Sand is told by its colour: the
 // renderer's grains are tan to orange (red over green over blue, red under half the sum), the
-// colliders, stone and metal bodies, panel and sky grey or blue, wooden bodies redder.
+// colliders, stone and metal bodies, panel and sky grey or blue, wooden bodies redder (red over
+// half the sum): the avalanche's blocks show in wood beside the panel too. (Each body's own
+// pixels and colour: BodySurfaces in tests/render.)
 TEST_P(ViewerScene, OpensOnItsSandBesideThePanel) {
   ASSERT_NE(std::getenv("DISPLAY"), nullptr) << "run through xvfb-run (CTest does)";
   const scenes::SceneEntry& entry = *GetParam();
@@ -142,19 +144,25 @@ TEST_P(ViewerScene, OpensOnItsSandBesideThePanel) {
   ASSERT_EQ(result.exitCode, 0) << result.output;
   const Image image = readPng(dir / "last.png");
   ASSERT_EQ(image.width, kWidth);
-  long beside = 0, under = 0;
+  long beside = 0, under = 0, wood = 0;
   for (int y = 0; y < image.height; ++y) {
     for (int x = 0; x < image.width; ++x) {
       const unsigned char* p = &image.rgb[3 * (static_cast<std::size_t>(y) * image.width + x)];
-      const bool sand =
-          p[0] > 90 && p[0] > p[1] + 12 && p[1] > p[2] + 12 && 2 * p[0] < p[0] + p[1] + p[2];
+      const bool warm = p[0] > p[1] + 12 && p[1] > p[2] + 12;
+      const bool sand = warm && p[0] > 90 && 2 * p[0] < p[0] + p[1] + p[2];
       if (sand) ++(x < kPanelRight ? under : beside);
+      if (warm && p[0] > 40 && 2 * p[0] > p[0] + p[1] + p[2] && x >= kPanelRight) ++wood;
     }
   }
-  std::printf("%s: %ld sand pixels beside the panel, %ld under its place\n", name.c_str(), beside,
-              under);
+  std::printf("%s: %ld sand pixels beside the panel, %ld under its place; %ld wood pixels\n",
+              name.c_str(), beside, under, wood);
   EXPECT_GT(beside, 200) << "no sand beside the panel";
   EXPECT_LT(under, beside / 10) << "the sand is framed under the panel";
+  if (name == "avalanche") {
+    EXPECT_GT(wood, 100) << "the wooden blocks do not show beside the panel";
+  } else {
+    EXPECT_LT(wood, 20) << "wood where the scene has none";
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(AllScenes, ViewerScene, ::testing::ValuesIn(testing::registeredScenes()),
