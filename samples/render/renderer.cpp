@@ -380,7 +380,6 @@ struct Renderer::Impl {
 
   // The surfaces' triangles with `program` (the shadow or the scene pass).
   void drawSurfaces(GLuint program) const {
-    if (surfaceVertices == 0) return;
     glUseProgram(program);
     glBindVertexArray(surfaceVao);
     glDrawArrays(GL_TRIANGLES, 0, surfaceVertices);

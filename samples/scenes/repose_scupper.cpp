@@ -266,21 +266,24 @@ analysis::HeapAngle ReposeScupper::heapAngle(std::span<const BodyState> bodies) 
                                            .maxRadius = m_config.sumpLength * d()});
 }
 
-std::vector<SceneMetric> ReposeScupper::metrics(std::span<const BodyState> bodies) const {
-  std::uint32_t sump = 0;
-  std::uint32_t reservoir = 0;
-  std::uint32_t alive = 0;
+ReposeScupper::GranuleCounts ReposeScupper::countGranules(std::span<const BodyState> bodies) const {
+  GranuleCounts counts;
   for (const BodyState& body : bodies) {
     if (!body.granule || !body.alive) continue;
-    ++alive;
-    sump += inSump(body.position) ? 1 : 0;
-    reservoir += inReservoir(body.position) ? 1 : 0;
+    ++counts.alive;
+    counts.sump += inSump(body.position) ? 1 : 0;
+    counts.reservoir += inReservoir(body.position) ? 1 : 0;
   }
+  return counts;
+}
+
+std::vector<SceneMetric> ReposeScupper::metrics(std::span<const BodyState> bodies) const {
+  const GranuleCounts counts = countGranules(bodies);
   std::vector<SceneMetric> result{
-      {"granules_in_reservoir", static_cast<double>(reservoir)},
-      {"granules_in_sump", static_cast<double>(sump)},
+      {"granules_in_reservoir", static_cast<double>(counts.reservoir)},
+      {"granules_in_sump", static_cast<double>(counts.sump)},
       {"granules_lost",
-       static_cast<double>(m_config.granules - std::min(m_config.granules, alive))},
+       static_cast<double>(m_config.granules - std::min(m_config.granules, counts.alive))},
       {"release_time_s", releasedAt()},
       {"end_time_s", m_endTime},
       {"friction", m_config.friction},

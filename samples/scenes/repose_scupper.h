@@ -75,6 +75,11 @@ class ReposeScupper final : public kit::SceneWith<ReposeScupperConfig> {
   bool inSump(const Vec3& centre) const;
   /// Whether a granule centre (m) is in the reservoir or the scupper.
   bool inReservoir(const Vec3& centre) const;
+  /// The alive granules of `bodies`: in the reservoir, in the sump, and in all.
+  struct GranuleCounts {
+    std::uint32_t reservoir = 0, sump = 0, alive = 0;
+  };
+  GranuleCounts countGranules(std::span<const BodyState> bodies) const;
   /// Simulated time the gate rose, s (negative before).
   double releasedAt() const { return m_course.actStart(); }
   /// The fill's lattice, bottom layer first, `granules` in all, clear of every wall.

@@ -47,19 +47,11 @@ std::vector<BodyState> granulesAt(const std::vector<Vec3>& centres) {
 // The angle and the granule counts of one code's final state, as the scene measures its own.
 nlohmann::json measure(const scenes::ReposeScupper& scene, const std::vector<BodyState>& bodies,
                        std::uint32_t granules) {
-  std::uint32_t sump = 0;
-  std::uint32_t reservoir = 0;
-  std::uint32_t present = 0;
-  for (const BodyState& body : bodies) {
-    if (!body.alive || !body.granule) continue;
-    ++present;
-    sump += scene.inSump(body.position) ? 1 : 0;
-    reservoir += scene.inReservoir(body.position) ? 1 : 0;
-  }
-  nlohmann::json entry = {{"granules_in_sump", sump},
-                          {"granules_in_reservoir", reservoir},
-                          {"granules_elsewhere", present - sump - reservoir},
-                          {"granules_lost", granules - std::min(granules, present)}};
+  const scenes::ReposeScupper::GranuleCounts counts = scene.countGranules(bodies);
+  nlohmann::json entry = {{"granules_in_sump", counts.sump},
+                          {"granules_in_reservoir", counts.reservoir},
+                          {"granules_elsewhere", counts.alive - counts.sump - counts.reservoir},
+                          {"granules_lost", granules - std::min(granules, counts.alive)}};
   try {
     const analysis::HeapAngle heap = scene.heapAngle(bodies);
     entry["angle_deg"] = heap.degrees;
