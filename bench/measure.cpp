@@ -296,6 +296,8 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   result.contactSlotOverflows = endStats.contactSlotOverflows - settledStats.contactSlotOverflows;
   result.velocityClamps = endStats.velocityClamps - settledStats.velocityClamps;
   result.listBuilds = endStats.listBuilds - settledStats.listBuilds;
+  result.stillGridBuilds = endStats.stillGridBuilds - settledStats.stillGridBuilds;
+  result.movingGridParticles = endStats.movingGridParticles;
   result.listOverflows = endStats.neighbourListOverflows - settledStats.neighbourListOverflows;
   result.measured = readPileState(world, pile, endStats);
   if (options.kernelTimes) result.kernels = profileKernels(world, options);

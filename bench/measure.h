@@ -108,6 +108,10 @@ struct SizeResult {
   std::uint32_t sleepWaitSteps = 0;
   std::uint32_t asleepAtStart = 0;
   std::uint32_t asleepAtEnd = 0;
+  /// MeasureOptions::sleep: the list builds of the timed span that sorted the sleepers again
+  /// (WorldStats::stillGridBuilds), and the particles the last build sorted into its moving grid.
+  std::uint64_t stillGridBuilds = 0;
+  std::uint32_t movingGridParticles = 0;
   /// MeasureOptions::rock: the ball's particles (0 without).
   std::uint32_t rockParticles = 0;
   /// MeasureOptions::sandboxSeconds: every frame of the script (empty without).

@@ -142,6 +142,8 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
       {"sleep_wait_substeps", size.sleepWaitSteps},
       {"granules_asleep_at_start", size.asleepAtStart},
       {"granules_asleep_at_end", size.asleepAtEnd},
+      {"still_grid_builds", size.stillGridBuilds},
+      {"moving_grid_particles", size.movingGridParticles},
       {"rock_particles", size.rockParticles},
       {"microseconds_per_granule_step", size.microsecondsPerGranuleStep()},
       {"simulated_seconds_per_wall_second", size.simulatedPerWallSecond()},
@@ -438,8 +440,10 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
     if (!measure.sleep) break;
     std::fprintf(out,
                  "  %u granules, sleeping sand: %u substeps after the settling until all slept; "
-                 "%u asleep at the start of timing, %u at its end\n",
-                 s.granules, s.sleepWaitSteps, s.asleepAtStart, s.asleepAtEnd);
+                 "%u asleep at the start of timing, %u at its end; %llu of the timed list builds "
+                 "sorted the sleepers again, the last sorted %u particles\n",
+                 s.granules, s.sleepWaitSteps, s.asleepAtStart, s.asleepAtEnd,
+                 static_cast<unsigned long long>(s.stillGridBuilds), s.movingGridParticles);
   }
   for (const SizeResult& s : report.sizes) {
     if (s.rockParticles == 0) continue;

@@ -7,8 +7,10 @@
 // activeParticles (contacts.comp). Each workgroup packs its entries in body order (a scan in
 // shared memory) and takes its place in the lists with one atomic add; the last workgroup to
 // finish writes the two passes' indirect commands, clears the totals for the next substep and
-// decides on the list build. So the passes that follow cost what the awake sand costs, and
-// nothing is read back.
+// decides on the list build. When a build is due it stamps the bodies that go into its moving
+// grid (BODY_GRID_BUILD): the computed ones and, unless the still grid is built again, the
+// recent sleepers, whose particles it lists from the end of activeParticles (common/grid.glsl).
+// So the passes that follow cost what the awake sand costs, and nothing is read back.
 #include "common/layout.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
@@ -18,6 +20,7 @@ BODY_VELOCITY_TEXTURE
 BODY_VELOCITY(writeonly)
 ACTIVE_BODIES(writeonly)
 ACTIVE_PARTICLES(writeonly)
+BODY_GRID_BUILD(coherent)
 COUNTERS(coherent)
 #include "common/list_decision.glsl"
 
@@ -42,29 +45,48 @@ void writeCommand(uint pass, uint entries) {
   counters[at + 3u] = entries;
 }
 
-// Whether body b is computed this substep, its info and its calm count.
-bool computed(uint b, out uvec4 info, out uint calm) {
+// Whether body b is computed this substep, its info and its calm count; and, at a build that
+// keeps the still grid (`recentDue`), whether it is a recent sleeper: one the moving grid took
+// at some build since the still grid was built (`stillBuild`).
+bool computed(uint b, bool recentDue, uint stillBuild, out uvec4 info, out uint calm,
+              out bool recent) {
   info = texelFetch(bodyInfoTexture, int(b));
   uint motion = (info.z & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT;
   // The thread reads its own body's count before it writes it; no other thread touches it.
   calm = floatBitsToUint(texelFetch(bodyVelocityTexture, int(b)).w);
-  return (info.z & BODY_ALIVE) != 0u && motion != MOTION_STATIC && calm != params.sleepSubsteps;
+  bool movable = (info.z & BODY_ALIVE) != 0u && motion != MOTION_STATIC;
+  bool listed = movable && calm != params.sleepSubsteps;
+  recent = recentDue && movable && !listed && bodyGridBuild[b] >= stillBuild;
+  return listed;
 }
 
 void main() {
   uint local = gl_LocalInvocationID.x;
   uint first = threadIndex() * COLLECT_CHUNK;
   uint end = min(first + COLLECT_CHUNK, params.bodyCount);
+  // Every workgroup reads these before the last one changes them (decideListBuild).
+  uint requested = counters[COUNTER_LIST_REQUESTED];
+  bool recentDue = requested != 0u && !stillGridDue(requested);
+  uint build = counters[COUNTER_LIST_BUILDS] + 1u;  // the number of the build, if one is due
+  uint stillBuild = counters[COUNTER_STILL_BUILD];
   uint bodies = 0u;
   uint particles = 0u;
+  uint recents = 0u;
   for (uint b = first; b < end; ++b) {
     uvec4 info;
     uint calm;
-    if (computed(b, info, calm)) {
+    bool recent;
+    if (computed(b, recentDue, stillBuild, info, calm, recent)) {
       if ((info.z & BODY_LARGE) == 0u) ++bodies;
       particles += info.y;
+    } else if (recent) {
+      recents += info.y;
     }
   }
+  // The recent sleepers' particles only sort into the grid, where their order does not matter:
+  // a place for each thread's, in any order.
+  uint nextRecent =
+      recents == 0u ? 0u : atomicAdd(counters[COUNTER_RECENT_PARTICLES], recents);
   bodyOffsets[local] = bodies;
   particleOffsets[local] = particles;
   barrier();
@@ -88,14 +110,24 @@ void main() {
   barrier();
   uint nextBody = bodyBase + bodyOffsets[local] - bodies;
   uint nextParticle = particleBase + particleOffsets[local] - particles;
-  for (uint b = first; b < end && bodies + particles > 0u; ++b) {
+  for (uint b = first; b < end && bodies + particles + recents > 0u; ++b) {
     uvec4 info;
     uint calm;
-    if (!computed(b, info, calm)) continue;
-    // A touched sleeper's mark is taken back: it is listed now.
-    if (calm == calmTouched()) bodyVelocity[b].w = uintBitsToFloat(params.sleepSubsteps);
-    if ((info.z & BODY_LARGE) == 0u) activeBodies[nextBody++] = b;
-    for (uint k = 0u; k < info.y; ++k) activeParticles[nextParticle++] = info.x + k;
+    bool recent;
+    if (computed(b, recentDue, stillBuild, info, calm, recent)) {
+      // A touched sleeper's mark is taken back: it is listed now.
+      if (calm == calmTouched()) bodyVelocity[b].w = uintBitsToFloat(params.sleepSubsteps);
+      if ((info.z & BODY_LARGE) == 0u) activeBodies[nextBody++] = b;
+      for (uint k = 0u; k < info.y; ++k) activeParticles[nextParticle++] = info.x + k;
+    } else if (recent) {
+      for (uint k = 0u; k < info.y; ++k) {
+        activeParticles[params.particleCount - 1u - nextRecent++] = info.x + k;
+      }
+    } else {
+      continue;
+    }
+    // Into this build's moving grid.
+    if (requested != 0u) bodyGridBuild[b] = build;
   }
   // The last workgroup to get here sees every workgroup's totals.
   memoryBarrierBuffer();
@@ -107,7 +139,8 @@ void main() {
       writeCommand(ACTIVE_PASS_CONTACTS, particles);
       writeCommand(ACTIVE_PASS_BODIES, atomicExchange(counters[COUNTER_ACTIVE_BODIES], 0u));
       counters[COUNTER_ACTIVE_GROUPS_DONE] = 0u;
-      decideListBuild(false, particles);  // what list_check.comp does without sleep
+      // What list_check.comp does without sleep.
+      decideListBuild(false, particles, atomicExchange(counters[COUNTER_RECENT_PARTICLES], 0u));
     }
   }
 }

@@ -75,7 +75,9 @@ CONTACT_SLOTS_2(coherent)
 #ifdef SLEEPING
 COUNTERS(readonly)
 LIST_BUILT(readonly)
+BODY_GRID_BUILD_TEXTURE
 #endif
+#include "common/grid.glsl"
 #include "common/neighbour_list.glsl"
 
 // The particle this thread gathers for.
@@ -334,12 +336,13 @@ bool touches(Particle self, uint id) {
 uint nextPartnerAfter(Particle self, uint after) {
   uint best = NO_PARTNER;
   ivec3 cell = cellOf(texelFetch(listOriginTexture, int(self.id)).xyz);
+  uint stillBuild = stillGridBuild();
   for (int row = 0; row < 9; ++row) {
     uint parts = rowParts(cell, row);
     for (uint part = 0u; part < parts; ++part) {
-      uvec2 slots = rowSlots(cell, row, part, parts);
-      for (uint s = slots.x; s < slots.y; ++s) {
-        uint id = texelFetch(cellParticlesTexture, int(s)).x;
+      uvec4 slots = rowSlots(cell, row, part, parts);
+      for (uint k = 0u; k < rowEntries(slots); ++k) {
+        uint id = rowParticle(slots, k);
         if ((after != NO_PARTNER && id <= after) || id >= best) continue;
         vec4 other = texelFetch(particlePositionTexture, int(id));
         float otherInverseMass = texelFetch(particleVelocityTexture, int(id)).w;
@@ -347,7 +350,9 @@ uint nextPartnerAfter(Particle self, uint after) {
             max(self.velocity.w, 0.0) + max(otherInverseMass, 0.0) == 0.0) {
           continue;
         }
-        if (touches(self, id)) best = id;
+        if (touches(self, id) && rowHolds(slots, k, floatBitsToUint(other.w), stillBuild)) {
+          best = id;
+        }
       }
     }
   }

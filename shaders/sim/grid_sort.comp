@@ -1,26 +1,34 @@
 #version 450
-// List build, pass 6. One thread per bucket sorts its particle ids ascending (insertion sort:
-// buckets hold a handful of particles; there is no cap). After this pass the bucket order is a pure
-// function of the particle positions: the step is deterministic.
+// List build, pass 6. One thread per bucket of each grid built sorts its particle ids ascending
+// (insertion sort: buckets hold a handful of particles; there is no cap). After this pass the
+// bucket order is a pure function of the particle positions: the step is deterministic.
 #include "common/layout.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 
 CELL_START_TEXTURE
 CELL_PARTICLES(coherent)
+#ifdef SLEEPING
+COUNTERS(readonly)
+ACTIVE_PARTICLES(readonly)
+#endif
+#include "common/grid_members.glsl"
 
 void main() {
-  uint bucket = threadIndex();
-  if (bucket >= params.hashSize) return;
-  uint begin = texelFetch(cellStartTexture, int(bucket)).x;
-  uint end = texelFetch(cellStartTexture, int(bucket + 1u)).x;
+  uint t = threadIndex();
+  if (t >= params.hashSize * gridsBuilt()) return;
+  // Bucket t of the moving grid, or bucket t - hashSize of the still grid (gpu_buffers.def).
+  uint grid = t >= params.hashSize ? 1u : 0u;
+  uint offset = grid * params.particleCount;
+  uint begin = texelFetch(cellStartTexture, int(t + grid)).x + offset;
+  uint end = texelFetch(cellStartTexture, int(t + grid + 1u)).x + offset;
   for (uint s = begin + 1u; s < end; ++s) {
     uint id = cellParticles[s];
-    uint t = s;
-    while (t > begin && cellParticles[t - 1u] > id) {
-      cellParticles[t] = cellParticles[t - 1u];
-      --t;
+    uint at = s;
+    while (at > begin && cellParticles[at - 1u] > id) {
+      cellParticles[at] = cellParticles[at - 1u];
+      --at;
     }
-    cellParticles[t] = id;
+    cellParticles[at] = id;
   }
 }

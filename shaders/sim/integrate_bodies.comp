@@ -32,6 +32,7 @@ COUNTERS(coherent)
 #ifdef SLEEPING
 ACTIVE_BODIES(readonly)
 LIST_ORIGIN(writeonly)
+BODY_GRID_BUILD(writeonly)
 #endif
 #ifndef PAPER_LAW
 PARTICLE_SPIN(writeonly)
@@ -173,6 +174,7 @@ void main() {
     for (uint k = 0u; k < GRANULE_PARTICLES; ++k) {
       listOrigin[info.x + k].w = uintBitsToFloat(LIST_DEAD);
     }
+    bodyGridBuild[b] = GRID_BUILD_DEAD;  // and the still grid's entries (common/grid.glsl)
 #endif
     return;
   }

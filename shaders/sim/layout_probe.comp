@@ -21,19 +21,27 @@ layout(std430, binding = 43) readonly buffer ListCapacityProbe { uint listCapaci
 layout(std430, binding = 44) readonly buffer ListDispatchProbe { uint listDispatchProbe[COUNTER_LIST_DISPATCH]; };
 layout(std430, binding = 45) readonly buffer ListPassesProbe { uvec4 listPassesProbe[LIST_BUILD_PASSES]; };
 layout(std430, binding = 46) readonly buffer ListPassProbe { uvec4 listPassProbe[PASS_LIST_BUILD + 1u]; };
+// The counters of sleep's two grids that the CPU reads: each member starts at its counter.
+layout(std430, binding = 49) readonly buffer GridCountersProbe {
+  uint beforeStillBuildsProbe[COUNTER_STILL_BUILDS];
+  uint stillBuildsProbe[COUNTER_GRID_ACTIVE - COUNTER_STILL_BUILDS];
+  uint gridActiveProbe[COUNTER_GRID_RECENT - COUNTER_GRID_ACTIVE];
+  uint gridRecentProbe;
+};
 // The active passes' commands (sleep).
 layout(std430, binding = 47) readonly buffer ActiveDispatchProbe { uint activeDispatchProbe[COUNTER_ACTIVE_DISPATCH]; };
 layout(std430, binding = 48) readonly buffer ActivePassesProbe { uvec4 activePassesProbe[ACTIVE_PASS_BODIES + 1u]; };
 
 void main() {
   // Every member of a std140 block is active once the block is used.
-  vec4 sum = vec4(params.gravity, params.dt) + vec4(float(params.sleepNeighbourLead));
+  vec4 sum = vec4(params.gravity, params.dt) + vec4(float(params.stillGridEveryBuild));
   sum += colliders[0].a + colliders[0].b + colliders[0].c + colliders[0].material;
   sum += colliders[0].velocity + colliders[0].spin;
   sum += slotsProbe[0] + slotGroupProbe[0] + slotGroupsProbe[0];
   sum += vec4(listPassesProbe[0]);
   sum.y += float(listCapacityProbe[0] + listDispatchProbe[0] + listPassProbe[0].x);
   sum.z += float(activeDispatchProbe[0] + activePassesProbe[0].x);
+  sum.w += float(beforeStillBuildsProbe[0] + stillBuildsProbe[0] + gridActiveProbe[0] + gridRecentProbe);
   sum += sinks[0].lo + sinks[0].hi;
   sum += vec4(statsPartials[0].counts) + statsPartials[0].sums + vec4(statsPartials[0].sleep);
   sum += contactList[0] + vec4(float(contactListCount + contactListCapacity + pad0 + pad1));

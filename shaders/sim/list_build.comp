@@ -1,12 +1,13 @@
 #version 450
 // List build, last pass: one thread per particle gathers over the 27 cells (of d + skin) around
-// it in the grid just built and lists the particles of other bodies closer than d + skin that it
-// could touch (not two immovable ones), ascending by id: the NEIGHBOUR_LIST_CAPACITY smallest,
-// and how many there were (a particle with more finds the rest in the grid, contacts.comp). It
-// records where it stands, from which the integration measures how far it moves. Static particles
-// (rough floors) get no list: nobody needs their force; they are listed by the others. Under
-// SLEEPING a build the motion asked for runs over the active particles only (COUNTER_LIST_ALL,
-// common/list_decision.glsl), and every list records the build it comes from (LIST_BUILT).
+// it in the grid just built (common/grid.glsl) and lists the particles of other bodies closer
+// than d + skin that it could touch (not two immovable ones), ascending by id: the
+// NEIGHBOUR_LIST_CAPACITY smallest, and how many there were (a particle with more finds the rest
+// in the grid, contacts.comp). It records where it stands, from which the integration measures
+// how far it moves. Static particles (rough floors) get no list: nobody needs their force; they
+// are listed by the others. Under SLEEPING a build the motion asked for runs over the active
+// particles only (COUNTER_LIST_ALL, common/list_decision.glsl), and every list records the build
+// it comes from (LIST_BUILT).
 #include "common/layout.glsl"
 #include "common/spatial_hash.glsl"
 
@@ -24,7 +25,9 @@ COUNTERS(coherent)
 #ifdef SLEEPING
 ACTIVE_PARTICLES(readonly)
 LIST_BUILT(writeonly)
+BODY_GRID_BUILD_TEXTURE
 #endif
+#include "common/grid.glsl"
 #include "common/neighbour_list.glsl"
 
 void main() {
@@ -49,18 +52,20 @@ void main() {
   uint count = 0u;
   if (alive && selfInverseMass >= 0.0) {
     ivec3 cell = cellOf(self.xyz);
+    uint stillBuild = stillGridBuild();
     for (int row = 0; row < 9; ++row) {
       uint parts = rowParts(cell, row);
       for (uint part = 0u; part < parts; ++part) {
-        uvec2 slots = rowSlots(cell, row, part, parts);
-        for (uint s = slots.x; s < slots.y; ++s) {
-          uint id = texelFetch(cellParticlesTexture, int(s)).x;
+        uvec4 slots = rowSlots(cell, row, part, parts);
+        for (uint k = 0u; k < rowEntries(slots); ++k) {
+          uint id = rowParticle(slots, k);
           vec4 other = texelFetch(particlePositionTexture, int(id));
           if (floatBitsToUint(other.w) == body) continue;
           vec3 d = self.xyz - other.xyz;
           if (dot(d, d) >= params.listReachSquared) continue;
           float otherInverseMass = texelFetch(particleVelocityTexture, int(id)).w;
           if (max(selfInverseMass, 0.0) + max(otherInverseMass, 0.0) == 0.0) continue;
+          if (!rowHolds(slots, k, floatBitsToUint(other.w), stillBuild)) continue;
           // Keep the smallest ids, in order.
           if (count < uint(NEIGHBOUR_LIST_CAPACITY) ||
               id < ids[NEIGHBOUR_LIST_CAPACITY - 1]) {

@@ -11,5 +11,5 @@ COUNTERS(coherent)
 
 void main() {
   // With sleep only World::readContacts runs this pass: it builds every list.
-  decideListBuild(true, 0u);
+  decideListBuild(true, 0u, 0u);
 }

@@ -1,5 +1,6 @@
 #version 450
-// List build, pass 4. Adds each block's offset to its 1024 exclusive sums.
+// List build, pass 4. Adds each block's offset to its 1024 exclusive sums (scan_blocks.comp says
+// where each grid's are).
 #include "common/layout.glsl"
 
 #define SCAN_THREADS 256
@@ -12,7 +13,6 @@ void main() {
   uint group = gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x;
   uint add = scanBlockSums[group];
   uint base = group * (SCAN_THREADS * 4u) + gl_LocalInvocationID.x * 4u;
-  for (uint k = 0u; k < 4u; ++k) {
-    if (base + k < params.hashSize) cellStart[base + k] += add;
-  }
+  uint at = base + base / params.hashSize;
+  for (uint k = 0u; k < 4u; ++k) cellStart[at + k] += add;
 }

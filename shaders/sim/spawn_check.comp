@@ -22,8 +22,11 @@ PARTICLE_LOCAL_TEXTURE
 PARTICLE_BODY_TEXTURE
 BODY_INFO(coherent)
 COUNTERS(coherent)
+#ifdef SLEEPING
+BODY_GRID_BUILD_TEXTURE
+#endif
 #include "common/particle_offset.glsl"
-#include "common/neighbour_list.glsl"
+#include "common/grid.glsl"
 
 // The first new particle and how many there are.
 layout(location = 0) uniform uvec2 spawned;
@@ -38,15 +41,19 @@ void main() {
   float diameter = params.particleDiameter;
   ivec3 cell = cellOf(position);
   bool taken = false;
+  uint stillBuild = stillGridBuild();
   for (int row = 0; row < 9; ++row) {
     uint parts = rowParts(cell, row);
     for (uint part = 0u; part < parts; ++part) {
-      uvec2 slots = rowSlots(cell, row, part, parts);
-      for (uint s = slots.x; s < slots.y; ++s) {
-        uint id = texelFetch(cellParticlesTexture, int(s)).x;
-        vec4 other = texelFetch(particlePositionTexture, int(id));
+      uvec4 slots = rowSlots(cell, row, part, parts);
+      for (uint k = 0u; k < rowEntries(slots); ++k) {
+        vec4 other = texelFetch(particlePositionTexture, int(rowParticle(slots, k)));
         vec3 d = position - other.xyz;
-        if (floatBitsToUint(other.w) != body && dot(d, d) < diameter * diameter) taken = true;
+        uint owner = floatBitsToUint(other.w);
+        if (owner != body && dot(d, d) < diameter * diameter &&
+            rowHolds(slots, k, owner, stillBuild)) {
+          taken = true;
+        }
       }
     }
   }

@@ -92,6 +92,7 @@ TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
       {"wakeAcceleration", offsetof(SimParams, wakeAcceleration)},
       {"sleepSubsteps", offsetof(SimParams, sleepSubsteps)},
       {"sleepNeighbourLead", offsetof(SimParams, sleepNeighbourLead)},
+      {"stillGridEveryBuild", offsetof(SimParams, stillGridEveryBuild)},
   };
   for (const Member& m : members) {
     const std::string name = std::string("SimParams.") + m.name;
@@ -131,6 +132,12 @@ TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
             GLint(4 * kNeighbourListCapacity));
   EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "ListDispatchProbe"),
             GLint(4 * kCounterListDispatch));
+  EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, "stillBuildsProbe[0]"),
+            GLint(4 * kCounterStillBuilds));
+  EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, "gridActiveProbe[0]"),
+            GLint(4 * kCounterGridActive));
+  EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, "gridRecentProbe"),
+            GLint(4 * kCounterGridRecent));
   EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "ListPassesProbe"),
             GLint(16 * kListBuildPasses));
   EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "ListPassProbe"),

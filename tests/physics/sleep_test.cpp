@@ -168,17 +168,26 @@ struct RockResult {
   double farthestMoved = 0.0;  // the largest horizontal distance of one of them from the rock, m
   std::uint32_t asleepAtDrop = 0;
   std::uint32_t asleepAtEnd = 0;
+  // With sleep, over the second after the drop: list builds, the builds of the still grid among
+  // them, and the most particles a build sorted into its moving grid; then the state hash.
+  std::uint64_t listBuilds = 0;
+  std::uint64_t stillGridBuilds = 0;
+  std::uint32_t mostMovingGridParticles = 0;
+  std::uint32_t particles = 0;
+  std::uint64_t hash = 0;
 };
 
 constexpr std::uint32_t kBedGranules = 432;
 // Beyond this many diameters from the rock's axis (5.6 rock radii) nothing may wake.
 constexpr double kQuietRadius = 14.0;
 
-RockResult dropRock(bool sleep) {
+// `oneGrid`: every list build sorts the sleepers again (testing::sortSleepersAtEveryBuild).
+RockResult dropRock(bool sleep, bool oneGrid = false) {
   WorldSettings settings = testing::smallSettings(kBedGranules + 1);
   settings.maxParticles = 4 * kBedGranules + 64;
   settings.sleep.enabled = sleep;
   testing::TestWorld w(settings);
+  if (oneGrid) testing::sortSleepersAtEveryBuild(*w);
   const float d = settings.particleDiameter;
   w->addCollider(Plane{});
   w->addCollider(Box{.center = {0, 0.3f, 0}, .halfExtents = {0.3f, 0.3f, 0.3f}, .inside = true});
@@ -202,7 +211,17 @@ RockResult dropRock(bool sleep) {
   const float rockX = 0.01f, rockZ = -0.005f;
   w->addBody(makeParticleTemplate(ball, d, settings.material.density),
              {{rockX, top + 3.0f * d, rockZ}, {}, {0, -0.3f, 0}, {}, Motion::Dynamic});
-  w.simulate(1.0);
+  const WorldStats atDrop = w->readStats();
+  for (int chunk = 0; chunk < 50; ++chunk) {
+    w.simulate(0.02);
+    r.mostMovingGridParticles =
+        std::max(r.mostMovingGridParticles, w->readStats().movingGridParticles);
+  }
+  const WorldStats atEnd = w->readStats();
+  r.listBuilds = atEnd.listBuilds - atDrop.listBuilds;
+  r.stillGridBuilds = atEnd.stillGridBuilds - atDrop.stillGridBuilds;
+  r.particles = atEnd.particles;
+  r.hash = w->readStateHash();
   const std::vector<BodyState> after = w->readBodies();
   r.restHeight = after.back().position.y;
   for (std::size_t i = 0; i < before.size(); ++i) {
@@ -239,6 +258,29 @@ TEST(Sleep, ARockDroppedOnASleepingBedWakesOnlyItsSurroundingsAndRestsAsWithoutS
   // the bed sleeps again under it (as much of it as at the drop, give or take a few rattlers).
   EXPECT_NEAR(asleep.restHeight, awake.restHeight, 0.25 * d);
   EXPECT_GE(asleep.asleepAtEnd, kBedGranules * 9 / 10);
+}
+
+// A list build sorts the awake sand, and the sleepers that moved since the sleepers were last
+// sorted, into a grid of their own (docs/architecture.md, "Sleep"): the rock's second on the
+// sleeping bed. The lists, and so every bit of the result, are those of one grid of every
+// particle.
+TEST(Sleep, AListBuildSortsTheAwakeSandAndFindsWhatOneGridFinds) {
+  const RockResult two = dropRock(true);
+  const RockResult one = dropRock(true, true);
+  std::printf(
+      "second after the drop: %llu list builds, %llu of them sorting the sleepers again (%llu "
+      "with one grid); at most %u of %u particles in a build's moving grid\n",
+      static_cast<unsigned long long>(two.listBuilds),
+      static_cast<unsigned long long>(two.stillGridBuilds),
+      static_cast<unsigned long long>(one.stillGridBuilds), two.mostMovingGridParticles,
+      two.particles);
+  ASSERT_GT(two.listBuilds, 2u);
+  EXPECT_EQ(one.stillGridBuilds, one.listBuilds);
+  EXPECT_LT(two.stillGridBuilds, two.listBuilds / 2);
+  EXPECT_GT(two.mostMovingGridParticles, 0u);
+  EXPECT_LT(two.mostMovingGridParticles, two.particles / 2);
+  EXPECT_EQ(two.hash, one.hash);
+  EXPECT_EQ(two.restHeight, one.restHeight);
 }
 
 TEST(Sleep, SnapshotCarriesTheSleepState) {

@@ -30,6 +30,12 @@ void flipVelocityBit(World& world, std::uint32_t body, int axis) {
   velocity.upload(offset, sizeof bits, &bits);
 }
 
+void sortSleepersAtEveryBuild(World& world) {
+  World::Impl& w = detail::WorldAccess::impl(world);
+  w.stillGridEveryBuild = true;
+  w.paramsDirty = true;
+}
+
 WorldSettings smallSettings(std::uint32_t maxBodies) {
   WorldSettings s;
   s.maxBodies = maxBodies;

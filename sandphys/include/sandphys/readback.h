@@ -89,6 +89,12 @@ struct WorldStats {
   /// (total over builds). Their further partners are found in the grid each substep: exact, only
   /// slower.
   std::uint64_t neighbourListOverflows = 0;
+  /// WorldSettings::sleep (0 without): the builds that sorted the sleepers into a grid again
+  /// (total: the CPU changed the bodies, or enough sleepers had moved since), and the particles
+  /// the last build sorted into its moving grid, the awake ones and the sleepers that moved
+  /// since; the other sleepers stay sorted from before (docs/architecture.md, "Sleep").
+  std::uint64_t stillGridBuilds = 0;
+  std::uint32_t movingGridParticles = 0;
   double kineticEnergy = 0.0;  ///< translational + rotational of dynamic bodies, J
   double maxOverlap = 0.0;     ///< largest overlap since the last step() or resetPeakOverlap(), m
   /// ContactLaw::PaperViscous: contacts whose overlap exceeded d/10 and was capped (total).

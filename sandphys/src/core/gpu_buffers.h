@@ -13,8 +13,9 @@
 
 namespace sandphys::detail {
 
-/// What a buffer's element count follows. Lists and the hash table's buffers (Table,
-/// TablePlusOne, ScanBlocks) are rebuilt from the particles, so nothing is kept when they grow.
+/// What a buffer's element count follows. Lists and the grid's buffers (Table, TablePlusOne,
+/// ScanBlocks, GridParticles: one of each per grid, two under sleep) are rebuilt from the
+/// particles, so nothing is kept when they grow.
 /// History: the particles when the contact law keeps contact state (HertzMindlin), else one unit.
 enum class SizedBy {
   Bodies,
@@ -24,6 +25,7 @@ enum class SizedBy {
   Table,
   TablePlusOne,
   ScanBlocks,
+  GridParticles,
   Colliders,
   Fixed
 };

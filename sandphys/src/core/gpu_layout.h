@@ -19,13 +19,18 @@ inline constexpr unsigned kScanBlock = 1024;      // elements per scan workgroup
 inline constexpr unsigned kStatsWorkgroups = 32;  // fixed: the reduction order never changes
 // counters[] (layout.glsl, COUNTER_*): rare events, the neighbour lists' control and, from
 // kCounterListDispatch on, the indirect commands of the list build's passes, then (sleep) those of
-// the passes over the active lists. Words 5-8 are the GPU's alone (layout.glsl).
+// the passes over the active lists. Words 5-9 and 13 are the GPU's alone (layout.glsl).
 inline constexpr std::uint32_t kCounterKilled = 0;
 inline constexpr std::uint32_t kCounterSpawnTaken = 1;
 inline constexpr std::uint32_t kCounterListRequested = 2;
 inline constexpr std::uint32_t kCounterListBuilds = 3;
 inline constexpr std::uint32_t kCounterListOverflows = 4;
-inline constexpr std::uint32_t kCounterListDispatch = 12;
+/// Sleep's two grids: builds of the still grid, and the last moving grid's particles from the
+/// active list and from the sleepers that moved since the still grid was built.
+inline constexpr std::uint32_t kCounterStillBuilds = 10;
+inline constexpr std::uint32_t kCounterGridActive = 11;
+inline constexpr std::uint32_t kCounterGridRecent = 12;
+inline constexpr std::uint32_t kCounterListDispatch = 16;
 /// COUNTER_LIST_REQUESTED values (layout.glsl): the CPU asks for every list.
 inline constexpr std::uint32_t kListRequestAll = 1;
 /// The passes of a list build, each dispatched from its own indirect command (list_check.comp).
@@ -162,6 +167,7 @@ struct alignas(16) SimParams {
   float wakeAcceleration;
   std::uint32_t sleepSubsteps;
   std::uint32_t sleepNeighbourLead;
+  std::uint32_t stillGridEveryBuild;
 };
 
 static_assert(sizeof(GpuCollider) == 96);

@@ -46,7 +46,7 @@ HashTable HashTable::forParticles(std::uint32_t particles) {
 
 void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::uint32_t tableSize,
                             std::uint32_t colliders, std::uint32_t bodiesInUse,
-                            std::uint32_t particlesInUse, bool history) {
+                            std::uint32_t particlesInUse, bool history, std::uint32_t grids) {
   for (unsigned b = 0; b < kBindingCount; ++b) {
     const GpuBufferSpec& spec = kGpuBuffers[b];
     std::size_t count = 1;
@@ -68,13 +68,16 @@ void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::
         keep = history ? particlesInUse : 0;
         break;
       case SizedBy::Table:
-        count = tableSize;
+        count = std::size_t(tableSize) * grids;
         break;
       case SizedBy::TablePlusOne:
-        count = tableSize + 1u;
+        count = (std::size_t(tableSize) + 1u) * grids;
         break;
       case SizedBy::ScanBlocks:
-        count = (tableSize + kScanBlock - 1) / kScanBlock;
+        count = std::size_t((tableSize + kScanBlock - 1) / kScanBlock) * grids;
+        break;
+      case SizedBy::GridParticles:
+        count = std::size_t(particles) * grids;
         break;
       case SizedBy::Colliders:
         count = colliders;
@@ -91,7 +94,8 @@ void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::
       buffer = gl::Buffer(bytes, spec.array);
     } else if (bytes > buffer.size()) {
       if (spec.sizedBy == SizedBy::Table || spec.sizedBy == SizedBy::TablePlusOne ||
-          spec.sizedBy == SizedBy::ScanBlocks || spec.sizedBy == SizedBy::Lists) {
+          spec.sizedBy == SizedBy::ScanBlocks || spec.sizedBy == SizedBy::GridParticles ||
+          spec.sizedBy == SizedBy::Lists) {
         buffer = gl::Buffer(bytes, spec.array);  // rebuilt from the particles: nothing to keep
       } else {
         buffer.grow(bytes, keep * spec.unitBytes());

@@ -36,10 +36,11 @@ struct WorldBuffers {
   const gl::Buffer& operator[](Binding b) const { return storage[b]; }
 
   /// Allocates (or, when already allocated, grows keeping contents) for these capacities;
-  /// `history`: the contact law keeps contact state (the contact slots and what goes with them).
+  /// `history`: the contact law keeps contact state (the contact slots and what goes with them);
+  /// `grids`: the grids of a list build (two with sleep, common/grid.glsl).
   void allocate(std::uint32_t bodies, std::uint32_t particles, std::uint32_t tableSize,
                 std::uint32_t colliders, std::uint32_t bodiesInUse, std::uint32_t particlesInUse,
-                bool history);
+                bool history, std::uint32_t grids);
   void bindAll() const;
   std::uint64_t bytes() const;
 };
@@ -135,6 +136,10 @@ struct World::Impl {
   // The CPU changed what the lists hold (bodies added or restored, the table or the buffers
   // changed): the next substep builds them.
   bool listsStale = true;
+  // With sleep: every build sorts the sleepers into the still grid again, as if there were one
+  // grid (a test's oracle: the lists and so the results are the same bit for bit). Set
+  // paramsDirty after changing it.
+  bool stillGridEveryBuild = false;
   // Particles whose state must be written from their bodies before the next contacts (bodies
   // added, set or restored by the CPU): [dirtyBegin, dirtyEnd).
   std::uint32_t dirtyBegin = 0;
@@ -154,6 +159,8 @@ struct World::Impl {
   /// The contact law keeps contact state across substeps (HertzMindlin): slots, pair counts,
   /// torques and the sorted spins exist.
   bool keepsHistory() const { return settings.contactLaw == ContactLaw::HertzMindlin; }
+  /// The grids of a list build: with sleep a moving and a still one (common/grid.glsl).
+  std::uint32_t grids() const { return sleep.enabled ? 2u : 1u; }
   /// One past the last particle of body slot `body`.
   std::uint32_t particleEnd(std::uint32_t body) const { return particleEnds[body]; }
 

@@ -62,6 +62,7 @@ void World::Impl::uploadParams() {
   p.wakeAcceleration = sleep.wakeAcceleration;
   p.sleepSubsteps = sleep.substeps;
   p.sleepNeighbourLead = sleep.neighbourLead;
+  p.stillGridEveryBuild = stillGridEveryBuild ? 1u : 0u;
   buffers[kColliders].upload(0, sorted.size() * sizeof(GpuCollider), sorted.data());
   buffers.params.upload(0, sizeof p, &p);
   paramsDirty = false;
@@ -258,6 +259,10 @@ WorldStats World::Impl::reduceStats() {
   s.gridBuckets = table.size;
   s.listBuilds = counters[kCounterListBuilds];
   s.neighbourListOverflows = counters[kCounterListOverflows];
+  if (sleep.enabled) {
+    s.stillGridBuilds = counters[kCounterStillBuilds];
+    s.movingGridParticles = counters[kCounterGridActive] + counters[kCounterGridRecent];
+  }
   s.contacts = std::uint32_t(pairEnds / 2 + wallContacts);
   s.steps = steps;
   s.simulatedTime = simTime;

@@ -21,6 +21,8 @@
 #define MOTION_STATIC 2u
 
 #define INVALID_CELL 0xffffffffu
+// bodyGridBuild of a body that died (common/grid.glsl).
+#define GRID_BUILD_DEAD 0xffffffffu
 
 // Neighbour-list entries per particle.
 #define NEIGHBOUR_LIST_CAPACITY 16
@@ -68,9 +70,17 @@ struct SinkBox {
 // SLEEPING: non-zero when the build due builds every particle's list, zero when only the active
 // particles' (list_build.comp).
 #define COUNTER_LIST_ALL 8
+// SLEEPING, the two grids (common/grid.glsl): the build that last built the still grid, and how
+// many builds did; the particles of the last build's moving grid from the active list and from
+// the recent sleepers; and the recent sleepers' particles collect_active.comp has listed so far.
+#define COUNTER_STILL_BUILD 9
+#define COUNTER_STILL_BUILDS 10
+#define COUNTER_GRID_ACTIVE 11
+#define COUNTER_GRID_RECENT 12
+#define COUNTER_RECENT_PARTICLES 13
 // From this uint on: the indirect dispatch commands of the list build, one per pass below (4
 // uints each: groups x, y, z and padding), zero groups when no build is due.
-#define COUNTER_LIST_DISPATCH 12
+#define COUNTER_LIST_DISPATCH 16
 #define PASS_GRID_COUNT 0u
 #define PASS_SCAN_BLOCKS 1u
 #define PASS_SCAN_BLOCK_SUMS 2u
@@ -149,6 +159,7 @@ layout(std140, binding = 0) uniform SimParams {
   float wakeAcceleration;      // SLEEPING: m/s^2
   uint sleepSubsteps;          // SLEEPING: SleepModel::substeps, calm substeps before sleep
   uint sleepNeighbourLead;     // SLEEPING: SleepModel::neighbourLead
+  uint stillGridEveryBuild;    // SLEEPING: 1 builds the still grid at every build (a test's oracle)
 } params;
 
 // Linear thread index of a dispatch that World may fold into two dimensions. A macro, because

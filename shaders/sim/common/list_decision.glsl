@@ -4,34 +4,71 @@
 // granule died, or the CPU changed the bodies or the table), zero otherwise, and clears the
 // request. Run by list_check.comp, or under SLEEPING by the last workgroup of collect_active.comp:
 // then a build the motion asked for lists only the `activeParticles` particles of the active
-// list (COUNTER_LIST_ALL tells list_build.comp which), unless `everyList`.
+// list (COUNTER_LIST_ALL tells list_build.comp which), unless `everyList`, and sorts them and the
+// `recentParticles` into the moving grid; the still grid is built only when stillGridDue (or
+// `everyList`: then the moving grid takes no particle). common/grid.glsl has the two grids.
+// Spilling into y as World::Impl::dispatch does (threadIndex() folds it back).
 void setGroups(uint pass, uint groups) {
   uint at = uint(COUNTER_LIST_DISPATCH) + 4u * pass;
-  counters[at] = groups;
-  counters[at + 1u] = 1u;
+  uint x = min(groups, 32768u);
+  counters[at] = x;
+  counters[at + 1u] = x == 0u ? 1u : (groups + x - 1u) / x;
   counters[at + 2u] = 1u;
 }
 
+uint groupsFor(uint threads) {
+  return (threads + WORKGROUP_SIZE - 1u) / WORKGROUP_SIZE;
+}
+
+#ifdef SLEEPING
+// Whether a build of `requested` (COUNTER_LIST_REQUESTED) builds the still grid again: when the
+// CPU asked for it, or when the recent sleepers in the last moving grid outnumbered its active
+// particles and were more than a sixteenth of all particles.
+bool stillGridDue(uint requested) {
+  uint recent = counters[COUNTER_GRID_RECENT];
+  return requested == LIST_REQUEST_ALL || (requested != 0u && params.stillGridEveryBuild != 0u) ||
+         (requested != 0u &&
+          recent > max(counters[COUNTER_GRID_ACTIVE], params.particleCount / 16u));
+}
+#endif
+
 // The decision and the build's group counts (the caller has COUNTERS(coherent)).
-void decideListBuild(bool everyList, uint activeParticles) {
+void decideListBuild(bool everyList, uint activeParticles, uint recentParticles) {
   uint requested = counters[COUNTER_LIST_REQUESTED];
   bool due = requested != 0u;
-  counters[COUNTER_LIST_REQUESTED] = 0u;
-  if (due) counters[COUNTER_LIST_BUILDS] += 1u;
-  uint particleGroups = due ? (params.particleCount + WORKGROUP_SIZE - 1u) / WORKGROUP_SIZE : 0u;
+  uint particleGroups = due ? groupsFor(params.particleCount) : 0u;
   uint listGroups = particleGroups;
+  uint gridGroups = particleGroups;
+  // The table size is a power of two of at least 4096; one table per grid built.
+  uint scanGroups = due ? params.hashSize / SCAN_BLOCK : 0u;
+  uint sortGroups = due ? params.hashSize / WORKGROUP_SIZE : 0u;
 #ifdef SLEEPING
   bool all = everyList || requested == LIST_REQUEST_ALL;
   counters[COUNTER_LIST_ALL] = all ? 1u : 0u;
-  if (due && !all) listGroups = (activeParticles + WORKGROUP_SIZE - 1u) / WORKGROUP_SIZE;
+  if (due && !all) listGroups = groupsFor(activeParticles);
+  if (due) {
+    bool still = everyList || stillGridDue(requested);
+    uint gridActive = everyList ? 0u : activeParticles;
+    uint gridRecent = still ? 0u : recentParticles;
+    counters[COUNTER_GRID_ACTIVE] = gridActive;
+    counters[COUNTER_GRID_RECENT] = gridRecent;
+    if (still) {
+      counters[COUNTER_STILL_BUILD] = counters[COUNTER_LIST_BUILDS] + 1u;
+      counters[COUNTER_STILL_BUILDS] += 1u;
+      scanGroups *= 2u;
+      sortGroups *= 2u;
+    } else {
+      gridGroups = groupsFor(gridActive + gridRecent);
+    }
+  }
 #endif
-  // The table size is a power of two of at least 4096.
-  uint scanGroups = due ? params.hashSize / SCAN_BLOCK : 0u;
-  setGroups(PASS_GRID_COUNT, particleGroups);
+  counters[COUNTER_LIST_REQUESTED] = 0u;
+  if (due) counters[COUNTER_LIST_BUILDS] += 1u;
+  setGroups(PASS_GRID_COUNT, gridGroups);
   setGroups(PASS_SCAN_BLOCKS, scanGroups);
   setGroups(PASS_SCAN_BLOCK_SUMS, due ? 1u : 0u);
   setGroups(PASS_SCAN_ADD, scanGroups);
-  setGroups(PASS_GRID_SCATTER, particleGroups);
-  setGroups(PASS_GRID_SORT, due ? params.hashSize / WORKGROUP_SIZE : 0u);
+  setGroups(PASS_GRID_SCATTER, gridGroups);
+  setGroups(PASS_GRID_SORT, sortGroups);
   setGroups(PASS_LIST_BUILD, listGroups);
 }
