@@ -44,7 +44,7 @@ void main() {
   if (stillGridBuilt()) {
     uint build = counters[COUNTER_LIST_BUILDS];
     listedNow = bodyGridBuild[body] == build;
-    if (!listedNow) {
+    if (!listedNow && params.oneGrid == 0u) {
       cell += params.hashSize;
       // Older than the still grid from now on (whatever the slot held before; every particle of
       // the body reads a stamp other than this build's, also after this write).

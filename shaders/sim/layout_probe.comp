@@ -34,7 +34,7 @@ layout(std430, binding = 48) readonly buffer ActivePassesProbe { uvec4 activePas
 
 void main() {
   // Every member of a std140 block is active once the block is used.
-  vec4 sum = vec4(params.gravity, params.dt) + vec4(float(params.stillGridEveryBuild));
+  vec4 sum = vec4(params.gravity, params.dt) + vec4(float(params.oneGrid));
   sum += colliders[0].a + colliders[0].b + colliders[0].c + colliders[0].material;
   sum += colliders[0].velocity + colliders[0].spin;
   sum += slotsProbe[0] + slotGroupProbe[0] + slotGroupsProbe[0];

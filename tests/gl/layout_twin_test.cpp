@@ -92,7 +92,7 @@ TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
       {"wakeAcceleration", offsetof(SimParams, wakeAcceleration)},
       {"sleepSubsteps", offsetof(SimParams, sleepSubsteps)},
       {"sleepNeighbourLead", offsetof(SimParams, sleepNeighbourLead)},
-      {"stillGridEveryBuild", offsetof(SimParams, stillGridEveryBuild)},
+      {"oneGrid", offsetof(SimParams, oneGrid)},
   };
   for (const Member& m : members) {
     const std::string name = std::string("SimParams.") + m.name;
@@ -132,12 +132,13 @@ TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
             GLint(4 * kNeighbourListCapacity));
   EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "ListDispatchProbe"),
             GLint(4 * kCounterListDispatch));
-  EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, "stillBuildsProbe[0]"),
-            GLint(4 * kCounterStillBuilds));
-  EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, "gridActiveProbe[0]"),
-            GLint(4 * kCounterGridActive));
-  EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, "gridRecentProbe"),
-            GLint(4 * kCounterGridRecent));
+  // The counters of sleep's two grids that the CPU reads, each member of the probe at its word.
+  const Member gridCounters[] = {{"stillBuildsProbe[0]", 4 * kCounterStillBuilds},
+                                 {"gridActiveProbe[0]", 4 * kCounterGridActive},
+                                 {"gridRecentProbe", 4 * kCounterGridRecent}};
+  for (const Member& m : gridCounters) {
+    EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, m.name), GLint(m.offset)) << m.name;
+  }
   EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "ListPassesProbe"),
             GLint(16 * kListBuildPasses));
   EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "ListPassProbe"),

@@ -181,13 +181,13 @@ constexpr std::uint32_t kBedGranules = 432;
 // Beyond this many diameters from the rock's axis (5.6 rock radii) nothing may wake.
 constexpr double kQuietRadius = 14.0;
 
-// `oneGrid`: every list build sorts the sleepers again (testing::sortSleepersAtEveryBuild).
+// `oneGrid`: every list build sorts every particle into one grid (testing::useOneGrid).
 RockResult dropRock(bool sleep, bool oneGrid = false) {
   WorldSettings settings = testing::smallSettings(kBedGranules + 1);
   settings.maxParticles = 4 * kBedGranules + 64;
   settings.sleep.enabled = sleep;
   testing::TestWorld w(settings);
-  if (oneGrid) testing::sortSleepersAtEveryBuild(*w);
+  if (oneGrid) testing::useOneGrid(*w);
   const float d = settings.particleDiameter;
   w->addCollider(Plane{});
   w->addCollider(Box{.center = {0, 0.3f, 0}, .halfExtents = {0.3f, 0.3f, 0.3f}, .inside = true});

@@ -30,9 +30,9 @@ void flipVelocityBit(World& world, std::uint32_t body, int axis) {
   velocity.upload(offset, sizeof bits, &bits);
 }
 
-void sortSleepersAtEveryBuild(World& world) {
+void useOneGrid(World& world) {
   World::Impl& w = detail::WorldAccess::impl(world);
-  w.stillGridEveryBuild = true;
+  w.oneGrid = true;
   w.paramsDirty = true;
 }
 

@@ -19,9 +19,9 @@ const GpuContext& gpu();
 /// a change of one unit in the last place that no public call could make without rounding.
 void flipVelocityBit(World& world, std::uint32_t body, int axis);
 
-/// Makes every list build of a sleeping World sort the sleepers again, as if its grid were one
-/// grid of every particle (World::Impl::stillGridEveryBuild): the oracle of its two grids.
-void sortSleepersAtEveryBuild(World& world);
+/// Makes every list build of a sleeping World sort every particle into one grid and leave the
+/// still grid empty (World::Impl::oneGrid): the oracle of its two grids.
+void useOneGrid(World& world);
 
 /// Settings for small test scenes: default material, capacity for `maxBodies` bodies.
 WorldSettings smallSettings(std::uint32_t maxBodies = 256);

@@ -167,7 +167,7 @@ struct alignas(16) SimParams {
   float wakeAcceleration;
   std::uint32_t sleepSubsteps;
   std::uint32_t sleepNeighbourLead;
-  std::uint32_t stillGridEveryBuild;
+  std::uint32_t oneGrid;
 };
 
 static_assert(sizeof(GpuCollider) == 96);

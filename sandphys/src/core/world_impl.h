@@ -136,10 +136,10 @@ struct World::Impl {
   // The CPU changed what the lists hold (bodies added or restored, the table or the buffers
   // changed): the next substep builds them.
   bool listsStale = true;
-  // With sleep: every build sorts the sleepers into the still grid again, as if there were one
-  // grid (a test's oracle: the lists and so the results are the same bit for bit). Set
-  // paramsDirty after changing it.
-  bool stillGridEveryBuild = false;
+  // With sleep: every build sorts every particle into one grid, the moving grid, and leaves the
+  // still grid empty (a test's oracle of the two grids: the lists and so the results are the
+  // same bit for bit). Set paramsDirty after changing it.
+  bool oneGrid = false;
   // Particles whose state must be written from their bodies before the next contacts (bodies
   // added, set or restored by the CPU): [dirtyBegin, dirtyEnd).
   std::uint32_t dirtyBegin = 0;

@@ -62,7 +62,7 @@ void World::Impl::uploadParams() {
   p.wakeAcceleration = sleep.wakeAcceleration;
   p.sleepSubsteps = sleep.substeps;
   p.sleepNeighbourLead = sleep.neighbourLead;
-  p.stillGridEveryBuild = stillGridEveryBuild ? 1u : 0u;
+  p.oneGrid = oneGrid ? 1u : 0u;
   buffers[kColliders].upload(0, sorted.size() * sizeof(GpuCollider), sorted.data());
   buffers.params.upload(0, sizeof p, &p);
   paramsDirty = false;

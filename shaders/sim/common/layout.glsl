@@ -159,7 +159,7 @@ layout(std140, binding = 0) uniform SimParams {
   float wakeAcceleration;      // SLEEPING: m/s^2
   uint sleepSubsteps;          // SLEEPING: SleepModel::substeps, calm substeps before sleep
   uint sleepNeighbourLead;     // SLEEPING: SleepModel::neighbourLead
-  uint stillGridEveryBuild;    // SLEEPING: 1 builds the still grid at every build (a test's oracle)
+  uint oneGrid;                // SLEEPING: 1 sorts every particle into one grid at every build (a test's oracle)
 } params;
 
 // Linear thread index of a dispatch that World may fold into two dimensions. A macro, because

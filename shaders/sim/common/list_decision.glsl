@@ -26,7 +26,7 @@ uint groupsFor(uint threads) {
 // particles and were more than a sixteenth of all particles.
 bool stillGridDue(uint requested) {
   uint recent = counters[COUNTER_GRID_RECENT];
-  return requested == LIST_REQUEST_ALL || (requested != 0u && params.stillGridEveryBuild != 0u) ||
+  return requested == LIST_REQUEST_ALL || (requested != 0u && params.oneGrid != 0u) ||
          (requested != 0u &&
           recent > max(counters[COUNTER_GRID_ACTIVE], params.particleCount / 16u));
 }
