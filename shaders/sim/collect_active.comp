@@ -36,12 +36,8 @@ shared uint particleBase;
 // The command of `pass` for `entries` threads of WORKGROUP_SIZE, spilling into y as
 // World::Impl::dispatch does; the fourth uint holds `entries`.
 void writeCommand(uint pass, uint entries) {
-  uint groups = (entries + WORKGROUP_SIZE - 1u) / WORKGROUP_SIZE;
-  uint x = min(groups, 32768u);
   uint at = uint(COUNTER_ACTIVE_DISPATCH) + 4u * pass;
-  counters[at] = x;
-  counters[at + 1u] = x == 0u ? 0u : (groups + x - 1u) / x;
-  counters[at + 2u] = 1u;
+  writeGroups(at, groupsFor(entries));
   counters[at + 3u] = entries;
 }
 

@@ -41,7 +41,7 @@ void main() {
   uint cell = bucketOf(cellOf(position));
 #ifdef SLEEPING
   bool listedNow = t < counters[COUNTER_GRID_ACTIVE];
-  if (stillGridBuilt()) {
+  if (buildsStillGrid()) {
     uint build = counters[COUNTER_LIST_BUILDS];
     listedNow = bodyGridBuild[body] == build;
     if (!listedNow && params.oneGrid == 0u) {

@@ -10,9 +10,8 @@ CELL_START_TEXTURE
 CELL_PARTICLES(coherent)
 #ifdef SLEEPING
 COUNTERS(readonly)
-ACTIVE_PARTICLES(readonly)
 #endif
-#include "common/grid_members.glsl"
+#include "common/grids_built.glsl"
 
 void main() {
   uint t = threadIndex();

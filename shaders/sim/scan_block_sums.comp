@@ -11,9 +11,8 @@ CELL_START(writeonly)
 SCAN_BLOCK_SUMS(coherent)
 #ifdef SLEEPING
 COUNTERS(readonly)
-ACTIVE_PARTICLES(readonly)
 #endif
-#include "common/grid_members.glsl"
+#include "common/grids_built.glsl"
 
 shared uint partial[SCAN_THREADS];
 shared uint carry;

@@ -3,30 +3,13 @@
 // SLEEPING a build that builds the still grid takes every particle; one that keeps it takes the
 // moving grid's alone: the active list's (COUNTER_GRID_ACTIVE of them), then the recent
 // sleepers' (COUNTER_GRID_RECENT, from the end of activeParticles). The includer declares
-// COUNTERS and, under SLEEPING, ACTIVE_PARTICLES.
-
-// Whether this build builds the still grid (always true without SLEEPING: the one grid).
-bool stillGridBuilt() {
-#ifdef SLEEPING
-  return counters[COUNTER_STILL_BUILD] == counters[COUNTER_LIST_BUILDS];
-#else
-  return true;
-#endif
-}
-
-// The grids this build builds: the moving grid's table alone, or both (one without SLEEPING).
-uint gridsBuilt() {
-#ifdef SLEEPING
-  return stillGridBuilt() ? 2u : 1u;
-#else
-  return 1u;
-#endif
-}
+// COUNTERS and ACTIVE_PARTICLES under SLEEPING.
+#include "grids_built.glsl"
 
 // The particle that thread t sorts, or INVALID_CELL when it has none.
 uint gridParticle(uint t) {
 #ifdef SLEEPING
-  if (!stillGridBuilt()) {
+  if (!buildsStillGrid()) {
     uint fromActive = counters[COUNTER_GRID_ACTIVE];
     if (t < fromActive) return activeParticles[t];
     if (t < fromActive + counters[COUNTER_GRID_RECENT]) {

@@ -7,17 +7,21 @@
 // list (COUNTER_LIST_ALL tells list_build.comp which), unless `everyList`, and sorts them and the
 // `recentParticles` into the moving grid; the still grid is built only when stillGridDue (or
 // `everyList`: then the moving grid takes no particle). common/grid.glsl has the two grids.
-// Spilling into y as World::Impl::dispatch does (threadIndex() folds it back).
-void setGroups(uint pass, uint groups) {
-  uint at = uint(COUNTER_LIST_DISPATCH) + 4u * pass;
+uint groupsFor(uint threads) {
+  return (threads + WORKGROUP_SIZE - 1u) / WORKGROUP_SIZE;
+}
+
+// The indirect command at counters[at] for `groups` workgroups, spilling into y as
+// World::Impl::dispatch does (threadIndex() folds it back).
+void writeGroups(uint at, uint groups) {
   uint x = min(groups, 32768u);
   counters[at] = x;
-  counters[at + 1u] = x == 0u ? 1u : (groups + x - 1u) / x;
+  counters[at + 1u] = x == 0u ? 0u : (groups + x - 1u) / x;
   counters[at + 2u] = 1u;
 }
 
-uint groupsFor(uint threads) {
-  return (threads + WORKGROUP_SIZE - 1u) / WORKGROUP_SIZE;
+void setGroups(uint pass, uint groups) {
+  writeGroups(uint(COUNTER_LIST_DISPATCH) + 4u * pass, groups);
 }
 
 #ifdef SLEEPING
