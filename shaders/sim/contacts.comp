@@ -74,11 +74,24 @@ CONTACT_SLOTS_2(coherent)
 #endif
 #ifdef SLEEPING
 COUNTERS(readonly)
-LIST_BUILT(readonly)
 BODY_GRID_BUILD_TEXTURE
+#ifdef CONTACT_LIST
+LIST_BUILT(readonly)
+#else
+LIST_BUILT(coherent)
+// Only the .w of a list the build passed over, and its entries: see buildPassedOverList.
+NEIGHBOUR_LIST(writeonly)
+LIST_ORIGIN(writeonly)
+#endif
 #endif
 #include "common/grid.glsl"
 #include "common/neighbour_list.glsl"
+#if defined(SLEEPING) && !defined(CONTACT_LIST)
+vec3 searchPosition(uint id) {
+  return texelFetch(listOriginTexture, int(id)).xyz;
+}
+#include "common/list_search.glsl"
+#endif
 
 // The particle this thread gathers for.
 struct Particle {
@@ -332,7 +345,8 @@ bool touches(Particle self, uint id) {
 // The partner with the smallest id above `after` that touches the current particle, found in the
 // grid of the last build (cells of d + skin: whatever touches now stood within d + skin then),
 // or NO_PARTNER (`after` NO_PARTNER: the smallest of all). Only for particles with more partners
-// than their list holds, and under SLEEPING for those whose list is older than the last build.
+// than their list holds, and under SLEEPING in the substep a list the last build passed over is
+// built (buildPassedOverList).
 uint nextPartnerAfter(Particle self, uint after) {
   uint best = NO_PARTNER;
   ivec3 cell = cellOf(texelFetch(listOriginTexture, int(self.id)).xyz);
@@ -358,6 +372,23 @@ uint nextPartnerAfter(Particle self, uint after) {
   }
   return best;
 }
+
+#if defined(SLEEPING) && !defined(CONTACT_LIST)
+// Builds the list of a particle that the last build passed over (it slept) for the substeps until
+// the next build, so that it searches the grid in this substep only: the search of a build, from
+// where the build sorted each particle (listOrigin.xyz, which no thread writes in this pass). Only
+// this thread reads its list and its listOrigin.w, and not again in this pass.
+void buildPassedOverList(Particle self) {
+  uint ids[NEIGHBOUR_LIST_CAPACITY];
+  uint count = searchList(texelFetch(listOriginTexture, int(self.id)).xyz, self.body,
+                          self.velocity.w, ids);
+  for (uint k = 0u; k < min(count, uint(NEIGHBOUR_LIST_CAPACITY)); ++k) {
+    neighbourList[listEntry(self.id, k)] = ids[k];
+  }
+  listOrigin[self.id].w = uintBitsToFloat(count);
+  listBuilt[self.id] = counters[COUNTER_LIST_BUILDS];
+}
+#endif
 
 // Surfaces in contact found by the collider loops and not yet evaluated: the hit (normal,
 // overlap), the collider's index and its face. Written and read at constant indices only: the
@@ -520,11 +551,15 @@ void main() {
   bool beyond = listed > uint(NEIGHBOUR_LIST_CAPACITY);
 #ifdef SLEEPING
   // A list the last build passed over (it was built while the particle slept) may miss what
-  // came near since: every partner from the grid instead.
+  // came near since: every partner from the grid instead, in this substep; the list is built
+  // now for the next ones.
   if (listBuilt[i] != counters[COUNTER_LIST_BUILDS]) {
     inList = 0u;
     inContact = 0u;
     beyond = true;
+#ifndef CONTACT_LIST
+    buildPassedOverList(self);
+#endif
   }
 #endif
   bool movable = self.velocity.w > 0.0;

@@ -1,9 +1,7 @@
 #version 450
-// List build, last pass: one thread per particle gathers over the 27 cells (of d + skin) around
-// it in the grid just built (common/grid.glsl) and lists the particles of other bodies closer
-// than d + skin that it could touch (not two immovable ones), ascending by id: the
-// NEIGHBOUR_LIST_CAPACITY smallest, and how many there were (a particle with more finds the rest
-// in the grid, contacts.comp). It records where it stands, from which the integration measures
+// List build, last pass: one thread per particle searches the grid just built for the particles
+// within d + skin of where it stands (common/list_search.glsl) and lists the smallest ids, and
+// how many there were (a particle with more finds the rest in the grid, contacts.comp). It records where it stands, from which the integration measures
 // how far it moves. Static particles (rough floors) get no list: nobody needs their force; they
 // are listed by the others. Under SLEEPING a build the motion asked for runs over the active
 // particles only (COUNTER_LIST_ALL, common/list_decision.glsl), and every list records the build
@@ -30,6 +28,11 @@ BODY_GRID_BUILD_TEXTURE
 #include "common/grid.glsl"
 #include "common/neighbour_list.glsl"
 
+vec3 searchPosition(uint id) {
+  return texelFetch(particlePositionTexture, int(id)).xyz;
+}
+#include "common/list_search.glsl"
+
 void main() {
 #ifdef SLEEPING
   uint t = threadIndex();
@@ -49,38 +52,8 @@ void main() {
   uint body = texelFetch(particleBodyTexture, int(i)).x;
   bool alive = (texelFetch(bodyInfoTexture, int(body)).z & BODY_ALIVE) != 0u;
   uint ids[NEIGHBOUR_LIST_CAPACITY];
-  uint count = 0u;
-  if (alive && selfInverseMass >= 0.0) {
-    ivec3 cell = cellOf(self.xyz);
-    uint stillBuild = stillGridBuild();
-    for (int row = 0; row < 9; ++row) {
-      uint parts = rowParts(cell, row);
-      for (uint part = 0u; part < parts; ++part) {
-        uvec4 slots = rowSlots(cell, row, part, parts);
-        for (uint k = 0u; k < rowEntries(slots); ++k) {
-          uint id = rowParticle(slots, k);
-          vec4 other = texelFetch(particlePositionTexture, int(id));
-          if (floatBitsToUint(other.w) == body) continue;
-          vec3 d = self.xyz - other.xyz;
-          if (dot(d, d) >= params.listReachSquared) continue;
-          float otherInverseMass = texelFetch(particleVelocityTexture, int(id)).w;
-          if (max(selfInverseMass, 0.0) + max(otherInverseMass, 0.0) == 0.0) continue;
-          if (!rowHolds(slots, k, floatBitsToUint(other.w), stillBuild)) continue;
-          // Keep the smallest ids, in order.
-          if (count < uint(NEIGHBOUR_LIST_CAPACITY) ||
-              id < ids[NEIGHBOUR_LIST_CAPACITY - 1]) {
-            uint k = min(count, uint(NEIGHBOUR_LIST_CAPACITY) - 1u);
-            while (k > 0u && ids[k - 1u] > id) {
-              ids[k] = ids[k - 1u];
-              --k;
-            }
-            ids[k] = id;
-          }
-          ++count;
-        }
-      }
-    }
-  }
+  uint count = alive && selfInverseMass >= 0.0 ? searchList(self.xyz, body, selfInverseMass, ids)
+                                                : 0u;
   for (uint k = 0u; k < min(count, uint(NEIGHBOUR_LIST_CAPACITY)); ++k) {
     neighbourList[listEntry(i, k)] = ids[k];
   }
