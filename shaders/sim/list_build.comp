@@ -1,11 +1,12 @@
 #version 450
 // List build, last pass: one thread per particle searches the grid just built for the particles
 // within d + skin of where it stands (common/list_search.glsl) and lists the smallest ids, and
-// how many there were (a particle with more finds the rest in the grid, contacts.comp). It records where it stands, from which the integration measures
-// how far it moves. Static particles (rough floors) get no list: nobody needs their force; they
-// are listed by the others. Under SLEEPING a build the motion asked for runs over the active
-// particles only (COUNTER_LIST_ALL, common/list_decision.glsl), and every list records the build
-// it comes from (LIST_BUILT).
+// how many there were (a particle with more finds the rest in the grid, contacts.comp). It
+// records where it stands, from which the integration measures how far it moves. Static
+// particles (rough floors) get no list: nobody needs their force; they are listed by the others.
+// Under SLEEPING a build the motion asked for runs over the active particles only
+// (COUNTER_LIST_ALL, common/list_decision.glsl), and every list records the build it comes from
+// (LIST_BUILT).
 #include "common/layout.glsl"
 #include "common/spatial_hash.glsl"
 
