@@ -146,6 +146,9 @@ void record(uint a, uint b, uint bodyA, uint bodyB, uint collider, vec3 point, v
 vec4 previous[CONTACT_SLOTS];
 uvec4 previousPairs;
 uint slotsUsed = 0u;
+// Whether the slots name other partners than in the previous substep, or in another order: only
+// then can the pair counts change (integrate_bodies.comp takes them again).
+bool slotsChanged = false;
 
 // Loads only the slots in use (contactPairs.w), through the buffer textures: a gather, where an
 // SSBO load runs lane by lane on llvmpipe. Only this thread writes these slots, after it read
@@ -165,16 +168,20 @@ void loadSlots(uint particle) {
 }
 
 // The spring the contact with `key` had in the previous substep (zero for a new contact), and
-// how many contacts joined the two bodies then (0 for a new contact).
+// how many contacts joined the two bodies then (0 for a new contact). Notes whether it was in
+// the slot it takes now (keepSlot: the next free one).
 vec3 previousSpring(uint key, out uint pairs) {
   vec3 spring = vec3(0.0);
   pairs = 0u;
+  uint was = uint(CONTACT_SLOTS);
   for (uint k = 0u; k < uint(CONTACT_SLOTS); ++k) {
     if (floatBitsToUint(previous[k].w) == key) {
       spring = previous[k].xyz;
       pairs = slotPairs(previousPairs, k);
+      was = k;
     }
   }
+  if (slotsUsed < uint(CONTACT_SLOTS) && was != slotsUsed) slotsChanged = true;
   return spring;
 }
 
@@ -627,7 +634,10 @@ void main() {
 #endif
 #ifndef PAPER_LAW
   clearUnusedSlots(self.id);
-  particleTorque[self.id] = vec4(torque, 0.0);
+  if (slotsUsed != min(previousPairs.w, uint(CONTACT_SLOTS))) slotsChanged = true;
+  // w: 1 when the slots changed (integrate_bodies.comp). A sleeper that returned early above
+  // leaves its slots, and this, as they were.
+  particleTorque[self.id] = vec4(torque, slotsChanged ? 1.0 : 0.0);
 #endif
 #ifdef SLEEPING
   particleForce[self.id] = vec4(force, uintBitsToFloat(neighbourCalm));

@@ -3,7 +3,7 @@
 // r x F about the centre for each particle's force, plus, under ContactLaw::HertzMindlin, the
 // torque of friction at the contact points; in particle order (fixed, so deterministic). Then it
 // integrates (common/rigid_motion.glsl), under HertzMindlin counts the contacts its particles'
-// slots hold per partner (common/contact_pairs.glsl), and writes its particles' state for the
+// slots hold per partner when they changed (common/contact_pairs.glsl), and writes its particles' state for the
 // next substep (common/particle_state.glsl). Bodies flagged BODY_LARGE (every body that is not a
 // granule) are left to pass 4b. Under SLEEPING (layout.glsl, "Sleep") it runs over the granules
 // collect_active.comp listed: a sleeping one whose partners all sleep returns at once; one that
@@ -140,17 +140,21 @@ void main() {
   vec4 local[GRANULE_PARTICLES];
   vec3 force = vec3(0.0);
   vec3 torque = vec3(0.0);
+  // The pair counts change only when some particle's slots did (or the bodies did: the CPU says).
+  bool recount = counters[COUNTER_RECOUNT_PAIRS] != 0u;
   for (uint k = 0u; k < GRANULE_PARTICLES; ++k) {
     local[k] = texelFetch(particleLocalTexture, int(info.x + k));
     vec3 f = texelFetch(particleForceTexture, int(info.x + k)).xyz;
     force += f;
     torque += cross(quatRotate(q, local[k].xyz), f);
 #ifndef PAPER_LAW
-    torque += texelFetch(particleTorqueTexture, int(info.x + k)).xyz;
+    vec4 onParticle = texelFetch(particleTorqueTexture, int(info.x + k));
+    torque += onParticle.xyz;
+    recount = recount || onParticle.w != 0.0;
 #endif
   }
 #ifndef PAPER_LAW
-  countPairs(info.x);
+  if (recount) countPairs(info.x);
 #endif
 #ifdef SLEEPING
   if (asleep) {

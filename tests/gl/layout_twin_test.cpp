@@ -132,10 +132,12 @@ TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
             GLint(4 * kNeighbourListCapacity));
   EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "ListDispatchProbe"),
             GLint(4 * kCounterListDispatch));
-  // The counters of sleep's two grids that the CPU reads, each member of the probe at its word.
+  // The counters of sleep's two grids that the CPU reads, and the one it writes to have every
+  // pair counted, each member of the probe at its word.
   const Member gridCounters[] = {{"stillBuildsProbe[0]", 4 * kCounterStillBuilds},
                                  {"gridActiveProbe[0]", 4 * kCounterGridActive},
-                                 {"gridRecentProbe", 4 * kCounterGridRecent}};
+                                 {"gridRecentProbe", 4 * kCounterGridRecent},
+                                 {"recountPairsProbe", 4 * kCounterRecountPairs}};
   for (const Member& m : gridCounters) {
     EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, m.name), GLint(m.offset)) << m.name;
   }

@@ -116,6 +116,45 @@ TEST(Determinism, TheListSkinDoesNotChangeTheResult) {
   EXPECT_GT(runs[2].stats.neighbourListOverflows, 0u) << "the grid's share is not exercised";
 }
 
+// The pair counts of the damping are taken again only for granules whose contact slots changed
+// (common/contact_pairs.glsl), and for all after the CPU changed the bodies. They and every bit of
+// the state are those of taking them for every granule in every substep: through the pile's
+// fall, a block added onto it, a snapshot restored, and with sleep, as the pile falls asleep
+// after the restore.
+TEST(Determinism, PairCountsTakenWhereTheSlotsChangedAreThoseOfEverySubstep) {
+  for (const bool sleep : {false, true}) {
+    WorldSettings s = testing::smallSettings();
+    s.sleep.enabled = sleep;
+    testing::TestWorld where(s), every(s);
+    testing::countEveryPair(*every);
+    for (testing::TestWorld* w : {&where, &every}) {
+      buildPile(**w);
+      (*w)->substep(300);
+    }
+    EXPECT_EQ(where->readStateHash(), every->readStateHash()) << "the fall, sleep " << sleep;
+    const WorldSnapshot snapshot = where->readSnapshot();
+    for (testing::TestWorld* w : {&where, &every}) {
+      (*w)->addGranules(
+          GranuleBlock{.center = {0, 0.12f, 0}, .countX = 3, .countY = 1, .countZ = 3, .seed = 9});
+      (*w)->substep(300);
+    }
+    EXPECT_EQ(where->readStateHash(), every->readStateHash()) << "the block, sleep " << sleep;
+    EXPECT_GT(where->readStats().contacts, 30u);
+    for (testing::TestWorld* w : {&where, &every}) {
+      (*w)->restoreSnapshot(snapshot);
+      if (sleep) {
+        w->simulate(1.2);
+      } else {
+        (*w)->substep(300);
+      }
+    }
+    EXPECT_EQ(where->readStateHash(), every->readStateHash()) << "the restore, sleep " << sleep;
+    if (sleep) {
+      EXPECT_GT(where->readStats().granulesAsleep, 0u);
+    }
+  }
+}
+
 TEST(Determinism, KernelProfilingChangesNoBit) {
   // A benchmark times a span without the timer queries and profiles the next: switching them
   // on and off between steps must not touch the state, and the times follow the switch.

@@ -23,6 +23,10 @@ void flipVelocityBit(World& world, std::uint32_t body, int axis);
 /// still grid empty (World::Impl::oneGrid): the oracle of its two grids.
 void useOneGrid(World& world);
 
+/// Makes every substep of `world` take every granule's pair counts (World::Impl::countEveryPair),
+/// not only those whose contact slots changed: the oracle of the latter.
+void countEveryPair(World& world);
+
 /// Settings for small test scenes: default material, capacity for `maxBodies` bodies.
 WorldSettings smallSettings(std::uint32_t maxBodies = 256);
 

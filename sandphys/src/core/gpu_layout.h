@@ -30,6 +30,8 @@ inline constexpr std::uint32_t kCounterListOverflows = 4;
 inline constexpr std::uint32_t kCounterStillBuilds = 10;
 inline constexpr std::uint32_t kCounterGridActive = 11;
 inline constexpr std::uint32_t kCounterGridRecent = 12;
+/// Non-zero while the CPU asks integrate_bodies.comp to take every granule's pair counts.
+inline constexpr std::uint32_t kCounterRecountPairs = 14;
 inline constexpr std::uint32_t kCounterListDispatch = 16;
 /// COUNTER_LIST_REQUESTED values (layout.glsl): the CPU asks for every list.
 inline constexpr std::uint32_t kListRequestAll = 1;

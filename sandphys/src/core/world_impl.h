@@ -136,6 +136,13 @@ struct World::Impl {
   // The CPU changed what the lists hold (bodies added or restored, the table or the buffers
   // changed): the next substep builds them.
   bool listsStale = true;
+  // The same, for the pair counts of the damping (contact_pairs.glsl): the next substep's
+  // integration takes every granule's, not only those whose slots changed (a restored state's
+  // counts need not be those of its slots).
+  bool pairsStale = true;
+  // Every substep takes every granule's pair counts (a test's oracle of taking them only where
+  // the slots changed: the counts, and so the results, are the same bit for bit).
+  bool countEveryPair = false;
   // With sleep: every build sorts every particle into one grid, the moving grid, and leaves the
   // still grid empty (a test's oracle of the two grids: the lists and so the results are the
   // same bit for bit). Set paramsDirty after changing it.

@@ -116,6 +116,7 @@ void World::Impl::prepareBodies() {
   if (listsStale) {
     buffers[kCounters].upload(4 * kCounterListRequested, 4, &kListRequestAll);
     listsStale = false;
+    pairsStale = true;
   }
 }
 
@@ -151,7 +152,8 @@ void World::Impl::prepareContacts() {
 }
 
 void World::Impl::runSubstep() {
-  if (sleep.enabled && bodyCount > 0) {
+  const bool sleeping = sleep.enabled && bodyCount > 0;
+  if (sleeping) {
     // With sleep: the bodies and particles this substep computes, the awake ones and the
     // sleepers something awake touched (and the list decision, in the same pass); the passes
     // below run over them alone, from indirect commands.
@@ -159,12 +161,20 @@ void World::Impl::runSubstep() {
     dispatch(kernels.collectActive, "collect_active",
              (bodyCount + kCollectChunk - 1) / kCollectChunk, kWorkgroupSize);
     buildLists();
+  } else {
+    prepareContacts();
+  }
+  // The first substep after the bodies changed or were restored takes every granule's pair counts
+  // (a read-back's list build in between must not take that from it: the CPU says it, not the
+  // build).
+  const std::uint32_t recount = pairsStale || countEveryPair ? 1u : 0u;
+  if (recount) buffers[kCounters].upload(4 * kCounterRecountPairs, 4, &recount);
+  if (sleeping) {
     // 3, 4 as below.
     dispatchIndirect(kernels.contacts, "contacts", activeDispatchOffset(kActivePassContacts));
     dispatchIndirect(kernels.integrateBodies, "integrate_bodies",
                      activeDispatchOffset(kActivePassBodies));
   } else {
-    prepareContacts();
     // 3. Contact forces (eq. 9, 10) from the lists, and colliders, gathered per particle.
     dispatch(kernels.contacts, "contacts", particleCount, kWorkgroupSize);
     // 4. Body sums (eq. 2, 3) and integration (eq. 4-6), guards, sinks; the particles of the
@@ -175,6 +185,11 @@ void World::Impl::runSubstep() {
   if (!largeBodies.empty()) {
     dispatch(kernels.integrateLargeBodies, "integrate_large_bodies",
              std::uint32_t(largeBodies.size()) * kWorkgroupSize, kWorkgroupSize);
+  }
+  if (recount) {
+    const std::uint32_t done = 0;
+    buffers[kCounters].upload(4 * kCounterRecountPairs, 4, &done);
+    pairsStale = false;
   }
   ++steps;
   simTime += model.timeStep;

@@ -78,6 +78,11 @@ struct SinkBox {
 #define COUNTER_GRID_ACTIVE 11
 #define COUNTER_GRID_RECENT 12
 #define COUNTER_RECENT_PARTICLES 13
+// Non-zero in the first substep after the CPU changed the bodies (added, restored): a restored
+// state's counts need not be those of its slots (a snapshot made by hand), so
+// integrate_bodies.comp takes every granule's pair counts (common/contact_pairs.glsl), as before
+// the change, not only those whose slots changed. Only the CPU writes it.
+#define COUNTER_RECOUNT_PAIRS 14
 // From this uint on: the indirect dispatch commands of the list build, one per pass below (4
 // uints each: groups x, y, z and padding), zero groups when no build is due.
 #define COUNTER_LIST_DISPATCH 16
