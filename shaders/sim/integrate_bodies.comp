@@ -3,9 +3,9 @@
 // r x F about the centre for each particle's force, plus, under ContactLaw::HertzMindlin, the
 // torque of friction at the contact points; in particle order (fixed, so deterministic). Then it
 // integrates (common/rigid_motion.glsl), under HertzMindlin counts the contacts its particles'
-// slots hold per partner when they changed (common/contact_pairs.glsl), and writes its particles' state for the
-// next substep (common/particle_state.glsl). Bodies flagged BODY_LARGE (every body that is not a
-// granule) are left to pass 4b. Under SLEEPING (layout.glsl, "Sleep") it runs over the granules
+// slots hold per partner when they changed (common/contact_pairs.glsl), and writes its
+// particles' state for the next substep (common/particle_state.glsl). Bodies flagged BODY_LARGE
+// (every body that is not a granule) are left to pass 4b. Under SLEEPING (layout.glsl, "Sleep") it runs over the granules
 // collect_active.comp listed: a sleeping one whose partners all sleep returns at once; one that
 // something awake touches counts its pairs (its contacts were computed) and wakes if a partner
 // moves, its contacts changed, or the force or torque on it departs from balance by more than
