@@ -5,11 +5,11 @@
 // integrates (common/rigid_motion.glsl), under HertzMindlin counts the contacts its particles'
 // slots hold per partner when they changed (common/contact_pairs.glsl), and writes its
 // particles' state for the next substep (common/particle_state.glsl). Bodies flagged BODY_LARGE
-// (every body that is not a granule) are left to pass 4b. Under SLEEPING (layout.glsl, "Sleep") it runs over the granules
-// collect_active.comp listed: a sleeping one whose partners all sleep returns at once; one that
-// something awake touches counts its pairs (its contacts were computed) and wakes if a partner
-// moves, its contacts changed, or the force or torque on it departs from balance by more than
-// the wake acceleration; else it stays put.
+// (every body that is not a granule) are left to pass 4b. Under SLEEPING (layout.glsl, "Sleep")
+// it runs over the granules collect_active.comp listed: a sleeping one whose partners all sleep
+// returns at once; one that something awake touches counts its pairs (its contacts were
+// computed) and wakes if a partner moves, its contacts changed, or the force or torque on it
+// departs from balance by more than the wake acceleration; else it stays put.
 #include "common/layout.glsl"
 #include "common/quaternion.glsl"
 #include "common/contact_slots.glsl"

@@ -4,11 +4,11 @@
 // share the two bodies' masses among those n contacts, m* = 1 / (n (1/M_a + 1/M_b)), so that a body
 // meeting a surface with n particles at once gets the restitution a single contact would (Kodam et
 // al. 2010). Both bodies of a pair count the same contacts, so both sides of every contact use the
-// same n. The counts are a function of the slots' partners and their order alone, so a body
-// counts again only when contacts.comp says that some particle's slots changed (particleTorque.w)
-// or the CPU, after it changed or restored the bodies, asks for every count
-// (COUNTER_RECOUNT_PAIRS): in a still pile almost no body counts. The includer declares PARTICLE_BODY_TEXTURE and
-// CONTACT_SLOTS_*_TEXTURE.
+// same n. The counts are a function of the slots' partners and their order alone, so a granule
+// counts again only when contacts.comp says that one of its particles' slots changed
+// (particleTorque.w) or the CPU, after it changed or restored the bodies, asks for every count
+// (COUNTER_RECOUNT_PAIRS): in a still pile almost no granule counts (a larger body counts in
+// every substep). The includer declares PARTICLE_BODY_TEXTURE and CONTACT_SLOTS_*_TEXTURE.
 
 // No partner: a free slot (never a body index nor a collider key).
 #define PARTNER_NONE 0xffffffffu
