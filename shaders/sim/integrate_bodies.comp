@@ -2,17 +2,16 @@
 // Pass 4. Granules: one thread per body sums its particles' forces and torques (paper eq. 2, 3):
 // r x F about the centre for each particle's force, plus, under ContactLaw::HertzMindlin, the
 // torque of friction at the contact points; in particle order (fixed, so deterministic). Then it
-// integrates (common/rigid_motion.glsl), under HertzMindlin counts the contacts its particles'
-// slots hold per partner when they changed (common/contact_pairs.glsl), and writes its
-// particles' state for the next substep (common/particle_state.glsl). Bodies flagged BODY_LARGE
-// (every body that is not a granule) are left to pass 4b. Under SLEEPING (layout.glsl, "Sleep")
-// it runs over the granules collect_active.comp listed: a sleeping one whose partners all sleep
-// returns at once; one that something awake touches counts its pairs (its contacts were
-// computed) and wakes if a partner moves, its contacts changed, or the force or torque on it
-// departs from balance by more than the wake acceleration; else it stays put.
+// integrates (common/rigid_motion.glsl), under HertzMindlin lists it for count_pairs.comp when
+// its particles' contact slots changed, and writes its particles' state for the next substep
+// (common/particle_state.glsl). Bodies flagged BODY_LARGE (every body that is not a granule) are
+// left to pass 4b. Under SLEEPING (layout.glsl, "Sleep") it runs over the granules
+// collect_active.comp listed: a sleeping one whose partners all sleep returns at once; one that
+// something awake touches is listed for its pair counts as above (its contacts were computed)
+// and wakes if a partner moves, its contacts changed, or the force or torque on it departs from
+// balance by more than the wake acceleration; else it stays put.
 #include "common/layout.glsl"
 #include "common/quaternion.glsl"
-#include "common/contact_slots.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 
@@ -37,85 +36,24 @@ BODY_GRID_BUILD(writeonly)
 #ifndef PAPER_LAW
 PARTICLE_SPIN(writeonly)
 PARTICLE_TORQUE_TEXTURE
-PARTICLE_BODY_TEXTURE
-CONTACT_SLOTS_0_TEXTURE
-CONTACT_SLOTS_1_TEXTURE
-CONTACT_SLOTS_2_TEXTURE
-CONTACT_PAIRS(writeonly)
-#include "common/contact_pairs.glsl"
+PAIRS_DUE(writeonly)
 #endif
 
 #include "common/rigid_motion.glsl"
 #include "common/particle_state.glsl"
+#include "common/list_decision.glsl"
 
 // The particles of a granule (tetrahedronTemplate).
 #define GRANULE_PARTICLES 4u
 
-#ifndef PAPER_LAW
-// Adds to each slot of group a the slots of group b that name its partner, and to each slot of
-// b those of a.
-void countBlock(uvec4 a, uvec4 b, inout uvec4 countsA, inout uvec4 countsB) {
-  for (uint c = 0u; c < 4u; ++c) {
-    uvec4 same = uvec4(equal(b, uvec4(a[c])));
-    countsA[c] += same.x + same.y + same.z + same.w;
-    countsB += same;
-  }
-}
-
-// The same within one group.
-void countOwnBlock(uvec4 a, inout uvec4 countsA) {
-  for (uint c = 0u; c < 4u; ++c) {
-    uvec4 same = uvec4(equal(a, uvec4(a[c])));
-    countsA[c] += same.x + same.y + same.z + same.w;
-  }
-}
-
-// Every slot of the granule against every other, a group of four against a group of four. Slots
-// fill from the first on, so a particle's group g > 0 is in use only when its group g - 1 is
-// full; the blocks of groups not in use are skipped (on a CPU a branch no lane takes costs
-// nothing, on a GPU it is a uniform branch for most warps). All indices are constant once
-// unrolled.
-void countPairs(uint first) {
-  uvec4 partners[GRANULE_PARTICLES * CONTACT_SLOT_GROUPS];
-  uvec4 counts[GRANULE_PARTICLES * CONTACT_SLOT_GROUPS];
-  bool inUse[GRANULE_PARTICLES * CONTACT_SLOT_GROUPS];
-  for (uint p = 0u; p < GRANULE_PARTICLES; ++p) {
-    for (uint g = 0u; g < CONTACT_SLOT_GROUPS; ++g) {
-      uint i = p * CONTACT_SLOT_GROUPS + g;
-      inUse[i] = g == 0u || slotsInUse(partners[i - 1u]) == 4u;
-      partners[i] = uvec4(PARTNER_NONE);
-      if (inUse[i]) partners[i] = slotPartners(first + p, g);
-      counts[i] = uvec4(0u);
-    }
-  }
-  for (uint i = 0u; i < GRANULE_PARTICLES * CONTACT_SLOT_GROUPS; ++i) {
-    if (inUse[i]) {
-      countOwnBlock(partners[i], counts[i]);
-      for (uint j = 0u; j < GRANULE_PARTICLES * CONTACT_SLOT_GROUPS; ++j) {
-        if (j < i && inUse[j]) countBlock(partners[i], partners[j], counts[i], counts[j]);
-      }
-    }
-  }
-  for (uint p = 0u; p < GRANULE_PARTICLES; ++p) {
-    uvec4 slotCounts = uvec4(0u);
-    for (uint g = 0u; g < CONTACT_SLOT_GROUPS; ++g) {
-      uint i = p * CONTACT_SLOT_GROUPS + g;
-      slotCounts[g] = packPairs(partners[i], counts[i]);
-      slotCounts.w += slotsInUse(partners[i]);
-    }
-    contactPairs[first + p] = slotCounts;
-  }
-}
-#endif
-
-void main() {
+// Advances the granule of thread t, if it has one.
+void advance(uint t) {
 #ifdef SLEEPING
   // The active granules only (collect_active.comp).
-  uint t = threadIndex();
   if (t >= activeListLength(ACTIVE_PASS_BODIES)) return;
   uint b = activeBodies[t];
 #else
-  uint b = threadIndex();
+  uint b = t;
   if (b >= params.bodyCount) return;
 #endif
   uvec4 info = bodyInfo[b];
@@ -154,7 +92,8 @@ void main() {
 #endif
   }
 #ifndef PAPER_LAW
-  if (recount) countPairs(info.x);
+  // Listed for count_pairs.comp, in any order: each granule's counts are its own.
+  if (recount) pairsDue[atomicAdd(counters[COUNTER_PAIRS_DUE], 1u)] = b;
 #endif
 #ifdef SLEEPING
   if (asleep) {
@@ -186,4 +125,24 @@ void main() {
     storeParticle(info.x + k, local[k], b, moved.position, moved.orientation, moved.velocity,
                   moved.spin, moved.calm);
   }
+}
+
+void main() {
+  advance(threadIndex());
+#ifndef PAPER_LAW
+  // The last workgroup to get here sees every granule listed, and writes count_pairs.comp's
+  // command (as collect_active.comp writes the active passes').
+  memoryBarrierBuffer();
+  barrier();
+  if (gl_LocalInvocationID.x == 0u) {
+    uint groups = gl_NumWorkGroups.x * gl_NumWorkGroups.y;
+    if (atomicAdd(counters[COUNTER_BODIES_GROUPS_DONE], 1u) == groups - 1u) {
+      uint due = atomicExchange(counters[COUNTER_PAIRS_DUE], 0u);
+      uint at = uint(COUNTER_ACTIVE_DISPATCH) + 4u * ACTIVE_PASS_PAIRS;
+      writeGroups(at, groupsFor(due));
+      counters[at + 3u] = due;
+      counters[COUNTER_BODIES_GROUPS_DONE] = 0u;
+    }
+  }
+#endif
 }

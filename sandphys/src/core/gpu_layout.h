@@ -32,7 +32,7 @@ inline constexpr std::uint32_t kCounterGridActive = 11;
 inline constexpr std::uint32_t kCounterGridRecent = 12;
 /// Non-zero while the CPU asks integrate_bodies.comp to take every granule's pair counts.
 inline constexpr std::uint32_t kCounterRecountPairs = 14;
-inline constexpr std::uint32_t kCounterListDispatch = 16;
+inline constexpr std::uint32_t kCounterListDispatch = 20;
 /// COUNTER_LIST_REQUESTED values (layout.glsl): the CPU asks for every list.
 inline constexpr std::uint32_t kListRequestAll = 1;
 /// The passes of a list build, each dispatched from its own indirect command (list_check.comp).
@@ -47,11 +47,13 @@ enum ListBuildPass : std::uint32_t {
   kListBuildPasses,
 };
 inline constexpr std::uint32_t kCounterActiveDispatch = kCounterListDispatch + 4 * kListBuildPasses;
-/// SLEEPING: the passes over the active lists, each from its own indirect command
-/// (collect_active.comp).
+/// The passes over lists, each from its own indirect command: SLEEPING's over the active lists
+/// (collect_active.comp writes them), and count_pairs.comp's over the granules whose pair counts
+/// are due (integrate_bodies.comp writes it).
 enum ActivePass : std::uint32_t {
   kActivePassContacts,
   kActivePassBodies,
+  kActivePassPairs,
   kActivePasses,
 };
 inline constexpr std::uint32_t kCounterCount = kCounterActiveDispatch + 4 * kActivePasses;

@@ -154,6 +154,7 @@ void WorldKernels::compile(ContactLaw law, bool sleeping) {
   contactList = compile("sim/contacts.comp", {"CONTACT_LIST 1"});
   integrateBodies = compile("sim/integrate_bodies.comp");
   integrateLargeBodies = compile("sim/integrate_large_bodies.comp");
+  if (law == ContactLaw::HertzMindlin) countPairs = compile("sim/count_pairs.comp");
   statsReduce = compile("sim/stats_reduce.comp");
   resetPeakOverlap = compile("sim/reset_peak_overlap.comp");
   stateHash = compile("sim/state_hash.comp");
@@ -165,10 +166,26 @@ void WorldKernels::compile(ContactLaw law, bool sleeping) {
 }
 
 void WorldKernels::release() {
-  for (GLuint p :
-       {bodiesToParticles, listCheck, gridCount, scanBlocks, scanBlockSums, scanAdd, gridScatter,
-        gridSort, listBuild, contacts, contactList, integrateBodies, integrateLargeBodies,
-        statsReduce, resetPeakOverlap, stateHash, spawnCheck, wakeRegion, collectActive}) {
+  for (GLuint p : {bodiesToParticles,
+                   listCheck,
+                   gridCount,
+                   scanBlocks,
+                   scanBlockSums,
+                   scanAdd,
+                   gridScatter,
+                   gridSort,
+                   listBuild,
+                   contacts,
+                   contactList,
+                   integrateBodies,
+                   integrateLargeBodies,
+                   countPairs,
+                   statsReduce,
+                   resetPeakOverlap,
+                   stateHash,
+                   spawnCheck,
+                   wakeRegion,
+                   collectActive}) {
     if (p) glDeleteProgram(p);
   }
   *this = {};

@@ -60,6 +60,7 @@ struct WorldKernels {
   GLuint contactList = 0;
   GLuint integrateBodies = 0;
   GLuint integrateLargeBodies = 0;
+  GLuint countPairs = 0;
   GLuint statsReduce = 0;
   GLuint resetPeakOverlap = 0;
   GLuint stateHash = 0;

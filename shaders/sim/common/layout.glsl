@@ -83,9 +83,13 @@ struct SinkBox {
 // integrate_bodies.comp takes every granule's pair counts (common/contact_pairs.glsl), as before
 // the change, not only those whose slots changed. Only the CPU writes it.
 #define COUNTER_RECOUNT_PAIRS 14
+// The granules integrate_bodies.comp has listed for count_pairs.comp so far this substep, and its
+// workgroups done (the last one turns the first into count_pairs' command and clears both).
+#define COUNTER_PAIRS_DUE 15
+#define COUNTER_BODIES_GROUPS_DONE 16
 // From this uint on: the indirect dispatch commands of the list build, one per pass below (4
 // uints each: groups x, y, z and padding), zero groups when no build is due.
-#define COUNTER_LIST_DISPATCH 16
+#define COUNTER_LIST_DISPATCH 20
 #define PASS_GRID_COUNT 0u
 #define PASS_SCAN_BLOCKS 1u
 #define PASS_SCAN_BLOCK_SUMS 2u
@@ -94,11 +98,14 @@ struct SinkBox {
 #define PASS_GRID_SORT 5u
 #define PASS_LIST_BUILD 6u
 #define LIST_BUILD_PASSES 7
-// SLEEPING: after those, the indirect commands of the contacts and integrate_bodies passes over
-// the active lists (ACTIVE_PARTICLES, ACTIVE_BODIES); the fourth uint of each is the list's length.
+// After those, the indirect commands of the passes over lists: under SLEEPING the contacts and
+// integrate_bodies passes over the active lists (ACTIVE_PARTICLES, ACTIVE_BODIES), and the
+// count_pairs pass over the granules due (PAIRS_DUE); the fourth uint of each is the list's
+// length.
 #define COUNTER_ACTIVE_DISPATCH (COUNTER_LIST_DISPATCH + 4 * LIST_BUILD_PASSES)
 #define ACTIVE_PASS_CONTACTS 0u
 #define ACTIVE_PASS_BODIES 1u
+#define ACTIVE_PASS_PAIRS 2u
 // The length of the active list a pass runs over (the includer declares COUNTERS).
 #define activeListLength(pass) counters[COUNTER_ACTIVE_DISPATCH + 4u * (pass) + 3u]
 

@@ -20,6 +20,14 @@ void writeGroups(uint at, uint groups) {
   counters[at + 2u] = 1u;
 }
 
+// count_pairs.comp's command, for no granule: the first pass of every substep clears it, and
+// integrate_bodies.comp writes it when it runs (a substep with no granule to advance runs none).
+void clearPairsCommand() {
+  uint at = uint(COUNTER_ACTIVE_DISPATCH) + 4u * ACTIVE_PASS_PAIRS;
+  writeGroups(at, 0u);
+  counters[at + 3u] = 0u;
+}
+
 void setGroups(uint pass, uint groups) {
   writeGroups(uint(COUNTER_LIST_DISPATCH) + 4u * pass, groups);
 }
