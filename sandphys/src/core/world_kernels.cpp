@@ -181,14 +181,14 @@ void World::Impl::runSubstep() {
     // next substep.
     dispatch(kernels.integrateBodies, "integrate_bodies", bodyCount, kWorkgroupSize);
   }
-  // 5. HertzMindlin: the pair counts of the granules whose slots changed (listed by 4).
-  if (kernels.countPairs) {
-    dispatchIndirect(kernels.countPairs, "count_pairs", activeDispatchOffset(kActivePassPairs));
-  }
   // 4b. Every other body: a workgroup each (force sums for read-back, then the same integration).
   if (!largeBodies.empty()) {
     dispatch(kernels.integrateLargeBodies, "integrate_large_bodies",
              std::uint32_t(largeBodies.size()) * kWorkgroupSize, kWorkgroupSize);
+  }
+  // 5. HertzMindlin: the pair counts of the granules whose slots changed (listed by 4).
+  if (kernels.countPairs) {
+    dispatchIndirect(kernels.countPairs, "count_pairs", activeDispatchOffset(kActivePassPairs));
   }
   if (recount) {
     const std::uint32_t done = 0;
