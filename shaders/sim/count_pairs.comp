@@ -44,9 +44,8 @@ void countOwnBlock(uvec4 a, inout uvec4 countsA) {
 
 // Every slot of the granule against every other, a group of four against a group of four. Slots
 // fill from the first on, so a particle's group g > 0 is in use only when its group g - 1 is
-// full; the blocks of groups not in use are skipped (on a CPU a branch no lane takes costs
-// nothing, on a GPU it is a uniform branch for most warps). All indices are constant once
-// unrolled.
+// full; the blocks of groups not in use are skipped (on a GPU a uniform branch for most warps).
+// All indices are constant once unrolled.
 void countPairs(uint first) {
   uvec4 partners[GRANULE_PARTICLES * CONTACT_SLOT_GROUPS];
   uvec4 counts[GRANULE_PARTICLES * CONTACT_SLOT_GROUPS];
