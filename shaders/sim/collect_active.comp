@@ -7,9 +7,10 @@
 // activeParticles (contacts.comp). Each workgroup packs its entries in body order (a scan in
 // shared memory) and takes its place in the lists with one atomic add; the last workgroup to
 // finish writes the two passes' indirect commands, clears the totals for the next substep (and
-// count_pairs.comp's command) and decides on the list build. When a build is due it stamps the bodies that go into its moving
-// grid (BODY_GRID_BUILD): the computed ones and, unless the still grid is built again, the
-// recent sleepers, whose particles it lists from the end of activeParticles (common/grid.glsl).
+// the commands of clearRunningCommands) and decides on the list build. When a build is due it
+// stamps the bodies that go into its moving grid (BODY_GRID_BUILD): the computed ones and, unless
+// the still grid is built again, the recent sleepers, whose particles it lists from the end of
+// activeParticles (common/grid.glsl).
 // So the passes that follow cost what the awake sand costs, and nothing is read back.
 #include "common/layout.glsl"
 
@@ -137,7 +138,7 @@ void main() {
       counters[COUNTER_ACTIVE_GROUPS_DONE] = 0u;
       // What list_check.comp does without sleep.
       decideListBuild(false, particles, atomicExchange(counters[COUNTER_RECENT_PARTICLES], 0u));
-      clearPairsCommand();
+      clearRunningCommands();
     }
   }
 }

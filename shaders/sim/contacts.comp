@@ -17,6 +17,12 @@
 // World::readContacts: the same contacts, the ones the next substep applies, are appended to a
 // list (each particle pair once, from the side that keeps its history) and nothing is written.
 //
+// A particle with more partners than its list holds, or under SLEEPING one whose list the last
+// build passed over, finds its partners in the grid. The pass leaves such a particle to a pass of
+// its own, this kernel compiled with SEARCHING over the particles listed in searchDue: a search
+// that one lane of a batch runs would hold up the others, and its code stays out of the pass that
+// every particle runs (docs/architecture.md, "Why each pass is its own").
+//
 // Under SLEEPING (layout.glsl, "Sleep") it runs over the particles collect_active.comp listed,
 // and each also finds the smallest calm count among its partners (and, awake, marks the sleeping
 // ones it touches). A sleeping particle first only finds what it touches: when every partner
@@ -36,6 +42,11 @@ layout(local_size_x = WORKGROUP_SIZE) in;
 #define COLLIDER_BATCH 4
 // No partner found (nextPartnerAfter).
 #define NO_PARTNER 0xffffffffu
+// The compilations that search the grid themselves: the pass over the deferred particles and
+// World::readContacts'.
+#if defined(SEARCHING) || defined(CONTACT_LIST)
+#define SEARCHES_GRID
+#endif
 
 NEIGHBOUR_LIST_TEXTURE
 LIST_ORIGIN_TEXTURE
@@ -72,10 +83,18 @@ CONTACT_SLOTS_1(coherent)
 CONTACT_SLOTS_2(coherent)
 #endif
 #endif
-#ifdef SLEEPING
+#ifdef SEARCHES_GRID
 COUNTERS(readonly)
+#else
+COUNTERS(coherent)
+SEARCH_DUE(writeonly)
+#endif
+#ifdef SEARCHING
+SEARCH_DUE(readonly)
+#endif
+#ifdef SLEEPING
 BODY_GRID_BUILD_TEXTURE
-#ifdef CONTACT_LIST
+#ifndef SEARCHING
 LIST_BUILT(readonly)
 #else
 LIST_BUILT(coherent)
@@ -86,7 +105,10 @@ LIST_ORIGIN(writeonly)
 #endif
 #include "common/grid.glsl"
 #include "common/neighbour_list.glsl"
-#if defined(SLEEPING) && !defined(CONTACT_LIST)
+#ifndef SEARCHES_GRID
+#include "common/list_decision.glsl"
+#endif
+#if defined(SLEEPING) && defined(SEARCHING)
 vec3 searchPosition(uint id) {
   return texelFetch(listOriginTexture, int(id)).xyz;
 }
@@ -349,6 +371,7 @@ bool touches(Particle self, uint id) {
   return dist2 < params.particleDiameter * params.particleDiameter && dist2 != 0.0;
 }
 
+#ifdef SEARCHES_GRID
 // The partner with the smallest id above `after` that touches the current particle, found in the
 // grid of the last build (cells of d + skin: whatever touches now stood within d + skin then),
 // or NO_PARTNER (`after` NO_PARTNER: the smallest of all). Only for particles with more partners
@@ -379,8 +402,9 @@ uint nextPartnerAfter(Particle self, uint after) {
   }
   return best;
 }
+#endif
 
-#if defined(SLEEPING) && !defined(CONTACT_LIST)
+#if defined(SLEEPING) && defined(SEARCHING)
 // Builds the list of a particle that the last build passed over (it slept) for the substeps until
 // the next build, so that it searches the grid in this substep only: the search of a build, from
 // where the build sorted each particle (listOrigin.xyz, which no thread writes in this pass). Only
@@ -509,8 +533,25 @@ uint findHits(Particle self, float radius, bool movable, uint skip, out uint fou
   return seen;
 }
 
+#ifndef SEARCHES_GRID
+// Leaves particle i to the pass that searches the grid: appended to its list in any order (each
+// particle's result is its own), the pass's command growing with the list as writeGroups would
+// write it for the list's length.
+void deferToSearch(uint i) {
+  uint at = uint(COUNTER_ACTIVE_DISPATCH) + 4u * ACTIVE_PASS_SEARCH;
+  uint slot = atomicAdd(counters[at + 3u], 1u);
+  searchDue[slot] = i;
+  if (slot % WORKGROUP_SIZE == 0u) growGroups(at, slot / WORKGROUP_SIZE + 1u);
+}
+#endif
+
 void main() {
-#if defined(SLEEPING) && !defined(CONTACT_LIST)
+#if defined(SEARCHING)
+  // The particles the main pass left to this one (deferToSearch).
+  uint t = threadIndex();
+  if (t >= activeListLength(ACTIVE_PASS_SEARCH)) return;
+  uint i = searchDue[t];
+#elif defined(SLEEPING) && !defined(CONTACT_LIST)
   // The active particles only (collect_active.comp).
   uint t = threadIndex();
   if (t >= activeListLength(ACTIVE_PASS_CONTACTS)) return;
@@ -537,6 +578,21 @@ void main() {
 #endif
     return;
   }
+#ifndef SEARCHES_GRID
+  // Partners beyond the list's capacity, or a list the last build passed over (it was built while
+  // the particle slept, and may miss what came near since): found in the grid, by the other pass.
+  bool searches = listed > uint(NEIGHBOUR_LIST_CAPACITY);
+#ifdef SLEEPING
+  searches = searches || listBuilt[i] != counters[COUNTER_LIST_BUILDS];
+#endif
+#ifdef SEARCH_EVERY
+  searches = true;  // a test's: every particle searched, to the same bits (searchEveryParticle)
+#endif
+  if (searches) {
+    deferToSearch(i);
+    return;
+  }
+#endif
 #ifndef PAPER_LAW
   vec4 spin = texelFetch(particleSpinTexture, int(i));
   self.spin = spin.xyz;
@@ -555,19 +611,22 @@ void main() {
   for (uint k = 0u; k < inList; ++k) {
     if (touches(self, texelFetch(neighbourListTexture, listEntry(i, k)).x)) inContact |= 1u << k;
   }
+#ifdef SEARCHES_GRID
   bool beyond = listed > uint(NEIGHBOUR_LIST_CAPACITY);
 #ifdef SLEEPING
-  // A list the last build passed over (it was built while the particle slept) may miss what
-  // came near since: every partner from the grid instead, in this substep; the list is built
-  // now for the next ones.
+  // A list the last build passed over: every partner from the grid instead, in this substep; the
+  // list is built now for the next ones.
   if (listBuilt[i] != counters[COUNTER_LIST_BUILDS]) {
     inList = 0u;
     inContact = 0u;
     beyond = true;
-#ifndef CONTACT_LIST
+#ifdef SEARCHING
     buildPassedOverList(self);
 #endif
   }
+#endif
+#else
+  const bool beyond = false;
 #endif
   bool movable = self.velocity.w > 0.0;
   uint found;
@@ -596,18 +655,23 @@ void main() {
     neighbourCalm = min(neighbourCalm, calm);
   }
 #endif
+#ifdef SEARCHES_GRID
   uint last = beyond && inList > 0u ? texelFetch(neighbourListTexture, listEntry(i, inList - 1u)).x
                                      : NO_PARTNER;
+#endif
   for (;;) {
     uint partner = NO_PARTNER;
     if (inContact != 0u) {
       partner = texelFetch(neighbourListTexture, listEntry(i, uint(findLSB(inContact)))).x;
       inContact &= inContact - 1u;
-    } else if (beyond) {
+    }
+#ifdef SEARCHES_GRID
+    else if (beyond) {
       partner = nextPartnerAfter(self, last);
       last = partner;
       beyond = partner != NO_PARTNER;
     }
+#endif
     if (partner == NO_PARTNER) break;
     pairContact(self, partner);
   }

@@ -155,6 +155,43 @@ TEST(Determinism, PairCountsTakenWhereTheSlotsChangedAreThoseOfEverySubstep) {
   }
 }
 
+// The contacts pass leaves a particle whose partners are not all in its list (more than the list
+// holds, or with sleep a list that a build passed over) to a pass that searches the grid
+// (contacts.comp, SEARCHING). Every bit of the state is that of leaving every particle to it:
+// through a fall with lists so roomy that they overflow, and with sleep, a block dropped onto the
+// sleeping pile, which touches sleepers whose lists the builds of its fall passed over.
+TEST(Determinism, ContactsLeftToTheGridSearchAreThoseOfEveryParticleSearched) {
+  for (const bool sleep : {false, true}) {
+    WorldSettings s = testing::smallSettings();
+    s.sleep.enabled = sleep;
+    if (!sleep) s.listSkin = s.particleDiameter;
+    testing::TestWorld some(s), every(s);
+    testing::searchEveryParticle(*every);
+    for (testing::TestWorld* w : {&some, &every}) {
+      buildPile(**w);
+      if (sleep) {
+        w->simulate(1.5);
+        (*w)->addGranules(GranuleBlock{
+            .center = {0, 0.16f, 0}, .countX = 2, .countY = 1, .countZ = 2, .seed = 5});
+      }
+    }
+    if (sleep) {
+      EXPECT_GT(some->readStats().granulesAsleep, 80u);
+    }
+    std::uint64_t left = 0;
+    for (int substep = 0; substep < 2000; ++substep) {
+      some->substep(1);
+      every->substep(1);
+      left += testing::particlesLeftToSearch(*some);
+    }
+    std::printf("[ search ] sleep %d: %llu particles left to the grid search in 2000 substeps\n",
+                int(sleep), static_cast<unsigned long long>(left));
+    EXPECT_GT(left, 0u) << "the search pass is not exercised, sleep " << sleep;
+    EXPECT_EQ(some->readStateHash(), every->readStateHash()) << "sleep " << sleep;
+    EXPECT_GT(some->readStats().contacts, 30u);
+  }
+}
+
 TEST(Determinism, KernelProfilingChangesNoBit) {
   // A benchmark times a span without the timer queries and profiles the next: switching them
   // on and off between steps must not touch the state, and the times follow the switch.

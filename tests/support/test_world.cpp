@@ -34,6 +34,23 @@ void countEveryPair(World& world) {
   detail::WorldAccess::impl(world).countEveryPair = true;
 }
 
+void searchEveryParticle(World& world) {
+  gpu().makeCurrent();
+  World::Impl& w = detail::WorldAccess::impl(world);
+  w.kernels.release();
+  w.kernels.compile(w.settings.contactLaw, w.sleep.enabled, true);
+}
+
+std::uint32_t particlesLeftToSearch(World& world) {
+  gpu().makeCurrent();
+  // The fourth uint of the search pass's command is its list's length.
+  const std::size_t offset = detail::activeDispatchOffset(detail::kActivePassSearch) + 12;
+  std::uint32_t count = 0;
+  detail::WorldAccess::impl(world).buffers[detail::kCounters].download(offset, sizeof count,
+                                                                       &count);
+  return count;
+}
+
 void useOneGrid(World& world) {
   World::Impl& w = detail::WorldAccess::impl(world);
   w.oneGrid = true;

@@ -27,6 +27,14 @@ void useOneGrid(World& world);
 /// not only those whose contact slots changed: the oracle of the latter.
 void countEveryPair(World& world);
 
+/// Makes the contacts pass of `world` leave every particle to the grid search (SEARCH_EVERY in
+/// contacts.comp), not only those beyond a full list or with a list a build passed over: the
+/// oracle of the latter.
+void searchEveryParticle(World& world);
+
+/// How many particles the contacts pass of the last substep left to the grid search.
+std::uint32_t particlesLeftToSearch(World& world);
+
 /// Settings for small test scenes: default material, capacity for `maxBodies` bodies.
 WorldSettings smallSettings(std::uint32_t maxBodies = 256);
 

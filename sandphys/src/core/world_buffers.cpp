@@ -132,7 +132,7 @@ std::uint64_t WorldBuffers::bytes() const {
   return total;
 }
 
-void WorldKernels::compile(ContactLaw law, bool sleeping) {
+void WorldKernels::compile(ContactLaw law, bool sleeping, bool searchEvery) {
   gl::ShaderLibrary library;
   std::vector<std::string> defines;
   if (law == ContactLaw::PaperViscous) defines.push_back("PAPER_LAW 1");
@@ -150,8 +150,10 @@ void WorldKernels::compile(ContactLaw law, bool sleeping) {
   gridScatter = compile("sim/grid_scatter.comp");
   gridSort = compile("sim/grid_sort.comp");
   listBuild = compile("sim/list_build.comp");
-  contacts = compile("sim/contacts.comp");
+  contacts =
+      searchEvery ? compile("sim/contacts.comp", {"SEARCH_EVERY 1"}) : compile("sim/contacts.comp");
   contactList = compile("sim/contacts.comp", {"CONTACT_LIST 1"});
+  contactsSearch = compile("sim/contacts.comp", {"SEARCHING 1"});
   integrateBodies = compile("sim/integrate_bodies.comp");
   integrateLargeBodies = compile("sim/integrate_large_bodies.comp");
   if (law == ContactLaw::HertzMindlin) countPairs = compile("sim/count_pairs.comp");
@@ -166,25 +168,16 @@ void WorldKernels::compile(ContactLaw law, bool sleeping) {
 }
 
 void WorldKernels::release() {
-  for (GLuint p : {bodiesToParticles,
-                   listCheck,
-                   gridCount,
-                   scanBlocks,
-                   scanBlockSums,
-                   scanAdd,
-                   gridScatter,
-                   gridSort,
-                   listBuild,
-                   contacts,
-                   contactList,
-                   integrateBodies,
-                   integrateLargeBodies,
-                   countPairs,
-                   statsReduce,
-                   resetPeakOverlap,
-                   stateHash,
-                   spawnCheck,
-                   wakeRegion,
+  for (GLuint p : {bodiesToParticles, listCheck,
+                   gridCount,         scanBlocks,
+                   scanBlockSums,     scanAdd,
+                   gridScatter,       gridSort,
+                   listBuild,         contacts,
+                   contactList,       contactsSearch,
+                   integrateBodies,   integrateLargeBodies,
+                   countPairs,        statsReduce,
+                   resetPeakOverlap,  stateHash,
+                   spawnCheck,        wakeRegion,
                    collectActive}) {
     if (p) glDeleteProgram(p);
   }

@@ -58,6 +58,7 @@ struct WorldKernels {
   GLuint listBuild = 0;
   GLuint contacts = 0;
   GLuint contactList = 0;
+  GLuint contactsSearch = 0;  // contacts.comp over the particles it left to the grid search
   GLuint integrateBodies = 0;
   GLuint integrateLargeBodies = 0;
   GLuint countPairs = 0;
@@ -69,8 +70,9 @@ struct WorldKernels {
   GLuint collectActive = 0;  // with sleeping only
 
   /// Compiles every kernel for `law` (PAPER_LAW defined for ContactLaw::PaperViscous) and, with
-  /// `sleeping`, for sleeping sand (SLEEPING defined).
-  void compile(ContactLaw law, bool sleeping);
+  /// `sleeping`, for sleeping sand (SLEEPING defined); with `searchEvery` (a test's oracle), the
+  /// contacts pass leaves every particle to the grid search (SEARCH_EVERY).
+  void compile(ContactLaw law, bool sleeping, bool searchEvery = false);
   void release();
 };
 
@@ -228,6 +230,8 @@ struct World::Impl {
   /// What the contacts of a substep need first: the particles the CPU changed, and the neighbour
   /// lists, built on the GPU's decision (list_check.comp) with indirect dispatches.
   void prepareContacts();
+  /// The contacts of the particles the contacts pass left to the grid search.
+  void searchContacts();
   /// Its parts: the particles the CPU changed (and a build request when it changed bodies), and
   /// the build's passes, which run with zero groups when the decision found no build due.
   void prepareBodies();

@@ -89,7 +89,9 @@ void World::Impl::dispatchIndirect(GLuint program, const char* name, std::uint32
   profiler.begin(name);
   glDispatchComputeIndirect(GLintptr(commandOffset));
   profiler.end();
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+  // Passes over lists write the commands of later passes (contacts, integrate_bodies).
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+                  GL_COMMAND_BARRIER_BIT);
 }
 
 void World::Impl::markParticlesDirty(std::uint32_t first, std::uint32_t end) {
@@ -151,6 +153,13 @@ void World::Impl::prepareContacts() {
   buildLists();
 }
 
+void World::Impl::searchContacts() {
+  // 3b. The same for the particles whose partners are not all in their lists, which the contacts
+  // pass left to this one: they search the grid (none in most substeps: an empty dispatch).
+  dispatchIndirect(kernels.contactsSearch, "contacts_search",
+                   activeDispatchOffset(kActivePassSearch));
+}
+
 void World::Impl::runSubstep() {
   const bool sleeping = sleep.enabled && bodyCount > 0;
   if (sleeping) {
@@ -172,11 +181,13 @@ void World::Impl::runSubstep() {
   if (sleeping) {
     // 3, 4 as below.
     dispatchIndirect(kernels.contacts, "contacts", activeDispatchOffset(kActivePassContacts));
+    searchContacts();
     dispatchIndirect(kernels.integrateBodies, "integrate_bodies",
                      activeDispatchOffset(kActivePassBodies));
   } else {
     // 3. Contact forces (eq. 9, 10) from the lists, and colliders, gathered per particle.
     dispatch(kernels.contacts, "contacts", particleCount, kWorkgroupSize);
+    searchContacts();
     // 4. Body sums (eq. 2, 3) and integration (eq. 4-6), guards, sinks; the particles of the
     // next substep.
     dispatch(kernels.integrateBodies, "integrate_bodies", bodyCount, kWorkgroupSize);

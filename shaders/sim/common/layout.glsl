@@ -99,13 +99,14 @@ struct SinkBox {
 #define PASS_LIST_BUILD 6u
 #define LIST_BUILD_PASSES 7
 // After those, the indirect commands of the passes over lists: under SLEEPING the contacts and
-// integrate_bodies passes over the active lists (ACTIVE_PARTICLES, ACTIVE_BODIES), and the
-// count_pairs pass over the granules due (PAIRS_DUE); the fourth uint of each is the list's
-// length.
+// integrate_bodies passes over the active lists (ACTIVE_PARTICLES, ACTIVE_BODIES), the count_pairs
+// pass over the granules due (PAIRS_DUE), and the contacts pass over the particles that search the
+// grid (SEARCH_DUE); the fourth uint of each is the list's length.
 #define COUNTER_ACTIVE_DISPATCH (COUNTER_LIST_DISPATCH + 4 * LIST_BUILD_PASSES)
 #define ACTIVE_PASS_CONTACTS 0u
 #define ACTIVE_PASS_BODIES 1u
 #define ACTIVE_PASS_PAIRS 2u
+#define ACTIVE_PASS_SEARCH 3u
 // The length of the active list a pass runs over (the includer declares COUNTERS).
 #define activeListLength(pass) counters[COUNTER_ACTIVE_DISPATCH + 4u * (pass) + 3u]
 

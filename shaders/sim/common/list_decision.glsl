@@ -20,12 +20,24 @@ void writeGroups(uint at, uint groups) {
   counters[at + 2u] = 1u;
 }
 
-// count_pairs.comp's command, for no granule: the first pass of every substep clears it, and
-// integrate_bodies.comp writes it when it runs (a substep with no granule to advance runs none).
-void clearPairsCommand() {
-  uint at = uint(COUNTER_ACTIVE_DISPATCH) + 4u * ACTIVE_PASS_PAIRS;
-  writeGroups(at, 0u);
-  counters[at + 3u] = 0u;
+// The command at counters[at] grown to at least `groups` workgroups, as writeGroups writes it for
+// the most groups any caller asks for: concurrent callers each with the groups its entry of a list
+// needs, in any order (integer atomics).
+void growGroups(uint at, uint groups) {
+  atomicMax(counters[at], min(groups, 32768u));
+  atomicMax(counters[at + 1u], (groups + 32767u) / 32768u);
+}
+
+// The commands that passes of a substep write as they run, for no work: count_pairs.comp's
+// (integrate_bodies.comp writes it when it runs; a substep with no granule to advance runs none)
+// and that of the pass over the particles contacts.comp leaves to the grid search (it grows it).
+// The first pass of every substep clears them.
+void clearRunningCommands() {
+  for (uint pass = ACTIVE_PASS_PAIRS; pass <= ACTIVE_PASS_SEARCH; ++pass) {
+    uint at = uint(COUNTER_ACTIVE_DISPATCH) + 4u * pass;
+    writeGroups(at, 0u);
+    counters[at + 3u] = 0u;
+  }
 }
 
 void setGroups(uint pass, uint groups) {
