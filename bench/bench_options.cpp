@@ -163,6 +163,11 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
       ->capture_default_str();
   app.add_option("--chunk", measure.chunk, "substeps per World::substep call")
       ->capture_default_str();
+  app.add_option("--pile-cache", measure.pileCache,
+                 "folder of settled piles: a size whose pile an earlier run settled with the same "
+                 "scene options, granules and settle substeps (and sleep) is restored from there "
+                 "instead of settled again, bit for bit the same; a pile settled now is kept "
+                 "there (not one whose settling ran out of budget)");
   app.add_option("--reserve-particles", measure.reserveParticles,
                  "particles every World reserves (and a quarter as many bodies), for what spare "
                  "capacity costs; 0: what the pile needs")

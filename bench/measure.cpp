@@ -5,7 +5,11 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <filesystem>
 #include <fstream>
+#include <optional>
+
+#include "pile_cache.h"
 
 namespace sandphys::bench {
 
@@ -72,6 +76,43 @@ std::vector<KernelStep> profileKernels(World& world, const MeasureOptions& optio
     kernel.dispatchesPerStep /= options.kernelSteps;
   }
   return kernels;
+}
+
+// Settles the pile in `world`: plan.settleSteps substeps (at least one: llvmpipe compiles each
+// kernel at its first dispatch) or until the settle budget runs out, then with sleep until every
+// granule sleeps or the wait runs out.
+void settle(World& world, const SizePlan& plan, const MeasureOptions& options,
+            const std::string& tag, SizeResult& result) {
+  const std::uint32_t settleSteps = std::max<std::uint32_t>(plan.settleSteps, 1);
+  const Clock::time_point settleStart = Clock::now();
+  Clock::time_point lastProgress = settleStart;
+  while (result.settleSteps < settleSteps) {
+    if (options.settleBudgetSeconds > 0.0 && result.settleSteps > 0 &&
+        secondsSince(settleStart) >= options.settleBudgetSeconds) {
+      result.settleBudgetHit = true;
+      break;
+    }
+    const std::uint32_t count = std::min(options.chunk, settleSteps - result.settleSteps);
+    world.substep(count);
+    result.settleSteps += count;
+    if (options.progress && secondsSince(lastProgress) >= kProgressInterval) {
+      lastProgress = Clock::now();
+      const WorldStats stats = world.readStats();
+      std::fprintf(stderr,
+                   "%s settling: %u/%u substeps, %.0f s wall, %.4f s simulated, KE/granule "
+                   "%.3g J, contacts/granule %.2f\n",
+                   tag.c_str(), result.settleSteps, settleSteps, secondsSince(settleStart),
+                   world.simulatedTime(), stats.kineticEnergy / result.granules,
+                   double(stats.contacts) / result.granules);
+    }
+  }
+  if (options.sleep) {
+    const auto wait = std::uint32_t(options.sleepWaitFactor * world.sleepModel().substeps);
+    while (result.sleepWaitSteps < wait && world.readStats().granulesAsleep < result.granules) {
+      world.substep(options.chunk);
+      result.sleepWaitSteps += options.chunk;
+    }
+  }
 }
 
 }  // namespace
@@ -210,41 +251,48 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
                  result.layout.columnTop / d, container, double(result.timeStep));
   }
 
-  // Settle. At least one substep: llvmpipe compiles each kernel at its first dispatch.
-  const std::uint32_t settleSteps = std::max<std::uint32_t>(plan.settleSteps, 1);
+  // Settle, or restore the pile an earlier run settled with the same options (--pile-cache).
   const Clock::time_point settleStart = Clock::now();
-  Clock::time_point lastProgress = settleStart;
-  while (result.settleSteps < settleSteps) {
-    if (options.settleBudgetSeconds > 0.0 && result.settleSteps > 0 &&
-        secondsSince(settleStart) >= options.settleBudgetSeconds) {
-      result.settleBudgetHit = true;
-      break;
+  std::string cacheKey;
+  std::filesystem::path cacheFile;
+  std::optional<SettledPile> cached;
+  if (!options.pileCache.empty()) {
+    cacheKey = settledPileKey(options, plan, world);
+    cacheFile = settledPileFile(options.pileCache, options, plan.granules, cacheKey);
+    cached = loadSettledPile(cacheFile, cacheKey, world);
+  }
+  // The largest overlap of the settling before the last substep (readStats takes it).
+  double peakBefore = 0.0;
+  if (cached) {
+    result.settleSteps = cached->settleSteps;
+    result.sleepWaitSteps = cached->sleepWaitSteps;
+    result.settledFrom = cacheFile.string();
+    result.settledFromWallSeconds = cached->settleWallSeconds;
+    peakBefore = cached->peakOverlap;
+    if (options.progress) {
+      std::fprintf(stderr, "%s settled pile restored from %s\n", tag().c_str(),
+                   cacheFile.string().c_str());
     }
-    const std::uint32_t count = std::min(options.chunk, settleSteps - result.settleSteps);
-    world.substep(count);
-    result.settleSteps += count;
-    if (options.progress && secondsSince(lastProgress) >= kProgressInterval) {
-      lastProgress = Clock::now();
-      const WorldStats stats = world.readStats();
-      std::fprintf(stderr,
-                   "%s settling: %u/%u substeps, %.0f s wall, %.4f s simulated, KE/granule "
-                   "%.3g J, contacts/granule %.2f\n",
-                   tag().c_str(), result.settleSteps, settleSteps, secondsSince(settleStart),
-                   world.simulatedTime(), stats.kineticEnergy / result.granules,
-                   double(stats.contacts) / result.granules);
+  } else {
+    settle(world, plan, options, tag(), result);
+    if (!cacheFile.empty() && !result.settleBudgetHit) {
+      peakBefore = world.readStats().maxOverlap / d;  // also waits for the GPU
+      saveSettledPile(
+          cacheFile, cacheKey,
+          {result.settleSteps, result.sleepWaitSteps, secondsSince(settleStart), peakBefore},
+          world);
     }
   }
-  if (options.sleep) {
-    const auto wait = std::uint32_t(options.sleepWaitFactor * world.sleepModel().substeps);
-    while (result.sleepWaitSteps < wait && world.readStats().granulesAsleep < result.granules) {
-      world.substep(options.chunk);
-      result.sleepWaitSteps += options.chunk;
-    }
-  }
+  // One substep more, restored or not, so that both start timing from the same state: llvmpipe
+  // compiles each kernel at its first dispatch, and a restored World builds every list at its
+  // first substep; neither is timed.
+  world.substep(1);
+  ++result.settleSteps;
   const WorldStats settledStats = world.readStats();  // also waits for the GPU
   result.asleepAtStart = settledStats.granulesAsleep;
   result.settleWallSeconds = secondsSince(settleStart);
   result.settled = readPileState(world, pile, settledStats);
+  result.settled.maxOverlap = std::max(result.settled.maxOverlap, peakBefore);
   world.resetPeakOverlap();  // the end state's peak is the measured span's
   if (options.rockSpeed > 0.0f) {
     const float side = result.layout.boxSide * d;
@@ -264,7 +312,7 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   // or the sandbox script's frames.
   const Clock::time_point start = Clock::now();
   const double cpuStart = processCpuSeconds();
-  lastProgress = start;
+  Clock::time_point lastProgress = start;
   if (options.sandboxSeconds > 0.0) {
     const double before = world.simulatedTime();
     result.timeline = runSandbox(world, sandbox, result.layout.boxSide * d,

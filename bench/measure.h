@@ -63,6 +63,9 @@ struct MeasureOptions {
   /// Box: instead of the timed substeps, this many simulated seconds of SandboxScript (a ball
   /// dropped, a pusher ploughing), each frame timed (SizeResult::timeline); 0: off.
   double sandboxSeconds = 0.0;
+  /// Folder of settled piles (--pile-cache; empty: none): a pile settled there before is restored
+  /// instead of settled again, and one settled now is kept there (pile_cache.h).
+  std::string pileCache;
 };
 inline constexpr float kRockRadius = 3.0f;  // d
 
@@ -118,6 +121,11 @@ struct SizeResult {
   std::vector<TimelineFrame> timeline;
   double settleWallSeconds = 0.0;
   bool settleBudgetHit = false;
+  /// MeasureOptions::pileCache: the file the settled pile was restored from (empty: it settled in
+  /// this run; settleWallSeconds is then the restore's, and the settling's that of the run that
+  /// wrote the file is settledFromWallSeconds).
+  std::string settledFrom;
+  double settledFromWallSeconds = 0.0;
   PileState built{};     ///< right after build
   PileState settled{};   ///< when the measurement starts
   PileState measured{};  ///< when it ends

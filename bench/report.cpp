@@ -174,7 +174,9 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
         {"steps_planned", size.plan.settleSteps},
         {"simulated_seconds", size.settled.simulatedSeconds},
         {"wall_seconds", size.settleWallSeconds},
-        {"budget_hit", size.settleBudgetHit}}},
+        {"budget_hit", size.settleBudgetHit},
+        {"restored_from", size.settledFrom},
+        {"restored_settle_wall_seconds", size.settledFromWallSeconds}}},
       {"state",
        {{"built", pileStateJson(size.built)},
         {"settled", pileStateJson(size.settled)},
@@ -186,12 +188,7 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
 
 }  // namespace
 
-nlohmann::json reportJson(const BenchOptions& options, const BenchReport& report) {
-  const MeasureOptions& measure = options.measure;
-  nlohmann::json sizes = nlohmann::json::array();
-  for (const SizeResult& size : report.sizes) {
-    sizes.push_back(sizeJson(size, particleDiameter(measure)));
-  }
+nlohmann::json pileJson(const MeasureOptions& measure) {
   nlohmann::json scene;
   if (measure.scene == BenchScene::Box) {
     const BoxPileConfig& box = measure.box;
@@ -233,6 +230,16 @@ nlohmann::json reportJson(const BenchOptions& options, const BenchReport& report
                {"jitter", shortest(measure.pile.jitter)},
                {"seed", measure.pile.seed}}}};
   }
+  return scene;
+}
+
+nlohmann::json reportJson(const BenchOptions& options, const BenchReport& report) {
+  const MeasureOptions& measure = options.measure;
+  nlohmann::json sizes = nlohmann::json::array();
+  for (const SizeResult& size : report.sizes) {
+    sizes.push_back(sizeJson(size, particleDiameter(measure)));
+  }
+  nlohmann::json scene = pileJson(measure);
   nlohmann::json& common = scene["options"];
   common["chunk"] = measure.chunk;
   common["budget_seconds"] = measure.budgetSeconds;
@@ -435,6 +442,13 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
                  s.granules, double(s.listSkin / particleDiameter(measure)),
                  static_cast<unsigned long long>(s.listBuilds),
                  static_cast<unsigned long long>(s.listOverflows), s.steps);
+  }
+  for (const SizeResult& s : report.sizes) {
+    if (s.settledFrom.empty()) continue;
+    std::fprintf(out,
+                 "  %u granules: the settled pile restored from %s (settle wall time above: the "
+                 "restore; the run that settled it took %.0f s)\n",
+                 s.granules, s.settledFrom.c_str(), s.settledFromWallSeconds);
   }
   for (const SizeResult& s : report.sizes) {
     if (!measure.sleep) break;

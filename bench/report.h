@@ -21,6 +21,11 @@ struct BenchReport {
 /// The tables (performance, settling, per-kernel times) and notes, for people.
 void printReport(std::FILE* out, const BenchOptions& options, const BenchReport& report);
 
+/// The pile a run measures, as its JSON states it: "benchmark", "description" and the scene's
+/// "options" (container, material, time step, packing, seed); the settled pile's name in
+/// --pile-cache is made from it too.
+nlohmann::json pileJson(const MeasureOptions& measure);
+
 /// Everything, for scripts: options, machine, and per size every number of the tables.
 nlohmann::json reportJson(const BenchOptions& options, const BenchReport& report);
 

@@ -1,0 +1,91 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "process.h"
+
+namespace sandphys::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A small box pile, briefly settled: what the cache keeps does not depend on how settled it is.
+const std::string kBench = std::string(SANDPHYS_BENCH_EXE) +
+                           " --scene box --sizes 256 --settle-steps 4000 --steps 100"
+                           " --kernel-steps 10 --quiet";
+
+class PileCache : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+    m_dir = fs::temp_directory_path() / (std::string("sandphys_pile_cache_") + test->name());
+    fs::remove_all(m_dir);
+    fs::create_directories(m_dir);
+  }
+  void TearDown() override { fs::remove_all(m_dir); }
+
+  // One run with the cache; its JSON's only size.
+  nlohmann::json run(const std::string& name, const std::string& extra = "",
+                     std::string* output = nullptr) {
+    const fs::path json = m_dir / (name + ".json");
+    const ProcessResult result =
+        runCommand(kBench + extra + " --pile-cache " + (m_dir / "piles").string() + " --json " +
+                   json.string());
+    EXPECT_EQ(result.exitCode, 0) << result.output;
+    if (output) *output = result.output;
+    std::ifstream file(json);
+    return nlohmann::json::parse(file).at("sizes").at(0);
+  }
+
+  std::vector<fs::path> piles() const {
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::directory_iterator(m_dir / "piles")) files.push_back(entry.path());
+    return files;
+  }
+
+  fs::path m_dir;
+};
+
+TEST_F(PileCache, ASecondRunRestoresThePileAndMeasuresWhatTheFirstDid) {
+  const nlohmann::json first = run("first");
+  ASSERT_EQ(piles().size(), 1u);
+  EXPECT_EQ(first["settle"]["restored_from"], "");
+  std::string output;
+  const nlohmann::json second = run("second", "", &output);
+  EXPECT_EQ(second["settle"]["restored_from"], piles().front().string()) << output;
+  EXPECT_NE(output.find("restored from"), std::string::npos) << output;
+  EXPECT_EQ(second["settle"]["steps"], first["settle"]["steps"]);
+  // Every figure of the pile's state, at the start of timing and at its end, to the last bit.
+  EXPECT_EQ(second["state"]["settled"], first["state"]["settled"]);
+  EXPECT_EQ(second["state"]["measured"], first["state"]["measured"]);
+  EXPECT_GT(first["state"]["measured"]["contacts"].get<int>(), 100);
+  ASSERT_EQ(piles().size(), 1u);
+}
+
+TEST_F(PileCache, AnotherSeedSettlesAndKeepsAPileOfItsOwn) {
+  const nlohmann::json one = run("one");
+  const nlohmann::json other = run("other", " --seed 2");
+  EXPECT_EQ(other["settle"]["restored_from"], "");
+  EXPECT_EQ(piles().size(), 2u);
+  EXPECT_NE(other["state"]["settled"], one["state"]["settled"]);
+}
+
+TEST_F(PileCache, ADamagedFileIsNamedAndPassedOver) {
+  run("first");
+  ASSERT_EQ(piles().size(), 1u);
+  const fs::path file = piles().front();
+  fs::resize_file(file, fs::file_size(file) / 2);
+  std::string output;
+  const nlohmann::json again = run("again", "", &output);
+  EXPECT_EQ(again["settle"]["restored_from"], "");
+  EXPECT_NE(output.find("cannot use the settled pile " + file.string()), std::string::npos)
+      << output;
+}
+
+}  // namespace
+}  // namespace sandphys::testing
