@@ -357,6 +357,26 @@ TEST(Sleep, SnapshotCarriesTheSleepState) {
   EXPECT_GT(a->readStats().granulesAsleep, 0u);
 }
 
+// A sleeping particle is not computed, so it reports the contacts it counted last: a World that
+// restores a sleeping pile counts those its contact history holds, as the World that saved it.
+TEST(Sleep, ARestoredSleepingPileCountsTheContactsItSleepsWith) {
+  testing::TestWorld a(sleepySettings());
+  buildPile(*a);
+  a.simulate(1.5);
+  const WorldStats saved = a->readStats();
+  ASSERT_EQ(saved.granulesAsleep, 96u);
+  testing::TestWorld b(sleepySettings());
+  buildPile(*b);
+  b->restoreSnapshot(a->readSnapshot());
+  EXPECT_EQ(b->readStats().contacts, saved.contacts);
+  b->substep(10);
+  a->substep(10);
+  const WorldStats restored = b->readStats();
+  EXPECT_EQ(restored.granulesAsleep, 96u);
+  EXPECT_EQ(restored.contacts, a->readStats().contacts);
+  EXPECT_GT(restored.contacts, 200u);
+}
+
 // A column of sand between four walls, whose +x wall is taken away once it has settled (and,
 // with sleep, fallen asleep): how far the slumped sand runs out, and how many granules slept at
 // the cut.

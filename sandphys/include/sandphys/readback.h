@@ -78,7 +78,9 @@ struct WorldStats {
   /// Emitted granules that were not born because their place was taken (a grain thrown back up
   /// under an emitter); they never move nor touch anything.
   std::uint32_t granulesNotBorn = 0;
-  std::uint32_t contacts = 0;  ///< particle-particle pairs + collider contacts, last substep
+  /// Particle-particle pairs + collider contacts, last substep (a sleeping particle's: its last
+  /// computed one; after restoreSnapshot, under HertzMindlin, those its contact history holds).
+  std::uint32_t contacts = 0;
   /// Buckets of the neighbour grid's hash table that a list build scans: a power of two of at
   /// least 4096 that follows the particles in use, not the capacity reserved.
   std::uint32_t gridBuckets = 0;

@@ -54,6 +54,21 @@ void uploadContacts(WorldBuffers& buffers, const std::vector<StoredContacts>& co
     for (std::uint32_t w = 0; w < contacts[i].pairs.size(); ++w) pairs[i][w] = contacts[i].pairs[w];
   }
   buffers[kContactPairs].upload(0, pairs.size() * sizeof(SlotWords), pairs.data());
+  // The contacts each particle counted in the substep that left this history (pairs and
+  // colliders, as contacts.comp writes them): a sleeper keeps them until it is computed again,
+  // and WorldStats::contacts reads them. The totals beside them (guards) run on.
+  std::vector<GpuUVec4> stats(particles);
+  buffers[kParticleStats].download(0, stats.size() * sizeof(GpuUVec4), stats.data());
+  for (std::uint32_t i = 0; i < particles; ++i) {
+    stats[i].x = stats[i].w = 0;
+    if (i >= contacts.size()) continue;
+    for (const SlotWords& slot : contacts[i].slots) {
+      const std::uint32_t key = slot[3];
+      if (key == 0) continue;
+      ++((key & kSlotCollider) ? stats[i].w : stats[i].x);
+    }
+  }
+  buffers[kParticleStats].upload(0, stats.size() * sizeof(GpuUVec4), stats.data());
 }
 
 }  // namespace sandphys::detail

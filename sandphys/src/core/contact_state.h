@@ -13,7 +13,8 @@ namespace sandphys::detail {
 std::vector<StoredContacts> downloadContacts(const WorldBuffers& buffers, std::uint32_t particles);
 
 /// Puts `contacts` back into the first contacts.size() particles and frees the slots of the
-/// particles after them, up to `particles`.
+/// particles after them, up to `particles`; the contacts each particle counts (particleStats) are
+/// those its slots hold. Sync point.
 void uploadContacts(WorldBuffers& buffers, const std::vector<StoredContacts>& contacts,
                     std::uint32_t particles);
 

@@ -103,6 +103,9 @@ enum ColliderType : std::uint32_t {
 /// kContactSlots slots of one vec4 (spring xyz, partner key), kContactSlotsPerGroup of them in
 /// each of kContactSlotGroups buffers.
 inline constexpr std::uint32_t kContactSlotsPerGroup = 4;
+/// The bit of a slot's partner key that marks a collider contact (SLOT_COLLIDER in
+/// contact_slots.glsl; 0 is a free slot, any other key a partner particle).
+inline constexpr std::uint32_t kSlotCollider = 0x80000000u;
 inline constexpr std::uint32_t kContactSlotGroups = 3;
 static_assert(kContactSlotsPerGroup * kContactSlotGroups == kContactSlots);
 
