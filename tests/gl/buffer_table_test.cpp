@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/gpu_buffers.h"
+#include "core/world_access.h"
 #include "gl/shader_library.h"
 #include "support/test_world.h"
 
@@ -119,6 +120,33 @@ TEST(BufferTable, EveryBufferIsDeclaredAtItsBindingWithItsStrideAndView) {
     }
     glDeleteProgram(program);
   }
+}
+
+// What only sleeping sand uses (its lists of what a substep computes, the builds of each list and
+// body) takes the smallest buffer in a World without sleep, and the capacity in one with it.
+TEST(BufferTable, SleepBuffersTakeMemoryOnlyInASleepingWorld) {
+  unsigned checked = 0;
+  for (const bool sleep : {false, true}) {
+    WorldSettings settings = testing::smallSettings(128);
+    settings.sleep.enabled = sleep;
+    testing::TestWorld world(settings);
+    const World::Impl& w = WorldAccess::impl(*world);
+    for (unsigned b = 0; b < kBindingCount; ++b) {
+      const GpuBufferSpec& spec = kGpuBuffers[b];
+      std::size_t units = 0;
+      if (spec.sizedBy == SizedBy::SleepBodies) units = w.bodyCapacity;
+      if (spec.sizedBy == SizedBy::SleepParticles) units = w.particleCapacity;
+      if (units == 0) continue;
+      SCOPED_TRACE(std::string(spec.array) + (sleep ? ", sleep" : ", no sleep"));
+      if (sleep) {
+        EXPECT_EQ(w.buffers[Binding(b)].size(), units * spec.unitBytes());
+      } else {
+        EXPECT_LE(w.buffers[Binding(b)].size(), 16u);  // gl::Buffer's smallest
+      }
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 8u);
 }
 
 }  // namespace

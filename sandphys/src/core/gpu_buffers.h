@@ -16,10 +16,13 @@ namespace sandphys::detail {
 /// What a buffer's element count follows. Lists and the grid's buffers (Table, TablePlusOne,
 /// ScanBlocks, GridParticles: one of each per grid, two under sleep) are rebuilt from the
 /// particles, so nothing is kept when they grow.
-/// History: the particles when the contact law keeps contact state (HertzMindlin), else one unit.
+/// History: the particles when the contact law keeps contact state (HertzMindlin), else one unit;
+/// SleepBodies, SleepParticles: the bodies, the particles with sleep, else one unit.
 enum class SizedBy {
   Bodies,
   Particles,
+  SleepBodies,
+  SleepParticles,
   Lists,
   History,
   Table,

@@ -46,7 +46,8 @@ HashTable HashTable::forParticles(std::uint32_t particles) {
 
 void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::uint32_t tableSize,
                             std::uint32_t colliders, std::uint32_t bodiesInUse,
-                            std::uint32_t particlesInUse, bool history, std::uint32_t grids) {
+                            std::uint32_t particlesInUse, bool history, bool sleeping,
+                            std::uint32_t grids) {
   for (unsigned b = 0; b < kBindingCount; ++b) {
     const GpuBufferSpec& spec = kGpuBuffers[b];
     std::size_t count = 1;
@@ -59,6 +60,14 @@ void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::
       case SizedBy::Particles:
         count = particles;
         keep = particlesInUse;
+        break;
+      case SizedBy::SleepBodies:
+        count = sleeping ? bodies : 1;
+        keep = sleeping ? bodiesInUse : 0;
+        break;
+      case SizedBy::SleepParticles:
+        count = sleeping ? particles : 1;
+        keep = sleeping ? particlesInUse : 0;
         break;
       case SizedBy::Lists:
         count = particles;

@@ -37,10 +37,11 @@ struct WorldBuffers {
 
   /// Allocates (or, when already allocated, grows keeping contents) for these capacities;
   /// `history`: the contact law keeps contact state (the contact slots and what goes with them);
+  /// `sleeping`: sleeping sand (its lists of what a substep computes, and what goes with them);
   /// `grids`: the grids of a list build (two with sleep, common/grid.glsl).
   void allocate(std::uint32_t bodies, std::uint32_t particles, std::uint32_t tableSize,
                 std::uint32_t colliders, std::uint32_t bodiesInUse, std::uint32_t particlesInUse,
-                bool history, std::uint32_t grids);
+                bool history, bool sleeping, std::uint32_t grids);
   void bindAll() const;
   std::uint64_t bytes() const;
 };
