@@ -533,21 +533,9 @@ uint findHits(Particle self, float radius, bool movable, uint skip, out uint fou
   return seen;
 }
 
-#ifndef SEARCHES_GRID
-// Leaves particle i to the pass that searches the grid: appended to its list in any order (each
-// particle's result is its own), the pass's command growing with the list as writeGroups would
-// write it for the list's length.
-void deferToSearch(uint i) {
-  uint at = uint(COUNTER_ACTIVE_DISPATCH) + 4u * ACTIVE_PASS_SEARCH;
-  uint slot = atomicAdd(counters[at + 3u], 1u);
-  searchDue[slot] = i;
-  if (slot % WORKGROUP_SIZE == 0u) growGroups(at, slot / WORKGROUP_SIZE + 1u);
-}
-#endif
-
 void main() {
 #if defined(SEARCHING)
-  // The particles the main pass left to this one (deferToSearch).
+  // The particles the main pass left to this one.
   uint t = threadIndex();
   if (t >= activeListLength(ACTIVE_PASS_SEARCH)) return;
   uint i = searchDue[t];
@@ -589,7 +577,7 @@ void main() {
   searches = true;  // a test's: every particle searched, to the same bits (searchEveryParticle)
 #endif
   if (searches) {
-    deferToSearch(i);
+    searchDue[appendToPass(ACTIVE_PASS_SEARCH)] = i;  // in any order: each result is its own
     return;
   }
 #endif

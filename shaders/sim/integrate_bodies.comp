@@ -93,7 +93,7 @@ void advance(uint t) {
   }
 #ifndef PAPER_LAW
   // Listed for count_pairs.comp, in any order: each granule's counts are its own.
-  if (recount) pairsDue[atomicAdd(counters[COUNTER_PAIRS_DUE], 1u)] = b;
+  if (recount) pairsDue[appendToPass(ACTIVE_PASS_PAIRS)] = b;
 #endif
 #ifdef SLEEPING
   if (asleep) {
@@ -129,20 +129,4 @@ void advance(uint t) {
 
 void main() {
   advance(threadIndex());
-#ifndef PAPER_LAW
-  // The last workgroup to get here sees every granule listed, and writes count_pairs.comp's
-  // command (as collect_active.comp writes the active passes').
-  memoryBarrierBuffer();
-  barrier();
-  if (gl_LocalInvocationID.x == 0u) {
-    uint groups = gl_NumWorkGroups.x * gl_NumWorkGroups.y;
-    if (atomicAdd(counters[COUNTER_BODIES_GROUPS_DONE], 1u) == groups - 1u) {
-      uint due = atomicExchange(counters[COUNTER_PAIRS_DUE], 0u);
-      uint at = uint(COUNTER_ACTIVE_DISPATCH) + 4u * ACTIVE_PASS_PAIRS;
-      writeGroups(at, groupsFor(due));
-      counters[at + 3u] = due;
-      counters[COUNTER_BODIES_GROUPS_DONE] = 0u;
-    }
-  }
-#endif
 }

@@ -19,8 +19,8 @@ inline constexpr unsigned kScanBlock = 1024;      // elements per scan workgroup
 inline constexpr unsigned kStatsWorkgroups = 32;  // fixed: the reduction order never changes
 // counters[] (layout.glsl, COUNTER_*): rare events, the neighbour lists' control and, from
 // kCounterListDispatch on, the indirect commands of the list build's passes, then those of the
-// passes over lists (the active lists, with sleep; the granules due for their pair counts). Words
-// 5-9, 13, 15 and 16 are the GPU's alone (layout.glsl).
+// passes over lists (the active lists, with sleep; the granules due for their pair counts; the
+// particles left to the grid search). Words 5-9 and 13 are the GPU's alone (layout.glsl).
 inline constexpr std::uint32_t kCounterKilled = 0;
 inline constexpr std::uint32_t kCounterSpawnTaken = 1;
 inline constexpr std::uint32_t kCounterListRequested = 2;

@@ -83,10 +83,6 @@ struct SinkBox {
 // integrate_bodies.comp takes every granule's pair counts (common/contact_pairs.glsl), as before
 // the change, not only those whose slots changed. Only the CPU writes it.
 #define COUNTER_RECOUNT_PAIRS 14
-// The granules integrate_bodies.comp has listed for count_pairs.comp so far this substep, and its
-// workgroups done (the last one turns the first into count_pairs' command and clears both).
-#define COUNTER_PAIRS_DUE 15
-#define COUNTER_BODIES_GROUPS_DONE 16
 // From this uint on: the indirect dispatch commands of the list build, one per pass below (4
 // uints each: groups x, y, z and padding), zero groups when no build is due.
 #define COUNTER_LIST_DISPATCH 20

@@ -20,18 +20,25 @@ void writeGroups(uint at, uint groups) {
   counters[at + 2u] = 1u;
 }
 
-// The command at counters[at] grown to at least `groups` workgroups, as writeGroups writes it for
-// the most groups any caller asks for: concurrent callers each with the groups its entry of a list
-// needs, in any order (integer atomics).
-void growGroups(uint at, uint groups) {
-  atomicMax(counters[at], min(groups, 32768u));
-  atomicMax(counters[at + 1u], (groups + 32767u) / 32768u);
+// Appends an entry to the list of `pass` (ACTIVE_PASS_PAIRS, ACTIVE_PASS_SEARCH) and returns its
+// place: the list's length is its command's fourth uint, and the command grows with it to the
+// groups writeGroups would write for that length. Concurrent callers, in any order (integer
+// atomics); the list's order is then the threads', so each entry's result must be its own.
+uint appendToPass(uint pass) {
+  uint at = uint(COUNTER_ACTIVE_DISPATCH) + 4u * pass;
+  uint slot = atomicAdd(counters[at + 3u], 1u);
+  if (slot % WORKGROUP_SIZE == 0u) {
+    uint groups = slot / WORKGROUP_SIZE + 1u;
+    atomicMax(counters[at], min(groups, 32768u));
+    atomicMax(counters[at + 1u], (groups + 32767u) / 32768u);
+  }
+  return slot;
 }
 
-// The commands that passes of a substep write as they run, for no work: count_pairs.comp's
-// (integrate_bodies.comp writes it when it runs; a substep with no granule to advance runs none)
-// and that of the pass over the particles contacts.comp leaves to the grid search (it grows it).
-// The first pass of every substep clears them.
+// The commands of the passes whose lists appendToPass fills as the substep runs, for an empty
+// list: count_pairs.comp's (integrate_bodies.comp fills its list; a substep with no granule to
+// advance runs none) and contacts_search's (contacts.comp fills it). The first pass of every
+// substep clears them.
 void clearRunningCommands() {
   for (uint pass = ACTIVE_PASS_PAIRS; pass <= ACTIVE_PASS_SEARCH; ++pass) {
     uint at = uint(COUNTER_ACTIVE_DISPATCH) + 4u * pass;
