@@ -380,11 +380,12 @@ bool touches(Particle self, uint id) {
 uint nextPartnerAfter(Particle self, uint after) {
   uint best = NO_PARTNER;
   ivec3 cell = cellOf(texelFetch(listOriginTexture, int(self.id)).xyz);
+  uvec2 multipliers = hashMultipliers();
   uint stillBuild = stillGridBuild();
   for (int row = 0; row < 9; ++row) {
-    uint parts = rowParts(cell, row);
+    uint parts = rowParts(cell, row, multipliers);
     for (uint part = 0u; part < parts; ++part) {
-      uvec4 slots = rowSlots(cell, row, part, parts);
+      uvec4 slots = rowSlots(cell, row, part, parts, multipliers);
       for (uint k = 0u; k < rowEntries(slots); ++k) {
         uint id = rowParticle(slots, k);
         if ((after != NO_PARTNER && id <= after) || id >= best) continue;

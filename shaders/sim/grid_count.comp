@@ -1,11 +1,11 @@
 #version 450
-// List build, pass 1. Each particle's hash bucket in the grid of cells of d + skin at its present
-// position, counted with an integer atomic (exact, order independent). Particles of dead bodies
-// get no bucket and drop out of the grid and the lists. Under SLEEPING the particles are those of
-// common/grid_members.glsl, and a build of the still grid puts in the moving grid only the bodies
-// collect_active.comp stamped for this build (the computed ones), the others in the still grid.
-// A particle sorted without its list being built (into the still grid, or a recent sleeper)
-// measures how far it moves from where it was sorted.
+// List build, pass 2. Each particle's hash bucket in the grid of cells of d + skin at its present
+// position (common/grid_fit.glsl), counted with an integer atomic (exact, order independent).
+// Particles of dead bodies get no bucket and drop out of the grid and the lists. Under SLEEPING
+// the particles are those of common/grid_members.glsl, and a build of the still grid puts in the
+// moving grid only the bodies collect_active.comp stamped for this build (the computed ones), the
+// others in the still grid. A particle sorted without its list being built (into the still grid,
+// or a recent sleeper) measures how far it moves from where it was sorted.
 #include "common/layout.glsl"
 #include "common/spatial_hash.glsl"
 
@@ -16,14 +16,15 @@ PARTICLE_BODY_TEXTURE
 BODY_INFO_TEXTURE
 PARTICLE_CELL(writeonly)
 CELL_COUNT(coherent)
-#ifdef SLEEPING
 COUNTERS(readonly)
+#ifdef SLEEPING
 ACTIVE_PARTICLES(readonly)
 BODY_GRID_BUILD(coherent)
 LIST_ORIGIN(coherent)
 LIST_BUILT(writeonly)
 #endif
 #include "common/grid_members.glsl"
+#include "common/grid_fit.glsl"
 
 void main() {
   uint t = threadIndex();
@@ -38,7 +39,7 @@ void main() {
     return;
   }
   vec3 position = texelFetch(particlePositionTexture, int(i)).xyz;
-  uint cell = bucketOf(cellOf(position));
+  uint cell = bucketOf(cellOf(position), hashMultipliers());
 #ifdef SLEEPING
   bool listedNow = t < counters[COUNTER_GRID_ACTIVE];
   if (buildsStillGrid()) {

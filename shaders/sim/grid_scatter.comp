@@ -1,5 +1,5 @@
 #version 450
-// List build, pass 5. Counting-sort scatter: each particle grid_count.comp counted takes a slot
+// List build, pass 6. Counting-sort scatter: each particle grid_count.comp counted takes a slot
 // in its bucket's range of its grid (common/grid.glsl). The slot order inside a bucket depends
 // on thread timing; grid_sort.comp makes it deterministic. Decrementing the count returns every
 // bucket count to zero, so no clear pass is needed next build.

@@ -1,5 +1,5 @@
 #version 450
-// List build, pass 6. One thread per bucket of each grid built sorts its particle ids ascending
+// List build, pass 7. One thread per bucket of each grid built sorts its particle ids ascending
 // (insertion sort: buckets hold a handful of particles; there is no cap). After this pass the
 // bucket order is a pure function of the particle positions: the step is deterministic.
 #include "common/layout.glsl"

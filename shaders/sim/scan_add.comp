@@ -1,5 +1,5 @@
 #version 450
-// List build, pass 4. Adds each block's offset to its 1024 exclusive sums (scan_blocks.comp says
+// List build, pass 5. Adds each block's offset to its 1024 exclusive sums (scan_blocks.comp says
 // where each grid's are).
 #include "common/layout.glsl"
 

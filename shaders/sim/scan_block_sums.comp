@@ -1,5 +1,5 @@
 #version 450
-// List build, pass 3. Exclusive scan of the per-block totals of each grid built by one workgroup,
+// List build, pass 4. Exclusive scan of the per-block totals of each grid built by one workgroup,
 // in chunks with a running carry; each grid's total (particles in it) goes to its cellStart entry
 // tableSize.
 #include "common/layout.glsl"

@@ -1,5 +1,5 @@
 #version 450
-// List build, pass 2. Exclusive prefix sum of the bucket counts of each grid built, 1024 per
+// List build, pass 3. Exclusive prefix sum of the bucket counts of each grid built, 1024 per
 // workgroup (4 per thread, then a work-efficient scan in shared memory); each workgroup's total
 // goes to scanBlockSums. Under SLEEPING the still grid's table follows the moving grid's
 // (gpu_buffers.def, CELL_*), its sums one entry further on.

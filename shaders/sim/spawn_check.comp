@@ -40,12 +40,13 @@ void main() {
       texelFetch(bodyPositionTexture, int(body)).xyz + particleOffset(int(body), int(i));
   float diameter = params.particleDiameter;
   ivec3 cell = cellOf(position);
+  uvec2 multipliers = hashMultipliers();
   bool taken = false;
   uint stillBuild = stillGridBuild();
   for (int row = 0; row < 9; ++row) {
-    uint parts = rowParts(cell, row);
+    uint parts = rowParts(cell, row, multipliers);
     for (uint part = 0u; part < parts; ++part) {
-      uvec4 slots = rowSlots(cell, row, part, parts);
+      uvec4 slots = rowSlots(cell, row, part, parts, multipliers);
       for (uint k = 0u; k < rowEntries(slots); ++k) {
         vec4 other = texelFetch(particlePositionTexture, int(rowParticle(slots, k)));
         vec3 d = position - other.xyz;

@@ -20,7 +20,8 @@ inline constexpr unsigned kStatsWorkgroups = 32;  // fixed: the reduction order 
 // counters[] (layout.glsl, COUNTER_*): rare events, the neighbour lists' control and, from
 // kCounterListDispatch on, the indirect commands of the list build's passes, then those of the
 // passes over lists (the active lists, with sleep; the granules due for their pair counts; the
-// particles left to the grid search). Words 5-9 and 13 are the GPU's alone (layout.glsl).
+// particles left to the grid search). Words 5-9, 13 and 15-20 are the GPU's alone
+// (layout.glsl).
 inline constexpr std::uint32_t kCounterKilled = 0;
 inline constexpr std::uint32_t kCounterSpawnTaken = 1;
 inline constexpr std::uint32_t kCounterListRequested = 2;
@@ -33,11 +34,12 @@ inline constexpr std::uint32_t kCounterGridActive = 11;
 inline constexpr std::uint32_t kCounterGridRecent = 12;
 /// Non-zero while the CPU asks integrate_bodies.comp to take every granule's pair counts.
 inline constexpr std::uint32_t kCounterRecountPairs = 14;
-inline constexpr std::uint32_t kCounterListDispatch = 20;
+inline constexpr std::uint32_t kCounterListDispatch = 24;
 /// COUNTER_LIST_REQUESTED values (layout.glsl): the CPU asks for every list.
 inline constexpr std::uint32_t kListRequestAll = 1;
 /// The passes of a list build, each dispatched from its own indirect command (list_check.comp).
 enum ListBuildPass : std::uint32_t {
+  kPassGridExtent,
   kPassGridCount,
   kPassScanBlocks,
   kPassScanBlockSums,

@@ -152,6 +152,7 @@ void WorldKernels::compile(ContactLaw law, bool sleeping, bool searchEvery) {
   };
   bodiesToParticles = compile("sim/bodies_to_particles.comp");
   listCheck = compile("sim/list_check.comp");
+  gridExtent = compile("sim/grid_extent.comp");
   gridCount = compile("sim/grid_count.comp");
   scanBlocks = compile("sim/scan_blocks.comp");
   scanBlockSums = compile("sim/scan_block_sums.comp");
@@ -177,17 +178,12 @@ void WorldKernels::compile(ContactLaw law, bool sleeping, bool searchEvery) {
 }
 
 void WorldKernels::release() {
-  for (GLuint p : {bodiesToParticles, listCheck,
-                   gridCount,         scanBlocks,
-                   scanBlockSums,     scanAdd,
-                   gridScatter,       gridSort,
-                   listBuild,         contacts,
-                   contactList,       contactsSearch,
-                   integrateBodies,   integrateLargeBodies,
-                   countPairs,        statsReduce,
-                   resetPeakOverlap,  stateHash,
-                   spawnCheck,        wakeRegion,
-                   collectActive}) {
+  for (GLuint p :
+       {bodiesToParticles, listCheck,    gridExtent,       gridCount,       scanBlocks,
+        scanBlockSums,     scanAdd,      gridScatter,      gridSort,        listBuild,
+        contacts,          contactList,  contactsSearch,   integrateBodies, integrateLargeBodies,
+        countPairs,        statsReduce,  resetPeakOverlap, stateHash,       spawnCheck,
+        wakeRegion,        collectActive}) {
     if (p) glDeleteProgram(p);
   }
   *this = {};

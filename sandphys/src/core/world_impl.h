@@ -52,6 +52,7 @@ struct WorldKernels {
   GLuint scanBlocks = 0;
   GLuint scanBlockSums = 0;
   GLuint scanAdd = 0;
+  GLuint gridExtent = 0;
   GLuint gridCount = 0;
   GLuint gridScatter = 0;
   GLuint gridSort = 0;
@@ -85,8 +86,10 @@ struct KinematicPath {
 };
 
 /// Smallest power of two >= 4096 and >= `particles`, with hash multipliers that send the 27
-/// cells around any cell to 27 distinct buckets. A World allocates the table for its capacity
-/// but uses the one for the particles it holds, so that the list builds cost what is in use.
+/// cells around any cell to 27 distinct buckets: the GPU's when sand does not fit the table
+/// (shaders/sim/common/grid_fit.glsl fits the grid to it). A World allocates the table for its
+/// capacity but uses the one for the particles it holds, so that the list builds cost what is in
+/// use.
 struct HashTable {
   std::uint32_t size = 0;
   std::uint32_t multiplierY = 0;

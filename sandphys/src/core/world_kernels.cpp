@@ -131,9 +131,11 @@ void World::Impl::writeDirtyParticles(const char* name) {
 }
 
 void World::Impl::buildLists() {
-  // 2. The build, in passes whose group counts the decision wrote (zero when not due): bucket
-  // counts, their prefix sum (blocks of 1024), scatter into buckets, id order inside each
-  // bucket, then each particle's list.
+  // 2. The build, in passes whose group counts the decision wrote (zero when not due): the
+  // extent of the sand the grid is fitted to (when it builds every grid), bucket counts, their
+  // prefix sum (blocks of 1024), scatter into buckets, id order inside each bucket, then each
+  // particle's list.
+  dispatchIndirect(kernels.gridExtent, "grid_extent", listDispatchOffset(kPassGridExtent));
   dispatchIndirect(kernels.gridCount, "grid_count", listDispatchOffset(kPassGridCount));
   dispatchIndirect(kernels.scanBlocks, "scan_blocks", listDispatchOffset(kPassScanBlocks));
   dispatchIndirect(kernels.scanBlockSums, "scan_block_sums",

@@ -14,8 +14,10 @@
 // particle would: the lists, and every bit of the result, are the same. The two grids share the
 // table's buckets and each search: a row's slots in both come from one cellStart lookup per end.
 // A particle is in its grid where its listOrigin says (grid_count.comp), at most half the skin
-// from where it is. The includer declares CELL_START_TEXTURE, CELL_PARTICLES_TEXTURE and, under
-// SLEEPING, BODY_GRID_BUILD_TEXTURE and COUNTERS, and includes spatial_hash.glsl.
+// from where it is. The includer declares CELL_START_TEXTURE, CELL_PARTICLES_TEXTURE, COUNTERS
+// and, under SLEEPING, BODY_GRID_BUILD_TEXTURE, and includes spatial_hash.glsl. A search reads
+// the grid's multipliers once (hashMultipliers, common/grid_fit.glsl).
+#include "grid_fit.glsl"
 
 // The build that last built the still grid, 0 without SLEEPING (read once per search).
 uint stillGridBuild() {
@@ -28,15 +30,15 @@ uint stillGridBuild() {
 
 // A grid is scanned as 9 rows of three x-neighbour cells around a cell: one range of consecutive
 // buckets per row unless the row wraps around the table, then three.
-uint rowParts(ivec3 cell, int row) {
-  uint centre = bucketOf(cell + ivec3(0, row % 3 - 1, row / 3 - 1));
+uint rowParts(ivec3 cell, int row, uvec2 multipliers) {
+  uint centre = bucketOf(cell + ivec3(0, row % 3 - 1, row / 3 - 1), multipliers);
   return ((centre - 1u) & params.hashMask) < ((centre + 1u) & params.hashMask) ? 1u : 3u;
 }
 
 // The cellParticles slots of part `part` of row `row` (see rowParts): x, y the moving grid's
 // [begin, end) (the one grid's without SLEEPING), z, w the still grid's (empty without).
-uvec4 rowSlots(ivec3 cell, int row, uint part, uint parts) {
-  uint centre = bucketOf(cell + ivec3(0, row % 3 - 1, row / 3 - 1));
+uvec4 rowSlots(ivec3 cell, int row, uint part, uint parts, uvec2 multipliers) {
+  uint centre = bucketOf(cell + ivec3(0, row % 3 - 1, row / 3 - 1), multipliers);
   uint first =
       parts == 1u ? (centre - 1u) & params.hashMask : (centre + part - 1u) & params.hashMask;
   uint last = parts == 1u ? (centre + 1u) & params.hashMask : first;

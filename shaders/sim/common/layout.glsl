@@ -83,17 +83,21 @@ struct SinkBox {
 // integrate_bodies.comp takes every granule's pair counts (common/contact_pairs.glsl), as before
 // the change, not only those whose slots changed. Only the CPU writes it.
 #define COUNTER_RECOUNT_PAIRS 14
+// Six words: the extent of the cells the grid was last fitted to (grid_extent.comp,
+// common/grid_fit.glsl), zero before any.
+#define COUNTER_GRID_EXTENT 15
 // From this uint on: the indirect dispatch commands of the list build, one per pass below (4
 // uints each: groups x, y, z and padding), zero groups when no build is due.
-#define COUNTER_LIST_DISPATCH 20
-#define PASS_GRID_COUNT 0u
-#define PASS_SCAN_BLOCKS 1u
-#define PASS_SCAN_BLOCK_SUMS 2u
-#define PASS_SCAN_ADD 3u
-#define PASS_GRID_SCATTER 4u
-#define PASS_GRID_SORT 5u
-#define PASS_LIST_BUILD 6u
-#define LIST_BUILD_PASSES 7
+#define COUNTER_LIST_DISPATCH 24
+#define PASS_GRID_EXTENT 0u
+#define PASS_GRID_COUNT 1u
+#define PASS_SCAN_BLOCKS 2u
+#define PASS_SCAN_BLOCK_SUMS 3u
+#define PASS_SCAN_ADD 4u
+#define PASS_GRID_SCATTER 5u
+#define PASS_GRID_SORT 6u
+#define PASS_LIST_BUILD 7u
+#define LIST_BUILD_PASSES 8
 // After those, the indirect commands of the passes over lists: under SLEEPING the contacts and
 // integrate_bodies passes over the active lists (ACTIVE_PARTICLES, ACTIVE_BODIES), the count_pairs
 // pass over the granules due (PAIRS_DUE), and the contacts pass over the particles that search the

@@ -73,6 +73,8 @@ void decideListBuild(bool everyList, uint activeParticles, uint recentParticles)
   // The table size is a power of two of at least 4096; one table per grid built.
   uint scanGroups = due ? params.hashSize / SCAN_BLOCK : 0u;
   uint sortGroups = due ? params.hashSize / WORKGROUP_SIZE : 0u;
+  // A build that builds every grid fits them to the sand (common/grid_fit.glsl).
+  bool fits = due;
 #ifdef SLEEPING
   bool all = everyList || requested == LIST_REQUEST_ALL;
   counters[COUNTER_LIST_ALL] = all ? 1u : 0u;
@@ -81,6 +83,7 @@ void decideListBuild(bool everyList, uint activeParticles, uint recentParticles)
     bool still = everyList || stillGridDue(requested);
     uint gridActive = everyList ? 0u : activeParticles;
     uint gridRecent = still ? 0u : recentParticles;
+    fits = still;
     counters[COUNTER_GRID_ACTIVE] = gridActive;
     counters[COUNTER_GRID_RECENT] = gridRecent;
     if (still) {
@@ -93,8 +96,12 @@ void decideListBuild(bool everyList, uint activeParticles, uint recentParticles)
     }
   }
 #endif
+  if (fits) {
+    for (uint word = 0u; word < 6u; ++word) counters[COUNTER_GRID_EXTENT + word] = 0u;
+  }
   counters[COUNTER_LIST_REQUESTED] = 0u;
   if (due) counters[COUNTER_LIST_BUILDS] += 1u;
+  setGroups(PASS_GRID_EXTENT, fits ? particleGroups : 0u);
   setGroups(PASS_GRID_COUNT, gridGroups);
   setGroups(PASS_SCAN_BLOCKS, scanGroups);
   setGroups(PASS_SCAN_BLOCK_SUMS, due ? 1u : 0u);

@@ -13,11 +13,12 @@
 uint searchList(vec3 at, uint body, float inverseMass, out uint ids[NEIGHBOUR_LIST_CAPACITY]) {
   uint count = 0u;
   ivec3 cell = cellOf(at);
+  uvec2 multipliers = hashMultipliers();
   uint stillBuild = stillGridBuild();
   for (int row = 0; row < 9; ++row) {
-    uint parts = rowParts(cell, row);
+    uint parts = rowParts(cell, row, multipliers);
     for (uint part = 0u; part < parts; ++part) {
-      uvec4 slots = rowSlots(cell, row, part, parts);
+      uvec4 slots = rowSlots(cell, row, part, parts, multipliers);
       for (uint k = 0u; k < rowEntries(slots); ++k) {
         uint id = rowParticle(slots, k);
         uint otherBody = floatBitsToUint(texelFetch(particlePositionTexture, int(id)).w);
