@@ -618,8 +618,17 @@ void main() {
   const bool beyond = false;
 #endif
   bool movable = self.velocity.w > 0.0;
-  uint found;
-  uint seen = findHits(self, radius, movable, 0u, found);
+  // Sleep needs the first batch of surfaces before the partners; otherwise the loop below finds
+  // every batch from one call site. llvmpipe runs each inlined copy of findHits for every batch
+  // of particles, whether a lane needs it or not (bench/README.md, "Code that runs anyway").
+#if defined(SLEEPING) && !defined(CONTACT_LIST)
+  const bool firstHitsEarly = true;
+#else
+  const bool firstHitsEarly = false;
+#endif
+  uint found = 0u;
+  uint seen = 0u;
+  if (firstHitsEarly) seen = findHits(self, radius, movable, 0u, found);
 #if defined(SLEEPING) && !defined(CONTACT_LIST)
   if (self.calm >= params.sleepSubsteps) {
     uint calm = CALM_UNBOUNDED;
@@ -665,9 +674,9 @@ void main() {
     pairContact(self, partner);
   }
 
-  // The surfaces in contact (findHits), the first batch found above.
+  // The surfaces in contact (findHits), a batch at a time.
   for (uint skip = 0u;; skip += uint(COLLIDER_BATCH)) {
-    if (skip > 0u) seen = findHits(self, radius, movable, skip, found);
+    if (skip > 0u || !firstHitsEarly) seen = findHits(self, radius, movable, skip, found);
     for (uint h = 0u; h < found; ++h) {
       vec4 hit;
       uint collider, face;
