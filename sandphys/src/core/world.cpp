@@ -26,7 +26,7 @@ World::Impl::Impl(const GpuContext& context, const WorldSettings& s) : gpu(&cont
   context.makeCurrent();
   kernels.compile(settings.contactLaw, sleep.enabled);
   buffers.allocate(bodyCapacity, particleCapacity, tableCapacity, settings.maxColliders, 0, 0,
-                   keepsHistory(), sleep.enabled, grids());
+                   keepsHistory(), sleep.enabled);
   profiler.setEnabled(settings.profileKernels);
   uploadParams();
 }
@@ -85,7 +85,7 @@ void World::reserve(std::uint32_t maxBodies, std::uint32_t maxParticles) {
   w.particleCapacity = std::max(w.particleCapacity, maxParticles);
   w.tableCapacity = HashTable::sizeFor(w.particleCapacity);
   w.buffers.allocate(w.bodyCapacity, w.particleCapacity, w.tableCapacity, w.settings.maxColliders,
-                     w.bodyCount, w.particleCount, w.keepsHistory(), w.sleep.enabled, w.grids());
+                     w.bodyCount, w.particleCount, w.keepsHistory(), w.sleep.enabled);
   w.paramsDirty = true;
   // A grown table, and grown lists, are new, empty buffers.
   w.gridValid = false;

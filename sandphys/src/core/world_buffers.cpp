@@ -46,8 +46,8 @@ HashTable HashTable::forParticles(std::uint32_t particles) {
 
 void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::uint32_t tableSize,
                             std::uint32_t colliders, std::uint32_t bodiesInUse,
-                            std::uint32_t particlesInUse, bool history, bool sleeping,
-                            std::uint32_t grids) {
+                            std::uint32_t particlesInUse, bool history, bool sleeping) {
+  const std::uint32_t grids = sleeping ? 2u : 1u;
   for (unsigned b = 0; b < kBindingCount; ++b) {
     const GpuBufferSpec& spec = kGpuBuffers[b];
     std::size_t count = 1;

@@ -37,11 +37,11 @@ struct WorldBuffers {
 
   /// Allocates (or, when already allocated, grows keeping contents) for these capacities;
   /// `history`: the contact law keeps contact state (the contact slots and what goes with them);
-  /// `sleeping`: sleeping sand (its lists of what a substep computes, and what goes with them);
-  /// `grids`: the grids of a list build (two with sleep, common/grid.glsl).
+  /// `sleeping`: sleeping sand (its lists of what a substep computes, what goes with them, and
+  /// the list build's second grid: a moving and a still one, common/grid.glsl).
   void allocate(std::uint32_t bodies, std::uint32_t particles, std::uint32_t tableSize,
                 std::uint32_t colliders, std::uint32_t bodiesInUse, std::uint32_t particlesInUse,
-                bool history, bool sleeping, std::uint32_t grids);
+                bool history, bool sleeping);
   void bindAll() const;
   std::uint64_t bytes() const;
 };
@@ -173,8 +173,6 @@ struct World::Impl {
   /// The contact law keeps contact state across substeps (HertzMindlin): slots, pair counts,
   /// torques and the sorted spins exist.
   bool keepsHistory() const { return settings.contactLaw == ContactLaw::HertzMindlin; }
-  /// The grids of a list build: with sleep a moving and a still one (common/grid.glsl).
-  std::uint32_t grids() const { return sleep.enabled ? 2u : 1u; }
   /// One past the last particle of body slot `body`.
   std::uint32_t particleEnd(std::uint32_t body) const { return particleEnds[body]; }
 
