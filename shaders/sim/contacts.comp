@@ -21,7 +21,10 @@
 // build passed over, finds its partners in the grid. The pass leaves such a particle to a pass of
 // its own, this kernel compiled with SEARCHING over the particles listed in searchDue: a search
 // that one lane of a batch runs would hold up the others, and its code stays out of the pass that
-// every particle runs (docs/architecture.md, "Why each pass is its own").
+// every particle runs (docs/architecture.md, "Why each pass is its own"). So does the collider
+// code: a particle whose list's build found a collider within its skin (LIST_NEAR_COLLIDER) is
+// left to this kernel compiled with COLLIDERS_PASS over the particles listed in collidersDue; the
+// others touch no collider until the next build.
 //
 // Under SLEEPING (layout.glsl, "Sleep") it runs over the particles collect_active.comp listed,
 // and each also finds the smallest calm count among its partners (and, awake, marks the sleeping
@@ -46,6 +49,14 @@ layout(local_size_x = WORKGROUP_SIZE) in;
 // World::readContacts'.
 #if defined(SEARCHING) || defined(CONTACT_LIST)
 #define SEARCHES_GRID
+#endif
+// The pass every particle runs, without sleep: the particles near a collider go to the pass with
+// the collider code. (With sleep the active particles are few, and each runs the collider code.)
+#if !defined(SEARCHES_GRID) && !defined(SLEEPING) && !defined(COLLIDERS_PASS)
+#define LEAVES_COLLIDERS
+#endif
+#if defined(COLLIDERS_PASS) && defined(SLEEPING)
+#error "a sleeping World runs the collider code in the contacts pass"
 #endif
 
 NEIGHBOUR_LIST_TEXTURE
@@ -83,11 +94,17 @@ CONTACT_SLOTS_1(coherent)
 CONTACT_SLOTS_2(coherent)
 #endif
 #endif
-#ifdef SEARCHES_GRID
+#if defined(SEARCHES_GRID) || defined(COLLIDERS_PASS)
 COUNTERS(readonly)
 #else
 COUNTERS(coherent)
 SEARCH_DUE(writeonly)
+#endif
+#ifdef COLLIDERS_PASS
+COLLIDERS_DUE(readonly)
+#endif
+#ifdef LEAVES_COLLIDERS
+COLLIDERS_DUE(writeonly)
 #endif
 #ifdef SEARCHING
 SEARCH_DUE(readonly)
@@ -105,7 +122,7 @@ LIST_ORIGIN(writeonly)
 #endif
 #include "common/grid.glsl"
 #include "common/neighbour_list.glsl"
-#ifndef SEARCHES_GRID
+#if !defined(SEARCHES_GRID) && !defined(COLLIDERS_PASS)
 #include "common/list_decision.glsl"
 #endif
 #if defined(SLEEPING) && defined(SEARCHING)
@@ -540,6 +557,11 @@ void main() {
   uint t = threadIndex();
   if (t >= activeListLength(ACTIVE_PASS_SEARCH)) return;
   uint i = searchDue[t];
+#elif defined(COLLIDERS_PASS)
+  // The particles near a collider, which the main pass left to this one.
+  uint t = threadIndex();
+  if (t >= activeListLength(ACTIVE_PASS_COLLIDERS)) return;
+  uint i = collidersDue[t];
 #elif defined(SLEEPING) && !defined(CONTACT_LIST)
   // The active particles only (collect_active.comp).
   uint t = threadIndex();
@@ -557,7 +579,8 @@ void main() {
   self.velocity = texelFetch(particleVelocityTexture, int(i));
   self.body = floatBitsToUint(self.position.w);
   self.id = i;
-  uint listed = floatBitsToUint(texelFetch(listOriginTexture, int(i)).w);
+  uint listWord = floatBitsToUint(texelFetch(listOriginTexture, int(i)).w);
+  uint listed = listCount(listWord);
   // Static particles (rough floors) never move: nobody needs their force. Their neighbours still
   // see them, since they are in the neighbours' lists. Particles of dead bodies touch nothing.
   if (self.velocity.w < 0.0 || listed == LIST_DEAD) {
@@ -567,7 +590,7 @@ void main() {
 #endif
     return;
   }
-#ifndef SEARCHES_GRID
+#if !defined(SEARCHES_GRID) && !defined(COLLIDERS_PASS)
   // Partners beyond the list's capacity, or a list the last build passed over (it was built while
   // the particle slept, and may miss what came near since): found in the grid, by the other pass.
   bool searches = listed > uint(NEIGHBOUR_LIST_CAPACITY);
@@ -579,6 +602,12 @@ void main() {
 #endif
   if (searches) {
     searchDue[appendToPass(ACTIVE_PASS_SEARCH)] = i;  // in any order: each result is its own
+    return;
+  }
+#endif
+#ifdef LEAVES_COLLIDERS
+  if (listNearCollider(listWord)) {
+    collidersDue[appendToPass(ACTIVE_PASS_COLLIDERS)] = i;  // in any order, as above
     return;
   }
 #endif
@@ -674,6 +703,7 @@ void main() {
     pairContact(self, partner);
   }
 
+#ifndef LEAVES_COLLIDERS
   // The surfaces in contact (findHits), a batch at a time.
   for (uint skip = 0u;; skip += uint(COLLIDER_BATCH)) {
     if (skip > 0u || !firstHitsEarly) seen = findHits(self, radius, movable, skip, found);
@@ -685,6 +715,7 @@ void main() {
     }
     if (seen <= skip + uint(COLLIDER_BATCH)) break;
   }
+#endif
 
 #ifndef CONTACT_LIST
 #ifdef SLEEPING

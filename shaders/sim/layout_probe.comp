@@ -33,7 +33,7 @@ layout(std430, binding = 49) readonly buffer GridCountersProbe {
 };
 // The active passes' commands (sleep).
 layout(std430, binding = 47) readonly buffer ActiveDispatchProbe { uint activeDispatchProbe[COUNTER_ACTIVE_DISPATCH]; };
-layout(std430, binding = 48) readonly buffer ActivePassesProbe { uvec4 activePassesProbe[ACTIVE_PASS_SEARCH + 1u]; };
+layout(std430, binding = 48) readonly buffer ActivePassesProbe { uvec4 activePassesProbe[ACTIVE_PASS_COLLIDERS + 1u]; };
 
 void main() {
   // Every member of a std140 block is active once the block is used.

@@ -4,11 +4,15 @@
 // how many there were (a particle with more finds the rest in the grid, contacts.comp). It
 // records where it stands, from which the integration measures how far it moves. Static
 // particles (rough floors) get no list: nobody needs their force; they are listed by the others.
+// A movable particle within half the skin of a collider's surface is marked (LIST_NEAR_COLLIDER,
+// common/neighbour_list.glsl): only such particles run the collider code until the next build.
 // Under SLEEPING a build the motion asked for runs over the active particles only
 // (COUNTER_LIST_ALL, common/list_decision.glsl), and every list records the build it comes from
 // (LIST_BUILT).
 #include "common/layout.glsl"
+#include "common/quaternion.glsl"
 #include "common/spatial_hash.glsl"
+#include "common/colliders.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 
@@ -21,6 +25,7 @@ BODY_INFO_TEXTURE
 NEIGHBOUR_LIST(writeonly)
 LIST_ORIGIN(writeonly)
 COUNTERS(coherent)
+COLLIDERS(readonly)
 #ifdef SLEEPING
 ACTIVE_PARTICLES(readonly)
 LIST_BUILT(writeonly)
@@ -33,6 +38,26 @@ vec3 searchPosition(uint id) {
   return texelFetch(particlePositionTexture, int(id)).xyz;
 }
 #include "common/list_search.glsl"
+
+// Whether the surface of some collider comes within `reach` of p (a sphere of that radius
+// overlaps it). Every hit function is the radius less a distance that changes no faster than p
+// moves, so a particle that moves less than reach - r touches no collider this misses.
+bool nearCollider(vec3 p, float reach) {
+  float deepest = 0.0;
+  for (uint k = 0u; k < params.planesEnd; ++k) {
+    deepest = max(deepest, planeHit(colliders[k], p, reach).w);
+  }
+  for (uint k = params.planesEnd; k < params.boxesEnd; ++k) {
+    vec3 local = boxLocal(colliders[k], p);
+    for (int axis = 0; axis < BOX_AXES; ++axis) {
+      deepest = max(deepest, boxHit(colliders[k], local, reach, axis).w);
+    }
+  }
+  for (uint k = params.boxesEnd; k < params.revolutionsEnd; ++k) {
+    deepest = max(deepest, revolutionHit(colliders[k], p, reach).w);
+  }
+  return deepest > 0.0;
+}
 
 void main() {
 #ifdef SLEEPING
@@ -58,6 +83,11 @@ void main() {
   for (uint k = 0u; k < min(count, uint(NEIGHBOUR_LIST_CAPACITY)); ++k) {
     neighbourList[listEntry(i, k)] = ids[k];
   }
-  listOrigin[i] = vec4(self.xyz, uintBitsToFloat(alive ? count : LIST_DEAD));
+  // Within r + skin / 2 = (d + skin) / 2: a particle asks for a build a hair before it has moved
+  // half the skin, as for its partners.
+  bool near = alive && selfInverseMass > 0.0 &&
+              nearCollider(self.xyz, 0.5 * sqrt(params.listReachSquared));
+  uint listed = count | (near ? LIST_NEAR_COLLIDER : 0u);
+  listOrigin[i] = vec4(self.xyz, uintBitsToFloat(alive ? listed : LIST_DEAD));
   if (count > uint(NEIGHBOUR_LIST_CAPACITY)) atomicAdd(counters[COUNTER_LIST_OVERFLOWS], 1u);
 }

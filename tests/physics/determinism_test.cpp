@@ -192,6 +192,45 @@ TEST(Determinism, ContactsLeftToTheGridSearchAreThoseOfEveryParticleSearched) {
   }
 }
 
+// Without sleep the contacts pass leaves the particles that the last list build found near a
+// collider to a pass with the collider code (contacts.comp, COLLIDERS_PASS): the others touch no
+// collider until the next build, and a collider the CPU adds or changes asks for one. Every bit
+// of the state is that of every particle running the collider code (the grid search has it):
+// through the fall into the box, and with a ceiling then set down onto the settled pile, whose
+// top granules were near no collider.
+TEST(Determinism, ParticlesLeftToTheColliderPassAreThoseOfEveryParticleWithItsCode) {
+  testing::TestWorld some, every;
+  testing::searchEveryParticle(*every);
+  for (testing::TestWorld* w : {&some, &every}) buildPile(**w);
+  std::uint64_t left = 0;
+  for (int substep = 0; substep < 1500; ++substep) {
+    some->substep(1);
+    every->substep(1);
+    left += testing::particlesLeftToColliders(*some);
+  }
+  const std::uint64_t particles = some->particleCount();
+  std::printf("[ colliders ] %.1f%% of the particles run the collider code in 1500 substeps\n",
+              100.0 * double(left) / double(1500 * particles));
+  EXPECT_GT(left, 0u) << "the collider pass is not exercised";
+  EXPECT_LT(left, 1500 * particles / 2) << "most particles should be far from every collider";
+  EXPECT_EQ(some->readStateHash(), every->readStateHash()) << "the fall";
+
+  float top = 0.0f;
+  for (const ParticleState& p : some->readParticles()) top = std::max(top, p.position.y);
+  const float d = some->settings().particleDiameter;
+  const float ceiling = top + 0.4f * d;  // a tenth of d into the highest particle
+  ColliderId ceilingId;
+  for (testing::TestWorld* w : {&some, &every}) {
+    ceilingId = (*w)->addCollider(Plane{.normal = {0, -1, 0}, .offset = -ceiling});
+    (*w)->substep(1);
+  }
+  std::size_t touching = 0;
+  for (const ContactRecord& c : some->readContacts()) touching += c.collider == ceilingId;
+  EXPECT_GT(touching, 0u) << "the ceiling touches no granule";
+  for (testing::TestWorld* w : {&some, &every}) (*w)->substep(200);
+  EXPECT_EQ(some->readStateHash(), every->readStateHash()) << "the ceiling";
+}
+
 TEST(Determinism, KernelProfilingChangesNoBit) {
   // A benchmark times a span without the timer queries and profiles the next: switching them
   // on and off between steps must not touch the state, and the times follow the switch.

@@ -41,14 +41,26 @@ void searchEveryParticle(World& world) {
   w.kernels.compile(w.settings.contactLaw, w.sleep.enabled, true);
 }
 
-std::uint32_t particlesLeftToSearch(World& world) {
+namespace {
+
+// The fourth uint of a pass's command is its list's length.
+std::uint32_t activeListLength(World& world, detail::ActivePass pass) {
   gpu().makeCurrent();
-  // The fourth uint of the search pass's command is its list's length.
-  const std::size_t offset = detail::activeDispatchOffset(detail::kActivePassSearch) + 12;
+  const std::size_t offset = detail::activeDispatchOffset(pass) + 12;
   std::uint32_t count = 0;
   detail::WorldAccess::impl(world).buffers[detail::kCounters].download(offset, sizeof count,
                                                                        &count);
   return count;
+}
+
+}  // namespace
+
+std::uint32_t particlesLeftToSearch(World& world) {
+  return activeListLength(world, detail::kActivePassSearch);
+}
+
+std::uint32_t particlesLeftToColliders(World& world) {
+  return activeListLength(world, detail::kActivePassColliders);
 }
 
 void useOneGrid(World& world) {

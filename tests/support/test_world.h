@@ -35,6 +35,10 @@ void searchEveryParticle(World& world);
 /// How many particles the contacts pass of the last substep left to the grid search.
 std::uint32_t particlesLeftToSearch(World& world);
 
+/// How many particles the contacts pass of the last substep left to the pass with the collider
+/// code (those a list build found near a collider).
+std::uint32_t particlesLeftToColliders(World& world);
+
 /// Settings for small test scenes: default material, capacity for `maxBodies` bodies.
 WorldSettings smallSettings(std::uint32_t maxBodies = 256);
 

@@ -53,12 +53,13 @@ inline constexpr std::uint32_t kCounterActiveDispatch = kCounterListDispatch + 4
 /// The passes over lists, each from its own indirect command: SLEEPING's over the active lists
 /// (collect_active.comp writes them), count_pairs.comp's over the granules whose pair counts are
 /// due (integrate_bodies.comp writes it), and contacts.comp's over the particles that search the
-/// grid (the contacts pass writes it).
+/// grid and over those near a collider (the contacts pass writes both).
 enum ActivePass : std::uint32_t {
   kActivePassContacts,
   kActivePassBodies,
   kActivePassPairs,
   kActivePassSearch,
+  kActivePassColliders,
   kActivePasses,
 };
 inline constexpr std::uint32_t kCounterCount = kCounterActiveDispatch + 4 * kActivePasses;

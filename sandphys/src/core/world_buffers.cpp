@@ -164,6 +164,7 @@ void WorldKernels::compile(ContactLaw law, bool sleeping, bool searchEvery) {
       searchEvery ? compile("sim/contacts.comp", {"SEARCH_EVERY 1"}) : compile("sim/contacts.comp");
   contactList = compile("sim/contacts.comp", {"CONTACT_LIST 1"});
   contactsSearch = compile("sim/contacts.comp", {"SEARCHING 1"});
+  if (!sleeping) contactsColliders = compile("sim/contacts.comp", {"COLLIDERS_PASS 1"});
   integrateBodies = compile("sim/integrate_bodies.comp");
   integrateLargeBodies = compile("sim/integrate_large_bodies.comp");
   if (law == ContactLaw::HertzMindlin) countPairs = compile("sim/count_pairs.comp");
@@ -178,12 +179,12 @@ void WorldKernels::compile(ContactLaw law, bool sleeping, bool searchEvery) {
 }
 
 void WorldKernels::release() {
-  for (GLuint p :
-       {bodiesToParticles, listCheck,    gridExtent,       gridCount,       scanBlocks,
-        scanBlockSums,     scanAdd,      gridScatter,      gridSort,        listBuild,
-        contacts,          contactList,  contactsSearch,   integrateBodies, integrateLargeBodies,
-        countPairs,        statsReduce,  resetPeakOverlap, stateHash,       spawnCheck,
-        wakeRegion,        collectActive}) {
+  for (GLuint p : {bodiesToParticles, listCheck,         gridExtent,       gridCount,
+                   scanBlocks,        scanBlockSums,     scanAdd,          gridScatter,
+                   gridSort,          listBuild,         contacts,         contactList,
+                   contactsSearch,    contactsColliders, integrateBodies,  integrateLargeBodies,
+                   countPairs,        statsReduce,       resetPeakOverlap, stateHash,
+                   spawnCheck,        wakeRegion,        collectActive}) {
     if (p) glDeleteProgram(p);
   }
   *this = {};

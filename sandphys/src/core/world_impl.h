@@ -61,6 +61,9 @@ struct WorldKernels {
   GLuint contacts = 0;
   GLuint contactList = 0;
   GLuint contactsSearch = 0;  // contacts.comp over the particles it left to the grid search
+  // contacts.comp over the particles near a collider, which it left to the collider code (without
+  // sleep).
+  GLuint contactsColliders = 0;
   GLuint integrateBodies = 0;
   GLuint integrateLargeBodies = 0;
   GLuint countPairs = 0;

@@ -190,6 +190,12 @@ void World::Impl::runSubstep() {
     // 3. Contact forces (eq. 9, 10) from the lists, and colliders, gathered per particle.
     dispatch(kernels.contacts, "contacts", particleCount, kWorkgroupSize);
     searchContacts();
+    if (!sleep.enabled) {
+      // 3c. The particles whose list's build found a collider near, which the contacts pass left
+      // to this one: the collider code runs for them alone.
+      dispatchIndirect(kernels.contactsColliders, "contacts_colliders",
+                       activeDispatchOffset(kActivePassColliders));
+    }
     // 4. Body sums (eq. 2, 3) and integration (eq. 4-6), guards, sinks; the particles of the
     // next substep.
     dispatch(kernels.integrateBodies, "integrate_bodies", bodyCount, kWorkgroupSize);

@@ -28,6 +28,9 @@
 #define NEIGHBOUR_LIST_CAPACITY 16
 // listOrigin.w of a particle whose body was dead at the last build.
 #define LIST_DEAD 0xffffffffu
+// Set in listOrigin.w beside the count when the build found a collider near the particle
+// (common/neighbour_list.glsl).
+#define LIST_NEAR_COLLIDER 0x80000000u
 // Buckets per workgroup of the block scan.
 #define SCAN_BLOCK 1024u
 
@@ -100,13 +103,15 @@ struct SinkBox {
 #define LIST_BUILD_PASSES 8
 // After those, the indirect commands of the passes over lists: under SLEEPING the contacts and
 // integrate_bodies passes over the active lists (ACTIVE_PARTICLES, ACTIVE_BODIES), the count_pairs
-// pass over the granules due (PAIRS_DUE), and the contacts pass over the particles that search the
-// grid (SEARCH_DUE); the fourth uint of each is the list's length.
+// pass over the granules due (PAIRS_DUE), and the contacts passes over the particles that search the
+// grid (SEARCH_DUE) and over those near a collider (COLLIDERS_DUE); the fourth uint of each is the
+// list's length.
 #define COUNTER_ACTIVE_DISPATCH (COUNTER_LIST_DISPATCH + 4 * LIST_BUILD_PASSES)
 #define ACTIVE_PASS_CONTACTS 0u
 #define ACTIVE_PASS_BODIES 1u
 #define ACTIVE_PASS_PAIRS 2u
 #define ACTIVE_PASS_SEARCH 3u
+#define ACTIVE_PASS_COLLIDERS 4u
 // The length of the active list a pass runs over (the includer declares COUNTERS).
 #define activeListLength(pass) counters[COUNTER_ACTIVE_DISPATCH + 4u * (pass) + 3u]
 

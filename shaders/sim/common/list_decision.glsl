@@ -20,7 +20,7 @@ void writeGroups(uint at, uint groups) {
   counters[at + 2u] = 1u;
 }
 
-// Appends an entry to the list of `pass` (ACTIVE_PASS_PAIRS, ACTIVE_PASS_SEARCH) and returns its
+// Appends an entry to the list of `pass` (ACTIVE_PASS_PAIRS, _SEARCH, _COLLIDERS) and returns its
 // place: the list's length is its command's fourth uint, and the command grows with it to the
 // groups writeGroups would write for that length. Concurrent callers, in any order (integer
 // atomics); the list's order is then the threads', so each entry's result must be its own.
@@ -37,10 +37,10 @@ uint appendToPass(uint pass) {
 
 // The commands of the passes whose lists appendToPass fills as the substep runs, for an empty
 // list: count_pairs.comp's (integrate_bodies.comp fills its list; a substep with no granule to
-// advance runs none) and contacts_search's (contacts.comp fills it). The first pass of every
-// substep clears them.
+// advance runs none), contacts_search's and contacts_colliders' (contacts.comp fills them). The
+// first pass of every substep clears them.
 void clearRunningCommands() {
-  for (uint pass = ACTIVE_PASS_PAIRS; pass <= ACTIVE_PASS_SEARCH; ++pass) {
+  for (uint pass = ACTIVE_PASS_PAIRS; pass <= ACTIVE_PASS_COLLIDERS; ++pass) {
     uint at = uint(COUNTER_ACTIVE_DISPATCH) + 4u * pass;
     writeGroups(at, 0u);
     counters[at + 3u] = 0u;
