@@ -8,10 +8,14 @@
 // PARTICLE_VELOCITY_TEXTURE and the grids' buffers, includes common/grid.glsl, and defines
 // searchPosition(id): where the search measures particle id from.
 
+// Above every particle id: the entries of a list not yet filled.
+#define NO_LIST_ENTRY 0xffffffffu
+
 // The particles within reach of `at` for a particle of `body` with `inverseMass`: the
 // NEIGHBOUR_LIST_CAPACITY smallest ids in `ids`, ascending, and how many there were.
 uint searchList(vec3 at, uint body, float inverseMass, out uint ids[NEIGHBOUR_LIST_CAPACITY]) {
   uint count = 0u;
+  for (int j = 0; j < NEIGHBOUR_LIST_CAPACITY; ++j) ids[j] = NO_LIST_ENTRY;
   ivec3 cell = cellOf(at);
   uvec2 multipliers = hashMultipliers();
   uint stillBuild = stillGridBuild();
@@ -28,15 +32,13 @@ uint searchList(vec3 at, uint body, float inverseMass, out uint ids[NEIGHBOUR_LI
         float otherInverseMass = texelFetch(particleVelocityTexture, int(id)).w;
         if (max(inverseMass, 0.0) + max(otherInverseMass, 0.0) == 0.0) continue;
         if (!rowHolds(slots, k, otherBody, stillBuild)) continue;
-        // Keep the smallest ids, in order.
-        if (count < uint(NEIGHBOUR_LIST_CAPACITY) || id < ids[NEIGHBOUR_LIST_CAPACITY - 1]) {
-          uint j = min(count, uint(NEIGHBOUR_LIST_CAPACITY) - 1u);
-          while (j > 0u && ids[j - 1u] > id) {
-            ids[j] = ids[j - 1u];
-            --j;
-          }
-          ids[j] = id;
+        // Keep the smallest ids, in order: inserted into the sorted list, every entry at a
+        // constant index (llvmpipe writes an array at an index that differs between lanes lane by
+        // lane). The largest falls off the end of a full list.
+        for (int j = NEIGHBOUR_LIST_CAPACITY - 1; j > 0; --j) {
+          ids[j] = min(ids[j], max(ids[j - 1], id));
         }
+        ids[0] = min(ids[0], id);
         ++count;
       }
     }
