@@ -19,8 +19,13 @@ BODY_POSITION(coherent)
 BODY_ORIENTATION(coherent)
 BODY_VELOCITY(coherent)
 BODY_ANGULAR_VELOCITY(coherent)
-BODY_INERTIA(readonly)
 BODY_INFO(coherent)
+BODY_POSITION_TEXTURE
+BODY_ORIENTATION_TEXTURE
+BODY_VELOCITY_TEXTURE
+BODY_ANGULAR_VELOCITY_TEXTURE
+BODY_INFO_TEXTURE
+BODY_INERTIA_TEXTURE
 PARTICLE_LOCAL_TEXTURE
 PARTICLE_FORCE_TEXTURE
 LIST_ORIGIN_TEXTURE
@@ -56,16 +61,21 @@ void advance(uint t) {
   uint b = t;
   if (b >= params.bodyCount) return;
 #endif
-  uvec4 info = bodyInfo[b];
+  uvec4 info = texelFetch(bodyInfoTexture, int(b));
   if ((info.z & BODY_ALIVE) == 0u) return;
   // Bodies that are not granules are summed and moved by integrate_large_bodies.comp.
   if ((info.z & BODY_LARGE) != 0u) return;
   uint motion = (info.z & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT;
   if (motion == MOTION_STATIC) return;
+  StoredBody stored =
+      StoredBody(texelFetch(bodyPositionTexture, int(b)), texelFetch(bodyOrientationTexture, int(b)),
+                 texelFetch(bodyVelocityTexture, int(b)),
+                 texelFetch(bodyAngularVelocityTexture, int(b)),
+                 texelFetch(bodyInertiaTexture, int(b)));
   uint previousCalm = 0u;
   uint neighbourCalm = CALM_UNBOUNDED;
 #ifdef SLEEPING
-  previousCalm = floatBitsToUint(bodyVelocity[b].w);
+  previousCalm = floatBitsToUint(stored.velocity.w);
   for (uint k = 0u; k < GRANULE_PARTICLES; ++k) {
     neighbourCalm =
         min(neighbourCalm, floatBitsToUint(texelFetch(particleForceTexture, int(info.x + k)).w));
@@ -74,7 +84,7 @@ void advance(uint t) {
   if (asleep && neighbourCalm >= params.sleepSubsteps) return;
 #endif
   // A granule's particles: its offsets turned by the orientation the contacts saw.
-  vec4 q = bodyOrientation[b];
+  vec4 q = stored.orientation;
   vec4 local[GRANULE_PARTICLES];
   vec3 force = vec3(0.0);
   vec3 torque = vec3(0.0);
@@ -97,9 +107,9 @@ void advance(uint t) {
 #endif
 #ifdef SLEEPING
   if (asleep) {
-    float mass = bodyInertia[b].w;
+    float mass = stored.inertia.w;
     vec3 unbalanced = force / mass + params.gravity;
-    float torqueLimit = mass * bodyAngularVelocity[b].w * params.wakeAcceleration;
+    float torqueLimit = mass * stored.spin.w * params.wakeAcceleration;
     bool wake = neighbourCalm == 0u ||
                 dot(unbalanced, unbalanced) > params.wakeAcceleration * params.wakeAcceleration ||
                 dot(torque, torque) > torqueLimit * torqueLimit;
@@ -109,7 +119,7 @@ void advance(uint t) {
 #endif
   uint calmLimit = motion == MOTION_DYNAMIC ? params.sleepSubsteps : params.sleepSubsteps - 1u;
   BodyMotion moved =
-      integrateBody(b, info, force, torque, previousCalm, neighbourCalm, calmLimit);
+      integrateBody(b, info, stored, force, torque, previousCalm, neighbourCalm, calmLimit);
   if (!moved.alive) {
 #ifdef SLEEPING
     // A build the motion asks for passes over the dead (they are not active): they leave the

@@ -168,8 +168,12 @@ void main() {
     largeBodyForces[2u * entry] += vec4(force, 1.0);
     largeBodyForces[2u * entry + 1u] += vec4(torque, 0.0);
     // Not granules: they never sleep (layout.glsl, "Sleep"), but sand can sleep against them.
-    BodyMotion moved = integrateBody(b, info, force, torque, floatBitsToUint(bodyVelocity[b].w),
-                                     CALM_UNBOUNDED, params.sleepSubsteps - 1u);
+    StoredBody stored =
+        StoredBody(bodyPosition[b], bodyOrientation[b], bodyVelocity[b], bodyAngularVelocity[b],
+                   bodyInertia[b]);
+    BodyMotion moved = integrateBody(b, info, stored, force, torque,
+                                     floatBitsToUint(stored.velocity.w), CALM_UNBOUNDED,
+                                     params.sleepSubsteps - 1u);
     movedPosition = vec4(moved.position, moved.alive ? 1.0 : 0.0);
     movedOrientation = moved.orientation;
     movedVelocity = moved.velocity;

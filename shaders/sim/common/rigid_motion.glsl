@@ -4,7 +4,18 @@
 // the gyroscopic term (paper eq. 4, 6), and the orientation by the quaternion update (eq. 5),
 // renormalised. Applies the speed guard and, to granules, the sinks. The includer declares
 // BODY_POSITION, BODY_ORIENTATION, BODY_VELOCITY, BODY_ANGULAR_VELOCITY, BODY_INFO (coherent),
-// BODY_INERTIA, SINKS (readonly) and COUNTERS, and includes quaternion.glsl.
+// SINKS (readonly) and COUNTERS, and includes quaternion.glsl.
+
+// A body's state as stored before its substep, read by the includer (integrate_bodies.comp
+// through the buffer textures: a load from a storage buffer at an index that differs between
+// lanes runs lane by lane on llvmpipe, a texel fetch is one gather).
+struct StoredBody {
+  vec4 position;     // w: inverse mass
+  vec4 orientation;
+  vec4 velocity;     // w: calm count (uint bits)
+  vec4 spin;         // angular velocity; w as integrate keeps it
+  vec4 inertia;      // principal moments of inertia; w: mass
+};
 
 // A body's state after its substep, for the particles that follow it.
 struct BodyMotion {
@@ -22,20 +33,20 @@ struct BodyMotion {
 // leave the lists). Under SLEEPING the calm count follows from the body's count `previousCalm`,
 // the smallest count of the bodies it touches `neighbourCalm` and its limit `calmLimit`; a body
 // that reaches params.sleepSubsteps stops dead, so that what touches it sees it at rest.
-BodyMotion integrateBody(uint b, uvec4 info, vec3 force, vec3 torque, uint previousCalm,
-                         uint neighbourCalm, uint calmLimit) {
+BodyMotion integrateBody(uint b, uvec4 info, StoredBody stored, vec3 force, vec3 torque,
+                         uint previousCalm, uint neighbourCalm, uint calmLimit) {
   uint motion = (info.z & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT;
   float dt = params.dt;
-  vec4 position = bodyPosition[b];
-  vec4 q = bodyOrientation[b];
-  vec3 v = bodyVelocity[b].xyz;
-  vec4 spin = bodyAngularVelocity[b];
+  vec4 position = stored.position;
+  vec4 q = stored.orientation;
+  vec3 v = stored.velocity.xyz;
+  vec4 spin = stored.spin;
   vec3 omega = spin.xyz;
 
   if (motion == MOTION_DYNAMIC) {
     v += dt * (force * position.w + params.gravity);
     // Euler's equations in the principal frame: I w' = T - w x (I w).
-    vec3 inertia = bodyInertia[b].xyz;
+    vec3 inertia = stored.inertia.xyz;
     vec3 omegaLocal = quatRotateInverse(q, omega);
     vec3 torqueLocal = quatRotateInverse(q, torque);
     omegaLocal += dt * (torqueLocal - cross(omegaLocal, inertia * omegaLocal)) / inertia;
