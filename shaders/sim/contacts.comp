@@ -22,7 +22,7 @@
 // its own, this kernel compiled with SEARCHING over the particles listed in searchDue: a search
 // that one lane of a batch runs would hold up the others, and its code stays out of the pass that
 // every particle runs (docs/architecture.md, "Why each pass is its own"). So does the collider
-// code: a particle whose list's build found a collider within its skin (LIST_NEAR_COLLIDER) is
+// code: a particle whose list's build found a collider within half its skin (LIST_NEAR_COLLIDER) is
 // left to this kernel compiled with COLLIDERS_PASS over the particles listed in collidersDue; the
 // others touch no collider until the next build.
 //

@@ -67,11 +67,10 @@ void advance(uint t) {
   if ((info.z & BODY_LARGE) != 0u) return;
   uint motion = (info.z & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT;
   if (motion == MOTION_STATIC) return;
-  StoredBody stored =
-      StoredBody(texelFetch(bodyPositionTexture, int(b)), texelFetch(bodyOrientationTexture, int(b)),
-                 texelFetch(bodyVelocityTexture, int(b)),
-                 texelFetch(bodyAngularVelocityTexture, int(b)),
-                 texelFetch(bodyInertiaTexture, int(b)));
+  StoredBody stored = StoredBody(
+      texelFetch(bodyPositionTexture, int(b)), texelFetch(bodyOrientationTexture, int(b)),
+      texelFetch(bodyVelocityTexture, int(b)), texelFetch(bodyAngularVelocityTexture, int(b)),
+      texelFetch(bodyInertiaTexture, int(b)));
   uint previousCalm = 0u;
   uint neighbourCalm = CALM_UNBOUNDED;
 #ifdef SLEEPING

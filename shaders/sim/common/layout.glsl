@@ -103,9 +103,9 @@ struct SinkBox {
 #define LIST_BUILD_PASSES 8
 // After those, the indirect commands of the passes over lists: under SLEEPING the contacts and
 // integrate_bodies passes over the active lists (ACTIVE_PARTICLES, ACTIVE_BODIES), the count_pairs
-// pass over the granules due (PAIRS_DUE), and the contacts passes over the particles that search the
-// grid (SEARCH_DUE) and over those near a collider (COLLIDERS_DUE); the fourth uint of each is the
-// list's length.
+// pass over the granules due (PAIRS_DUE), and the contacts passes over the particles that search
+// the grid (SEARCH_DUE) and over those near a collider (COLLIDERS_DUE); the fourth uint of each is
+// the list's length.
 #define COUNTER_ACTIVE_DISPATCH (COUNTER_LIST_DISPATCH + 4 * LIST_BUILD_PASSES)
 #define ACTIVE_PASS_CONTACTS 0u
 #define ACTIVE_PASS_BODIES 1u
