@@ -4,8 +4,9 @@
 // how many there were (a particle with more finds the rest in the grid, contacts.comp). It
 // records where it stands, from which the integration measures how far it moves. Static
 // particles (rough floors) get no list: nobody needs their force; they are listed by the others.
-// A movable particle within half the skin of a collider's surface is marked (LIST_NEAR_COLLIDER,
-// common/neighbour_list.glsl): only such particles run the collider code until the next build.
+// Without sleep a movable particle within half the skin of a collider's surface is marked
+// (LIST_NEAR_COLLIDER, common/neighbour_list.glsl): only such particles run the collider code
+// until the next build. (With sleep contacts.comp keeps the collider code for every particle.)
 // Under SLEEPING a build the motion asked for runs over the active particles only
 // (COUNTER_LIST_ALL, common/list_decision.glsl), and every list records the build it comes from
 // (LIST_BUILT).
@@ -25,7 +26,9 @@ BODY_INFO_TEXTURE
 NEIGHBOUR_LIST(writeonly)
 LIST_ORIGIN(writeonly)
 COUNTERS(coherent)
+#ifndef SLEEPING
 COLLIDERS(readonly)
+#endif
 #ifdef SLEEPING
 ACTIVE_PARTICLES(readonly)
 LIST_BUILT(writeonly)
@@ -39,6 +42,7 @@ vec3 searchPosition(uint id) {
 }
 #include "common/list_search.glsl"
 
+#ifndef SLEEPING
 // Whether the surface of some collider comes within `reach` of p (a sphere of that radius
 // overlaps it). Every hit function is the radius less a distance that changes no faster than p
 // moves, so a particle that moves less than reach - r touches no collider this misses.
@@ -58,6 +62,7 @@ bool nearCollider(vec3 p, float reach) {
   }
   return deepest > 0.0;
 }
+#endif
 
 void main() {
 #ifdef SLEEPING
@@ -83,11 +88,15 @@ void main() {
   for (uint k = 0u; k < min(count, uint(NEIGHBOUR_LIST_CAPACITY)); ++k) {
     neighbourList[listEntry(i, k)] = ids[k];
   }
+  uint listed = count;
+#ifndef SLEEPING
   // Within r + skin / 2 = (d + skin) / 2: a particle asks for a build a hair before it has moved
   // half the skin, as for its partners.
-  bool near = alive && selfInverseMass > 0.0 &&
-              nearCollider(self.xyz, 0.5 * sqrt(params.listReachSquared));
-  uint listed = count | (near ? LIST_NEAR_COLLIDER : 0u);
+  if (alive && selfInverseMass > 0.0 &&
+      nearCollider(self.xyz, 0.5 * sqrt(params.listReachSquared))) {
+    listed |= LIST_NEAR_COLLIDER;
+  }
+#endif
   listOrigin[i] = vec4(self.xyz, uintBitsToFloat(alive ? listed : LIST_DEAD));
   if (count > uint(NEIGHBOUR_LIST_CAPACITY)) atomicAdd(counters[COUNTER_LIST_OVERFLOWS], 1u);
 }

@@ -167,9 +167,9 @@ ColliderId World::Impl::putCollider(std::optional<std::uint32_t> slot, const Gpu
   }
   std::memcpy(&colliders[index].material.w, &index, sizeof index);
   paramsDirty = true;  // uploadParams re-sorts and uploads the colliders
-  // Without sleep, only the particles a list build found near a collider run the collider code
-  // (contacts.comp): the next substep builds the lists again.
-  if (!sleep.enabled) listsStale = true;
+  // Only the particles a list build found near a collider run the collider code (contacts.comp):
+  // the next substep builds the lists again.
+  if (collidersInOwnPass()) listsStale = true;
   wakeBox(colliderBounds(shape, kColliderWakeMargin * settings.particleDiameter));
   return ColliderId{index};
 }

@@ -176,6 +176,9 @@ struct World::Impl {
   /// The contact law keeps contact state across substeps (HertzMindlin): slots, pair counts,
   /// torques and the sorted spins exist.
   bool keepsHistory() const { return settings.contactLaw == ContactLaw::HertzMindlin; }
+  /// The contacts pass leaves the particles near a collider to contacts_colliders (without sleep;
+  /// with it contacts keeps the collider code): a collider changed needs a list build then.
+  bool collidersInOwnPass() const { return !sleep.enabled; }
   /// One past the last particle of body slot `body`.
   std::uint32_t particleEnd(std::uint32_t body) const { return particleEnds[body]; }
 

@@ -190,7 +190,7 @@ void World::Impl::runSubstep() {
     // 3. Contact forces (eq. 9, 10) from the lists, and colliders, gathered per particle.
     dispatch(kernels.contacts, "contacts", particleCount, kWorkgroupSize);
     searchContacts();
-    if (!sleep.enabled) {
+    if (collidersInOwnPass()) {
       // 3c. The particles whose list's build found a collider near, which the contacts pass left
       // to this one: the collider code runs for them alone.
       dispatchIndirect(kernels.contactsColliders, "contacts_colliders",

@@ -10,10 +10,11 @@ int listEntry(uint particle, uint k) {
 }
 
 // listOrigin.w holds, beside the count of partners the build found, LIST_NEAR_COLLIDER when the
-// surface of some collider was within half the skin of the particle's surface (list_build.comp),
-// or is LIST_DEAD. Until the next build a particle moves less than half the skin and no collider
-// moves (a changed collider asks for a build), so one without the bit touches no collider: the
-// contacts pass that every particle runs leaves the collider code to the pass over the few with it.
+// surface of some collider was within half the skin of the particle's surface (list_build.comp,
+// without sleep), or is LIST_DEAD. Until the next build a particle moves less than half the skin
+// and no collider moves (a changed collider asks for a build), so one without the bit touches no
+// collider: the contacts pass that every particle runs leaves the collider code to the pass over
+// the few with it.
 uint listCount(uint listed) {
   return listed == LIST_DEAD ? LIST_DEAD : listed & ~LIST_NEAR_COLLIDER;
 }
