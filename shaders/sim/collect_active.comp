@@ -137,8 +137,8 @@ void main() {
       writeCommand(ACTIVE_PASS_BODIES, atomicExchange(counters[COUNTER_ACTIVE_BODIES], 0u));
       counters[COUNTER_ACTIVE_GROUPS_DONE] = 0u;
       // What list_check.comp does without sleep.
-      decideListBuild(false, particles, atomicExchange(counters[COUNTER_RECENT_PARTICLES], 0u));
-      clearRunningCommands();
+      clearRunningCommands(decideListBuild(
+          false, particles, atomicExchange(counters[COUNTER_RECENT_PARTICLES], 0u)));
     }
   }
 }

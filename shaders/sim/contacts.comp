@@ -24,7 +24,8 @@
 // every particle runs (docs/architecture.md, "Why each pass is its own"). So does the collider
 // code: a particle whose list's build found a collider within half its skin (LIST_NEAR_COLLIDER) is
 // left to this kernel compiled with COLLIDERS_PASS over the particles listed in collidersDue; the
-// others touch no collider until the next build.
+// others touch no collider until the next build. Without sleep the build lists both kinds
+// (list_build.comp); under SLEEPING this pass lists those it leaves to the search.
 //
 // Under SLEEPING (layout.glsl, "Sleep") it runs over the particles collect_active.comp listed,
 // and each also finds the smallest calm count among its partners (and, awake, marks the sleeping
@@ -94,17 +95,14 @@ CONTACT_SLOTS_1(coherent)
 CONTACT_SLOTS_2(coherent)
 #endif
 #endif
-#if defined(SEARCHES_GRID) || defined(COLLIDERS_PASS)
-COUNTERS(readonly)
-#else
+#if defined(SLEEPING) && !defined(SEARCHES_GRID)
 COUNTERS(coherent)
 SEARCH_DUE(writeonly)
+#else
+COUNTERS(readonly)
 #endif
 #ifdef COLLIDERS_PASS
 COLLIDERS_DUE(readonly)
-#endif
-#ifdef LEAVES_COLLIDERS
-COLLIDERS_DUE(writeonly)
 #endif
 #ifdef SEARCHING
 SEARCH_DUE(readonly)
@@ -122,7 +120,7 @@ LIST_ORIGIN(writeonly)
 #endif
 #include "common/grid.glsl"
 #include "common/neighbour_list.glsl"
-#if !defined(SEARCHES_GRID) && !defined(COLLIDERS_PASS)
+#if defined(SLEEPING) && !defined(SEARCHES_GRID)
 #include "common/list_decision.glsl"
 #endif
 #if defined(SLEEPING) && defined(SEARCHING)
@@ -601,15 +599,14 @@ void main() {
   searches = true;  // a test's: every particle searched, to the same bits (searchEveryParticle)
 #endif
   if (searches) {
+#ifdef SLEEPING
     searchDue[appendToPass(ACTIVE_PASS_SEARCH)] = i;  // in any order: each result is its own
-    return;
+#endif
+    return;  // without sleep the build listed it (list_build.comp)
   }
 #endif
 #ifdef LEAVES_COLLIDERS
-  if (listNearCollider(listWord)) {
-    collidersDue[appendToPass(ACTIVE_PASS_COLLIDERS)] = i;  // in any order, as above
-    return;
-  }
+  if (listNearCollider(listWord)) return;  // listed by the build for contacts_colliders
 #endif
 #ifndef PAPER_LAW
   vec4 spin = texelFetch(particleSpinTexture, int(i));

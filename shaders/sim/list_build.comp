@@ -7,6 +7,10 @@
 // Without sleep a movable particle within half the skin of a collider's surface is marked
 // (LIST_NEAR_COLLIDER, common/neighbour_list.glsl): only such particles run the collider code
 // until the next build. (With sleep contacts.comp keeps the collider code for every particle.)
+// The particles that the contacts pass leaves to another until the next build are listed here,
+// once, rather than by that pass in every substep (whose atomics and stores llvmpipe runs for
+// every batch of particles, whether a lane takes them or not): those with more partners than the
+// list holds to contacts_search, the others marked near a collider to contacts_colliders.
 // Under SLEEPING a build the motion asked for runs over the active particles only
 // (COUNTER_LIST_ALL, common/list_decision.glsl), and every list records the build it comes from
 // (LIST_BUILT).
@@ -28,6 +32,8 @@ LIST_ORIGIN(writeonly)
 COUNTERS(coherent)
 #ifndef SLEEPING
 COLLIDERS(readonly)
+SEARCH_DUE(writeonly)
+COLLIDERS_DUE(writeonly)
 #endif
 #ifdef SLEEPING
 ACTIVE_PARTICLES(readonly)
@@ -36,6 +42,7 @@ BODY_GRID_BUILD_TEXTURE
 #endif
 #include "common/grid.glsl"
 #include "common/neighbour_list.glsl"
+#include "common/list_decision.glsl"
 
 vec3 searchPosition(uint id) {
   return texelFetch(particlePositionTexture, int(id)).xyz;
@@ -98,5 +105,21 @@ void main() {
   }
 #endif
   listOrigin[i] = vec4(self.xyz, uintBitsToFloat(alive ? listed : LIST_DEAD));
+#ifndef SLEEPING
+  // The contacts pass gives static particles (no list) and dead ones no pass; in any order, as
+  // each particle's result is its own.
+  if (alive && selfInverseMass >= 0.0) {
+#ifdef SEARCH_EVERY
+    bool searches = true;  // a test's: every particle searched, to the same bits
+#else
+    bool searches = count > uint(NEIGHBOUR_LIST_CAPACITY);
+#endif
+    if (searches) {
+      searchDue[appendToPass(ACTIVE_PASS_SEARCH)] = i;
+    } else if ((listed & LIST_NEAR_COLLIDER) != 0u) {
+      collidersDue[appendToPass(ACTIVE_PASS_COLLIDERS)] = i;
+    }
+  }
+#endif
   if (count > uint(NEIGHBOUR_LIST_CAPACITY)) atomicAdd(counters[COUNTER_LIST_OVERFLOWS], 1u);
 }

@@ -1,7 +1,7 @@
 #version 450
 // First pass of every substep without sleep, one thread: whether the neighbour lists are built
-// before the contacts (common/list_decision.glsl); and the commands passes write as they run
-// cleared (clearRunningCommands).
+// before the contacts (common/list_decision.glsl); and the commands of the passes whose lists are
+// filled again cleared (clearRunningCommands).
 #include "common/layout.glsl"
 
 layout(local_size_x = 1) in;
@@ -12,6 +12,5 @@ COUNTERS(coherent)
 
 void main() {
   // With sleep only World::readContacts runs this pass: it builds every list.
-  decideListBuild(true, 0u, 0u);
-  clearRunningCommands();
+  clearRunningCommands(decideListBuild(true, 0u, 0u));
 }

@@ -39,6 +39,8 @@ void searchEveryParticle(World& world) {
   World::Impl& w = detail::WorldAccess::impl(world);
   w.kernels.release();
   w.kernels.compile(w.settings.contactLaw, w.sleep.enabled, true);
+  // Without sleep the list build lists the particles the search takes: the next substep builds.
+  w.listsStale = true;
 }
 
 namespace {

@@ -53,7 +53,8 @@ inline constexpr std::uint32_t kCounterActiveDispatch = kCounterListDispatch + 4
 /// The passes over lists, each from its own indirect command: SLEEPING's over the active lists
 /// (collect_active.comp writes them), count_pairs.comp's over the granules whose pair counts are
 /// due (integrate_bodies.comp writes it), and contacts.comp's over the particles that search the
-/// grid and over those near a collider (the contacts pass writes both).
+/// grid and over those near a collider (list_build.comp writes both at a build; under SLEEPING
+/// the contacts pass writes the search's).
 enum ActivePass : std::uint32_t {
   kActivePassContacts,
   kActivePassBodies,

@@ -159,9 +159,11 @@ void WorldKernels::compile(ContactLaw law, bool sleeping, bool searchEvery) {
   scanAdd = compile("sim/scan_add.comp");
   gridScatter = compile("sim/grid_scatter.comp");
   gridSort = compile("sim/grid_sort.comp");
-  listBuild = compile("sim/list_build.comp");
-  contacts =
-      searchEvery ? compile("sim/contacts.comp", {"SEARCH_EVERY 1"}) : compile("sim/contacts.comp");
+  // Without sleep the build lists the particles the contacts pass leaves to the search.
+  const std::vector<std::string> every =
+      searchEvery ? std::vector<std::string>{"SEARCH_EVERY 1"} : std::vector<std::string>{};
+  listBuild = compile("sim/list_build.comp", every);
+  contacts = compile("sim/contacts.comp", every);
   contactList = compile("sim/contacts.comp", {"CONTACT_LIST 1"});
   contactsSearch = compile("sim/contacts.comp", {"SEARCHING 1"});
   if (!sleeping) contactsColliders = compile("sim/contacts.comp", {"COLLIDERS_PASS 1"});

@@ -35,12 +35,18 @@ uint appendToPass(uint pass) {
   return slot;
 }
 
-// The commands of the passes whose lists appendToPass fills as the substep runs, for an empty
-// list: count_pairs.comp's (integrate_bodies.comp fills its list; a substep with no granule to
-// advance runs none), contacts_search's and contacts_colliders' (contacts.comp fills them). The
-// first pass of every substep clears them.
-void clearRunningCommands() {
+// The commands of the passes whose lists appendToPass fills, for an empty list, cleared by the
+// first pass of every substep: count_pairs.comp's (integrate_bodies.comp fills its list as the
+// substep runs; a substep with no granule to advance runs none), and contacts_search's and
+// contacts_colliders'. Those two hold the particles the contacts pass leaves to them: without
+// sleep list_build.comp lists them, for every substep until the next build (`built`: one is due
+// in this substep), so they are cleared only then; under SLEEPING contacts.comp lists them as the
+// substep runs.
+void clearRunningCommands(bool built) {
   for (uint pass = ACTIVE_PASS_PAIRS; pass <= ACTIVE_PASS_COLLIDERS; ++pass) {
+#ifndef SLEEPING
+    if (pass != ACTIVE_PASS_PAIRS && !built) continue;
+#endif
     uint at = uint(COUNTER_ACTIVE_DISPATCH) + 4u * pass;
     writeGroups(at, 0u);
     counters[at + 3u] = 0u;
@@ -63,8 +69,9 @@ bool stillGridDue(uint requested) {
 }
 #endif
 
-// The decision and the build's group counts (the caller has COUNTERS(coherent)).
-void decideListBuild(bool everyList, uint activeParticles, uint recentParticles) {
+// The decision and the build's group counts (the caller has COUNTERS(coherent)); whether a build
+// is due.
+bool decideListBuild(bool everyList, uint activeParticles, uint recentParticles) {
   uint requested = counters[COUNTER_LIST_REQUESTED];
   bool due = requested != 0u;
   uint particleGroups = due ? groupsFor(params.particleCount) : 0u;
@@ -109,4 +116,5 @@ void decideListBuild(bool everyList, uint activeParticles, uint recentParticles)
   setGroups(PASS_GRID_SCATTER, gridGroups);
   setGroups(PASS_GRID_SORT, sortGroups);
   setGroups(PASS_LIST_BUILD, listGroups);
+  return due;
 }
