@@ -56,6 +56,15 @@ layout(local_size_x = WORKGROUP_SIZE) in;
 #if !defined(SEARCHES_GRID) && !defined(SLEEPING) && !defined(COLLIDERS_PASS)
 #define LEAVES_COLLIDERS
 #endif
+// The contact slots a compilation loads (HertzMindlin). The pass every particle runs without sleep
+// loads the first group only: the loads are texel fetches, which llvmpipe makes for every batch of
+// particles whether a lane has the slot in use or not, and few particles have more in use; it
+// leaves those to contacts_colliders, which loads them all (and finds no collider for them).
+#ifdef LEAVES_COLLIDERS
+#define LOADED_SLOTS CONTACT_SLOTS_PER_GROUP
+#else
+#define LOADED_SLOTS CONTACT_SLOTS
+#endif
 #if defined(COLLIDERS_PASS) && defined(SLEEPING)
 #error "a sleeping World runs the collider code in the contacts pass"
 #endif
@@ -98,6 +107,9 @@ CONTACT_SLOTS_2(coherent)
 #if defined(SLEEPING) && !defined(SEARCHES_GRID)
 COUNTERS(coherent)
 SEARCH_DUE(writeonly)
+#elif defined(LEAVES_COLLIDERS) && !defined(PAPER_LAW)
+COUNTERS(coherent)
+COLLIDERS_DUE(writeonly)
 #else
 COUNTERS(readonly)
 #endif
@@ -120,7 +132,8 @@ LIST_ORIGIN(writeonly)
 #endif
 #include "common/grid.glsl"
 #include "common/neighbour_list.glsl"
-#if defined(SLEEPING) && !defined(SEARCHES_GRID)
+#if (defined(SLEEPING) && !defined(SEARCHES_GRID)) || \
+    (defined(LEAVES_COLLIDERS) && !defined(PAPER_LAW))
 #include "common/list_decision.glsl"
 #endif
 #if defined(SLEEPING) && defined(SEARCHING)
@@ -178,22 +191,22 @@ void record(uint a, uint b, uint bodyA, uint bodyB, uint collider, vec3 point, v
 #endif
 
 #ifndef PAPER_LAW
-// This particle's slots as the previous substep left them, held by the thread (every index
-// below is a constant once the loops are unrolled), and their pair counts.
-vec4 previous[CONTACT_SLOTS];
+// This particle's slots as the previous substep left them, the first LOADED_SLOTS (the others are
+// free), held by the thread (every index below is a constant once the loops are unrolled), and
+// their pair counts.
+vec4 previous[LOADED_SLOTS];
 uvec4 previousPairs;
 uint slotsUsed = 0u;
 // Whether the slots name other partners than in the previous substep, or in another order: only
 // then can the pair counts change (integrate_bodies.comp takes them again).
 bool slotsChanged = false;
 
-// Loads only the slots in use (contactPairs.w), through the buffer textures: a gather, where an
-// SSBO load runs lane by lane on llvmpipe. Only this thread writes these slots, after it read
-// them, so the texture never shows it a slot written in this pass.
+// Loads only the slots in use (previousPairs.w, which the caller fetched), through the buffer
+// textures: a gather, where an SSBO load runs lane by lane on llvmpipe. Only this thread writes
+// these slots, after it read them, so the texture never shows it a slot written in this pass.
 void loadSlots(uint particle) {
-  previousPairs = texelFetch(contactPairsTexture, int(particle));
   uint used = min(previousPairs.w, uint(CONTACT_SLOTS));
-  for (uint k = 0u; k < uint(CONTACT_SLOTS); ++k) {
+  for (uint k = 0u; k < uint(LOADED_SLOTS); ++k) {
     uint entry = slotEntry(particle, k);
     previous[k] = vec4(0.0);
     if (k < used) {
@@ -211,7 +224,7 @@ vec3 previousSpring(uint key, out uint pairs) {
   vec3 spring = vec3(0.0);
   pairs = 0u;
   uint was = uint(CONTACT_SLOTS);
-  for (uint k = 0u; k < uint(CONTACT_SLOTS); ++k) {
+  for (uint k = 0u; k < uint(LOADED_SLOTS); ++k) {
     if (floatBitsToUint(previous[k].w) == key) {
       spring = previous[k].xyz;
       pairs = slotPairs(previousPairs, k);
@@ -236,7 +249,7 @@ void storeSlot(uint particle, uint k, vec4 slot) {
 
 // Frees the slots of contacts that ended.
 void clearUnusedSlots(uint particle) {
-  for (uint k = 0u; k < uint(CONTACT_SLOTS); ++k) {
+  for (uint k = 0u; k < uint(LOADED_SLOTS); ++k) {
     if (k >= slotsUsed && floatBitsToUint(previous[k].w) != SLOT_EMPTY) {
       storeSlot(particle, k, vec4(0.0));
     }
@@ -609,6 +622,13 @@ void main() {
   if (listNearCollider(listWord)) return;  // listed by the build for contacts_colliders
 #endif
 #ifndef PAPER_LAW
+  previousPairs = texelFetch(contactPairsTexture, int(i));
+#ifdef LEAVES_COLLIDERS
+  if (min(previousPairs.w, uint(CONTACT_SLOTS)) > uint(LOADED_SLOTS)) {
+    collidersDue[appendToPass(ACTIVE_PASS_COLLIDERS)] = i;  // in any order: each result is its own
+    return;
+  }
+#endif
   vec4 spin = texelFetch(particleSpinTexture, int(i));
   self.spin = spin.xyz;
   self.calm = floatBitsToUint(spin.w);

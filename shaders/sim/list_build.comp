@@ -118,6 +118,7 @@ void main() {
       searchDue[appendToPass(ACTIVE_PASS_SEARCH)] = i;
     } else if ((listed & LIST_NEAR_COLLIDER) != 0u) {
       collidersDue[appendToPass(ACTIVE_PASS_COLLIDERS)] = i;
+      atomicAdd(counters[COUNTER_COLLIDERS_LISTED], 1u);
     }
   }
 #endif

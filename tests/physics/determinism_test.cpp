@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 
@@ -229,6 +230,43 @@ TEST(Determinism, ParticlesLeftToTheColliderPassAreThoseOfEveryParticleWithItsCo
   EXPECT_GT(touching, 0u) << "the ceiling touches no granule";
   for (testing::TestWorld* w : {&some, &every}) (*w)->substep(200);
   EXPECT_EQ(some->readStateHash(), every->readStateHash()) << "the ceiling";
+}
+
+// The contacts pass every particle runs loads one group of contact slots and leaves a particle
+// with more in use to the pass that loads them all (contacts.comp, LOADED_SLOTS), away from any
+// collider too. A sphere with its twelve neighbours of a close packing, each of which touches
+// five, pressed together and turning: every bit is that of every particle running with every
+// slot (the grid search's pass).
+TEST(Determinism, ParticlesWithMoreSlotsInUseThanThePassLoadsKeepTheirBits) {
+  testing::TestWorld some, every;
+  testing::searchEveryParticle(*every);
+  const float d = some->settings().particleDiameter;
+  const float a = 0.97f * d / std::sqrt(2.0f);  // a little closer than touching
+  const Vec3 centre{0.0f, 0.5f, 0.0f};
+  for (testing::TestWorld* w : {&some, &every}) {
+    w->addSphere(centre);
+    for (int axis = 0; axis < 3; ++axis) {
+      for (float s : {-a, a}) {
+        for (float t : {-a, a}) {
+          float r[3] = {0.0f, 0.0f, 0.0f};
+          r[axis] = s;
+          r[(axis + 1) % 3] = t;
+          // Closing in on the centre and going round the vertical.
+          const Vec3 v{-0.3f * r[0] / d - 0.5f * r[2] / d, -0.3f * r[1] / d,
+                       -0.3f * r[2] / d + 0.5f * r[0] / d};
+          w->addSphere({centre.x + r[0], centre.y + r[1], centre.z + r[2]}, v);
+        }
+      }
+    }
+  }
+  std::uint32_t left = 0;
+  for (int substep = 0; substep < 60; ++substep) {
+    some->substep(1);
+    every->substep(1);
+    left = std::max(left, testing::particlesLeftToColliders(*some));
+  }
+  EXPECT_GT(left, 0u) << "no particle had more slots in use than the contacts pass loads";
+  EXPECT_EQ(some->readStateHash(), every->readStateHash());
 }
 
 TEST(Determinism, KernelProfilingChangesNoBit) {

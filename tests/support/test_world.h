@@ -36,7 +36,8 @@ void searchEveryParticle(World& world);
 std::uint32_t particlesLeftToSearch(World& world);
 
 /// How many particles the contacts pass of the last substep left to the pass with the collider
-/// code (those a list build found near a collider).
+/// code: those a list build found near a collider, and those with more contact slots in use than
+/// the contacts pass loads.
 std::uint32_t particlesLeftToColliders(World& world);
 
 /// Settings for small test scenes: default material, capacity for `maxBodies` bodies.

@@ -89,6 +89,10 @@ struct SinkBox {
 // Six words: the extent of the cells the grid was last fitted to (grid_extent.comp,
 // common/grid_fit.glsl), zero before any.
 #define COUNTER_GRID_EXTENT 15
+// Without sleep: the particles the last list build listed for contacts_colliders (list_build.comp),
+// to which each substep's list goes back before the contacts pass adds the particles it leaves to
+// that pass in the substep (clearRunningCommands in common/list_decision.glsl).
+#define COUNTER_COLLIDERS_LISTED 21
 // From this uint on: the indirect dispatch commands of the list build, one per pass below (4
 // uints each: groups x, y, z and padding), zero groups when no build is due.
 #define COUNTER_LIST_DISPATCH 24

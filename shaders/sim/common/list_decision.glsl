@@ -35,21 +35,27 @@ uint appendToPass(uint pass) {
   return slot;
 }
 
-// The commands of the passes whose lists appendToPass fills, for an empty list, cleared by the
-// first pass of every substep: count_pairs.comp's (integrate_bodies.comp fills its list as the
-// substep runs; a substep with no granule to advance runs none), and contacts_search's and
-// contacts_colliders'. Those two hold the particles the contacts pass leaves to them: without
-// sleep list_build.comp lists them, for every substep until the next build (`built`: one is due
-// in this substep), so they are cleared only then; under SLEEPING contacts.comp lists them as the
-// substep runs.
+// The commands of the passes whose lists appendToPass fills, set for the substep by its first
+// pass: count_pairs.comp's (integrate_bodies.comp fills its list as the substep runs; a substep
+// with no granule to advance runs none), and contacts_search's and contacts_colliders', over the
+// particles the contacts pass leaves to them. Without sleep list_build.comp lists those for the
+// substeps until the next build (`built`: one is due in this substep, and empties them), and the
+// contacts pass adds to contacts_colliders' the particles with more slots in use than it loads,
+// in each substep after the build's; under SLEEPING contacts.comp fills the search's as the
+// substep runs. Every other list starts empty.
 void clearRunningCommands(bool built) {
   for (uint pass = ACTIVE_PASS_PAIRS; pass <= ACTIVE_PASS_COLLIDERS; ++pass) {
+    uint length = 0u;
 #ifndef SLEEPING
-    if (pass != ACTIVE_PASS_PAIRS && !built) continue;
+    if (pass == ACTIVE_PASS_SEARCH && !built) continue;
+    if (pass == ACTIVE_PASS_COLLIDERS) {
+      if (built) counters[COUNTER_COLLIDERS_LISTED] = 0u;
+      length = counters[COUNTER_COLLIDERS_LISTED];
+    }
 #endif
     uint at = uint(COUNTER_ACTIVE_DISPATCH) + 4u * pass;
-    writeGroups(at, 0u);
-    counters[at + 3u] = 0u;
+    writeGroups(at, groupsFor(length));
+    counters[at + 3u] = length;
   }
 }
 
