@@ -18,7 +18,7 @@ LIST_ORIGIN_TEXTURE
 PARTICLE_POSITION(writeonly)
 PARTICLE_VELOCITY(writeonly)
 COUNTERS(coherent)
-#ifndef PAPER_LAW
+#if !defined(PAPER_LAW) && defined(SLEEPING)
 PARTICLE_SPIN(writeonly)
 #endif
 

@@ -77,7 +77,11 @@ PARTICLE_POSITION_TEXTURE
 PARTICLE_VELOCITY_TEXTURE
 COLLIDERS(readonly)
 #ifndef PAPER_LAW
+#ifdef SLEEPING
 PARTICLE_SPIN_TEXTURE
+#else
+BODY_ANGULAR_VELOCITY_TEXTURE
+#endif
 CONTACT_PAIRS_TEXTURE
 CONTACT_SLOTS_0_TEXTURE
 CONTACT_SLOTS_1_TEXTURE
@@ -141,6 +145,19 @@ vec3 searchPosition(uint id) {
   return texelFetch(listOriginTexture, int(id)).xyz;
 }
 #include "common/list_search.glsl"
+#endif
+
+#ifndef PAPER_LAW
+// xyz: the angular velocity of particle `particle`'s body `body`; w: under SLEEPING the body's calm
+// count (uint bits), which this pass changes in bodyVelocity.w: particleSpin keeps both for the
+// substep. Without sleep the body's own entry, one fetch as well.
+vec4 spinOf(uint particle, uint body) {
+#ifdef SLEEPING
+  return texelFetch(particleSpinTexture, int(particle));
+#else
+  return vec4(texelFetch(bodyAngularVelocityTexture, int(body)).xyz, 0.0);
+#endif
+}
 #endif
 
 // The particle this thread gathers for.
@@ -313,7 +330,7 @@ void pairContact(Particle self, uint otherId) {
   vec3 n = d / dist;
   float xi = params.particleDiameter - dist;
   largestOverlap = max(largestOverlap, xi);
-  vec4 otherSpin = texelFetch(particleSpinTexture, int(otherId));
+  vec4 otherSpin = spinOf(otherId, floatBitsToUint(other.w));
 #ifdef SLEEPING
   uint otherCalm = floatBitsToUint(otherSpin.w);
   neighbourCalm = min(neighbourCalm, otherCalm);
@@ -629,7 +646,7 @@ void main() {
     return;
   }
 #endif
-  vec4 spin = texelFetch(particleSpinTexture, int(i));
+  vec4 spin = spinOf(i, self.body);
   self.spin = spin.xyz;
   self.calm = floatBitsToUint(spin.w);
   loadSlots(self.id);

@@ -38,8 +38,10 @@ ACTIVE_BODIES(readonly)
 LIST_ORIGIN(writeonly)
 BODY_GRID_BUILD(writeonly)
 #endif
-#ifndef PAPER_LAW
+#if !defined(PAPER_LAW) && defined(SLEEPING)
 PARTICLE_SPIN(writeonly)
+#endif
+#ifndef PAPER_LAW
 PARTICLE_TORQUE_TEXTURE
 PAIRS_DUE(writeonly)
 #endif

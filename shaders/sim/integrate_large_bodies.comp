@@ -31,8 +31,10 @@ SINKS(readonly)
 COUNTERS(coherent)
 LARGE_BODIES(readonly)
 LARGE_BODY_FORCES(coherent)
-#ifndef PAPER_LAW
+#if !defined(PAPER_LAW) && defined(SLEEPING)
 PARTICLE_SPIN(writeonly)
+#endif
+#ifndef PAPER_LAW
 PARTICLE_TORQUE(readonly)
 PARTICLE_BODY_TEXTURE
 CONTACT_SLOTS_0_TEXTURE

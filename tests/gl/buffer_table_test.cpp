@@ -123,7 +123,8 @@ TEST(BufferTable, EveryBufferIsDeclaredAtItsBindingWithItsStrideAndView) {
 }
 
 // What only sleeping sand uses (its lists of what a substep computes, the builds of each list and
-// body) takes the smallest buffer in a World without sleep, and the capacity in one with it.
+// body, the spin and calm count beside each particle) takes the smallest buffer in a World without
+// sleep, and the capacity in one with it: five buffers.
 TEST(BufferTable, SleepBuffersTakeMemoryOnlyInASleepingWorld) {
   unsigned checked = 0;
   for (const bool sleep : {false, true}) {
@@ -146,7 +147,7 @@ TEST(BufferTable, SleepBuffersTakeMemoryOnlyInASleepingWorld) {
       ++checked;
     }
   }
-  EXPECT_EQ(checked, 8u);
+  EXPECT_EQ(checked, 10u);
 }
 
 }  // namespace

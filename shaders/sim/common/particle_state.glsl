@@ -3,7 +3,7 @@
 // set it), so that the next contacts read one fetch per partner. Every writer uses this function,
 // `precise`, so that a particle's state is the same bits whichever pass wrote it. The includer
 // declares PARTICLE_LOCAL_TEXTURE, LIST_ORIGIN_TEXTURE, PARTICLE_POSITION, PARTICLE_VELOCITY,
-// COUNTERS and, under HertzMindlin, PARTICLE_SPIN (and includes quaternion.glsl).
+// COUNTERS and, under HertzMindlin with SLEEPING, PARTICLE_SPIN (and includes quaternion.glsl).
 
 // Particle `k` of body `body` (`local`: its particleLocal entry) at the body's centre `centre`,
 // orientation `q`, velocity `v` and spin `omega`, whose calm count is `calm` (layout.glsl; 0
@@ -17,7 +17,7 @@ void storeParticle(uint k, vec4 local, uint body, vec3 centre, vec4 q, vec3 v, v
   precise vec3 velocity = v + cross(omega, offset);
   particlePosition[k] = vec4(position, uintBitsToFloat(body));
   particleVelocity[k] = vec4(velocity, local.w);
-#ifndef PAPER_LAW
+#if !defined(PAPER_LAW) && defined(SLEEPING)
   particleSpin[k] = vec4(omega, uintBitsToFloat(calm));
 #endif
   vec3 moved = position - texelFetch(listOriginTexture, int(k)).xyz;
