@@ -56,11 +56,13 @@ layout(local_size_x = WORKGROUP_SIZE) in;
 #if !defined(SEARCHES_GRID) && !defined(SLEEPING) && !defined(COLLIDERS_PASS)
 #define LEAVES_COLLIDERS
 #endif
-// The contact slots a compilation loads (HertzMindlin). The pass every particle runs without sleep
-// loads the first group only: the loads are texel fetches, which llvmpipe makes for every batch of
-// particles whether a lane has the slot in use or not, and few particles have more in use; it
-// leaves those to contacts_colliders, which loads them all (and finds no collider for them).
-#ifdef LEAVES_COLLIDERS
+// The contact slots a compilation loads (HertzMindlin). The pass every particle (with sleep, every
+// active one) runs loads the first group only: the loads are texel fetches, which llvmpipe makes
+// for every batch of particles whether a lane has the slot in use or not, and few particles have
+// more in use. It leaves those to a pass that loads them all: without sleep contacts_colliders
+// (which finds no collider for them), with sleep contacts_search (which takes their partners
+// from their lists, as this pass would).
+#if !defined(SEARCHES_GRID) && !defined(COLLIDERS_PASS)
 #define LOADED_SLOTS CONTACT_SLOTS_PER_GROUP
 #else
 #define LOADED_SLOTS CONTACT_SLOTS
@@ -618,12 +620,21 @@ void main() {
 #endif
     return;
   }
+#ifndef PAPER_LAW
+  previousPairs = texelFetch(contactPairsTexture, int(i));
+#endif
 #if !defined(SEARCHES_GRID) && !defined(COLLIDERS_PASS)
+#ifndef PAPER_LAW
+  // More slots in use than this pass loads: left to a pass that loads them all (LOADED_SLOTS).
+  bool manySlots = min(previousPairs.w, uint(CONTACT_SLOTS)) > uint(LOADED_SLOTS);
+#else
+  const bool manySlots = false;
+#endif
   // Partners beyond the list's capacity, or a list the last build passed over (it was built while
   // the particle slept, and may miss what came near since): found in the grid, by the other pass.
   bool searches = listed > uint(NEIGHBOUR_LIST_CAPACITY);
 #ifdef SLEEPING
-  searches = searches || listBuilt[i] != counters[COUNTER_LIST_BUILDS];
+  searches = searches || listBuilt[i] != counters[COUNTER_LIST_BUILDS] || manySlots;
 #endif
 #ifdef SEARCH_EVERY
   searches = true;  // a test's: every particle searched, to the same bits (searchEveryParticle)
@@ -637,15 +648,14 @@ void main() {
 #endif
 #ifdef LEAVES_COLLIDERS
   if (listNearCollider(listWord)) return;  // listed by the build for contacts_colliders
-#endif
 #ifndef PAPER_LAW
-  previousPairs = texelFetch(contactPairsTexture, int(i));
-#ifdef LEAVES_COLLIDERS
-  if (min(previousPairs.w, uint(CONTACT_SLOTS)) > uint(LOADED_SLOTS)) {
+  if (manySlots) {
     collidersDue[appendToPass(ACTIVE_PASS_COLLIDERS)] = i;  // in any order: each result is its own
     return;
   }
 #endif
+#endif
+#ifndef PAPER_LAW
   vec4 spin = spinOf(i, self.body);
   self.spin = spin.xyz;
   self.calm = floatBitsToUint(spin.w);

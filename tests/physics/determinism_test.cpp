@@ -233,12 +233,17 @@ TEST(Determinism, ParticlesLeftToTheColliderPassAreThoseOfEveryParticleWithItsCo
 }
 
 // The contacts pass every particle runs loads one group of contact slots and leaves a particle
-// with more in use to the pass that loads them all (contacts.comp, LOADED_SLOTS), away from any
-// collider too. A sphere with its twelve neighbours of a close packing, each of which touches
-// five, pressed together and turning: every bit is that of every particle running with every
-// slot (the grid search's pass).
-TEST(Determinism, ParticlesWithMoreSlotsInUseThanThePassLoadsKeepTheirBits) {
-  testing::TestWorld some, every;
+// with more in use to a pass that loads them all (contacts.comp, LOADED_SLOTS): without sleep the
+// collider pass, away from any collider too; with sleep the search's. A sphere with its twelve
+// neighbours of a close packing, each of which touches five, pressed together and turning: every
+// bit is that of every particle running with every slot (the grid search's pass).
+class MoreSlotsThanLoaded : public ::testing::TestWithParam<bool> {};
+
+TEST_P(MoreSlotsThanLoaded, KeepTheirBits) {
+  const bool sleep = GetParam();
+  WorldSettings settings = testing::smallSettings();
+  settings.sleep.enabled = sleep;
+  testing::TestWorld some(settings), every(settings);
   testing::searchEveryParticle(*every);
   const float d = some->settings().particleDiameter;
   const float a = 0.97f * d / std::sqrt(2.0f);  // a little closer than touching
@@ -263,11 +268,17 @@ TEST(Determinism, ParticlesWithMoreSlotsInUseThanThePassLoadsKeepTheirBits) {
   for (int substep = 0; substep < 60; ++substep) {
     some->substep(1);
     every->substep(1);
-    left = std::max(left, testing::particlesLeftToColliders(*some));
+    left = std::max(left, sleep ? testing::particlesLeftToSearch(*some)
+                                : testing::particlesLeftToColliders(*some));
   }
   EXPECT_GT(left, 0u) << "no particle had more slots in use than the contacts pass loads";
   EXPECT_EQ(some->readStateHash(), every->readStateHash());
 }
+
+INSTANTIATE_TEST_SUITE_P(Determinism, MoreSlotsThanLoaded, ::testing::Bool(),
+                         [](const ::testing::TestParamInfo<bool>& param) {
+                           return param.param ? "Sleep" : "NoSleep";
+                         });
 
 TEST(Determinism, KernelProfilingChangesNoBit) {
   // A benchmark times a span without the timer queries and profiles the next: switching them
