@@ -51,10 +51,19 @@ layout(local_size_x = WORKGROUP_SIZE) in;
 #if defined(SEARCHING) || defined(CONTACT_LIST)
 #define SEARCHES_GRID
 #endif
-// The pass every particle runs, without sleep: the particles near a collider go to the pass with
-// the collider code. (With sleep the active particles are few, and each runs the collider code.)
-#if !defined(SEARCHES_GRID) && !defined(SLEEPING) && !defined(COLLIDERS_PASS)
+// The pass every particle (with sleep, every active one) runs, which leaves some to the others.
+#if !defined(SEARCHES_GRID) && !defined(COLLIDERS_PASS)
+#define EVERY_PARTICLE_PASS
+#endif
+// Without sleep that pass leaves the particles near a collider to the pass with the collider code.
+// (With sleep the active particles are few, and each runs the collider code.)
+#if defined(EVERY_PARTICLE_PASS) && !defined(SLEEPING)
 #define LEAVES_COLLIDERS
+#endif
+// It lists particles for another pass as it runs: with sleep those that search the grid, and under
+// HertzMindlin those with more slots in use than it loads.
+#if defined(EVERY_PARTICLE_PASS) && (defined(SLEEPING) || !defined(PAPER_LAW))
+#define HANDS_OVER
 #endif
 // The contact slots a compilation loads (HertzMindlin). The pass every particle (with sleep, every
 // active one) runs loads the first group only: the loads are texel fetches, which llvmpipe makes
@@ -62,7 +71,7 @@ layout(local_size_x = WORKGROUP_SIZE) in;
 // more in use. It leaves those to a pass that loads them all: without sleep contacts_colliders
 // (which finds no collider for them), with sleep contacts_search (which takes their partners
 // from their lists, as this pass would).
-#if !defined(SEARCHES_GRID) && !defined(COLLIDERS_PASS)
+#ifdef EVERY_PARTICLE_PASS
 #define LOADED_SLOTS CONTACT_SLOTS_PER_GROUP
 #else
 #define LOADED_SLOTS CONTACT_SLOTS
@@ -110,12 +119,13 @@ CONTACT_SLOTS_1(coherent)
 CONTACT_SLOTS_2(coherent)
 #endif
 #endif
-#if defined(SLEEPING) && !defined(SEARCHES_GRID)
+#ifdef HANDS_OVER
 COUNTERS(coherent)
+#ifdef SLEEPING
 SEARCH_DUE(writeonly)
-#elif defined(LEAVES_COLLIDERS) && !defined(PAPER_LAW)
-COUNTERS(coherent)
+#else
 COLLIDERS_DUE(writeonly)
+#endif
 #else
 COUNTERS(readonly)
 #endif
@@ -138,8 +148,7 @@ LIST_ORIGIN(writeonly)
 #endif
 #include "common/grid.glsl"
 #include "common/neighbour_list.glsl"
-#if (defined(SLEEPING) && !defined(SEARCHES_GRID)) || \
-    (defined(LEAVES_COLLIDERS) && !defined(PAPER_LAW))
+#ifdef HANDS_OVER
 #include "common/list_decision.glsl"
 #endif
 #if defined(SLEEPING) && defined(SEARCHING)
@@ -623,7 +632,7 @@ void main() {
 #ifndef PAPER_LAW
   previousPairs = texelFetch(contactPairsTexture, int(i));
 #endif
-#if !defined(SEARCHES_GRID) && !defined(COLLIDERS_PASS)
+#ifdef EVERY_PARTICLE_PASS
 #ifndef PAPER_LAW
   // More slots in use than this pass loads: left to a pass that loads them all (LOADED_SLOTS).
   bool manySlots = min(previousPairs.w, uint(CONTACT_SLOTS)) > uint(LOADED_SLOTS);
@@ -632,12 +641,9 @@ void main() {
 #endif
   // Partners beyond the list's capacity, or a list the last build passed over (it was built while
   // the particle slept, and may miss what came near since): found in the grid, by the other pass.
-  bool searches = listed > uint(NEIGHBOUR_LIST_CAPACITY);
+  bool searches = listOverflows(listWord);
 #ifdef SLEEPING
   searches = searches || listBuilt[i] != counters[COUNTER_LIST_BUILDS] || manySlots;
-#endif
-#ifdef SEARCH_EVERY
-  searches = true;  // a test's: every particle searched, to the same bits (searchEveryParticle)
 #endif
   if (searches) {
 #ifdef SLEEPING

@@ -109,12 +109,7 @@ void main() {
   // The contacts pass gives static particles (no list) and dead ones no pass; in any order, as
   // each particle's result is its own.
   if (alive && selfInverseMass >= 0.0) {
-#ifdef SEARCH_EVERY
-    bool searches = true;  // a test's: every particle searched, to the same bits
-#else
-    bool searches = count > uint(NEIGHBOUR_LIST_CAPACITY);
-#endif
-    if (searches) {
+    if (listOverflows(listed)) {
       searchDue[appendToPass(ACTIVE_PASS_SEARCH)] = i;
     } else if ((listed & LIST_NEAR_COLLIDER) != 0u) {
       collidersDue[appendToPass(ACTIVE_PASS_COLLIDERS)] = i;

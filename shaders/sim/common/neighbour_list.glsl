@@ -22,3 +22,14 @@ uint listCount(uint listed) {
 bool listNearCollider(uint listed) {
   return listed != LIST_DEAD && (listed & LIST_NEAR_COLLIDER) != 0u;
 }
+
+// Whether a live particle with listOrigin.w `listed` finds its partners in the grid (the pass over
+// searchDue) rather than in its list: it had more than the list holds (in a test's SEARCH_EVERY
+// compilation, every particle). Without sleep list_build.comp lists such particles from this.
+bool listOverflows(uint listed) {
+#ifdef SEARCH_EVERY
+  return true;  // a test's: every particle searched, to the same bits (searchEveryParticle)
+#else
+  return listCount(listed) > uint(NEIGHBOUR_LIST_CAPACITY);
+#endif
+}
