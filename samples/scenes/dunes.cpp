@@ -5,7 +5,9 @@
 #include <limits>
 #include <string>
 
+#include "scenes/kit/checks.h"
 #include "scenes/kit/geometry.h"
+#include "scenes/kit/settings.h"
 #include "scenes/pour.h"
 
 namespace sandphys::scenes {
@@ -45,34 +47,29 @@ float Dunes::emitterSpeed() const {
 
 WorldSettings Dunes::worldSettings() const {
   const Config& c = m_config;
-  if (0.5f * c.separation + 0.5f * c.outlet + kit::kReach > c.floorHalfLength ||
-      0.5f * c.outlet + kit::kReach > c.floorHalfWidth) {
-    throw InvalidArgument("dunes: the columns (separation " + numberText(c.separation) +
-                          " d, outlet " + numberText(c.outlet) + " d) reach past the floor (" +
-                          "floor-half-length " + numberText(c.floorHalfLength) +
-                          " d, floor-half-width " + numberText(c.floorHalfWidth) + " d)");
-  }
-  if (c.pourHeight < 2.0f * kit::kReach) {
-    throw InvalidArgument("dunes: pour-height " + numberText(c.pourHeight) +
-                          " d leaves no room for a granule above the floor (at least " +
-                          numberText(2.0f * kit::kReach) + " d)");
-  }
+  kit::require(0.5f * c.separation + 0.5f * c.outlet + kit::kReach <= c.floorHalfLength &&
+                   0.5f * c.outlet + kit::kReach <= c.floorHalfWidth,
+               name(), "the columns (separation ", c.separation, " d, outlet ", c.outlet,
+               " d) reach past the floor (floor-half-length ", c.floorHalfLength,
+               " d, floor-half-width ", c.floorHalfWidth, " d)");
+  kit::require(c.pourHeight >= 2.0f * kit::kReach, name(), "pour-height ", c.pourHeight,
+               " d leaves no room for a granule above the floor (at least ", 2.0f * kit::kReach,
+               " d)");
   checkPourSpeed(name(), "the outlet", 0.5f * c.outlet * d(), c.rate, d());
-  WorldSettings settings;
-  settings.particleDiameter = d();
-  settings.material.friction = c.friction;
   // The floor's particles, at most (World::addRoughFloor rounds each half down to whole d).
   const std::uint64_t floorParticles =
       static_cast<std::uint64_t>(2.0 * std::floor(c.floorHalfLength) + 1.0) *
       static_cast<std::uint64_t>(2.0 * std::floor(c.floorHalfWidth) + 1.0);
-  kit::reserveExactly(settings, name(), 2ull * c.granules, 1, floorParticles);
-  // Settling is judged from every frame's kinetic energy.
-  settings.statsEachFrame = true;
-  settings.maxSpeed =
-      pourGuardSpeed(emitterSpeed(), c.pourHeight * d(), gravityMagnitude(settings));
-  settings.stepsPerContact = c.stepsPerContact;
-  settings.material.youngsModulus = sceneYoungsModulus(settings, c.youngsModulus);
-  return settings;
+  return kit::worldSettings(
+      name(), d(),
+      {.granules = 2ull * c.granules,
+       .bodies = 1,
+       .particles = floorParticles,
+       .maxSpeed = pourGuardSpeed(emitterSpeed(), c.pourHeight * d(), kit::kGravity),
+       .stepsPerContact = c.stepsPerContact,
+       .youngsModulus = c.youngsModulus,
+       .friction = c.friction,
+       .statsEachFrame = true});  // settling is judged every frame
 }
 
 void Dunes::build(World& world) {
@@ -153,7 +150,7 @@ Dunes::Profile Dunes::profile(std::span<const BodyState> bodies) const {
 std::vector<SceneMetric> Dunes::metrics(std::span<const BodyState> bodies) const {
   const Profile p = profile(bodies);
   std::uint32_t onFloor = 0;
-  for (const BodyState& b : bodies) onFloor += b.granule && b.alive && contains(b.position);
+  for (const BodyState& b : kit::granulesIn(bodies)) onFloor += contains(b.position);
   const double lowerCrest = std::min(p.leftCrest[1], p.rightCrest[1]);
   return {
       {"granules_poured", static_cast<double>(m_poured)},

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <ranges>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -34,6 +35,11 @@ inline float blockSpan(std::uint32_t layers, float spacing) {
 /// is more than a World can index.
 void reserveExactly(WorldSettings& settings, std::string_view scene, std::uint64_t granules,
                     std::uint64_t bodies = 0, std::uint64_t particles = 0);
+
+/// The granules of a read-back that are alive.
+inline auto granulesIn(std::span<const BodyState> bodies) {
+  return bodies | std::views::filter([](const BodyState& b) { return b.alive && b.granule; });
+}
 
 /// Mass of one granule of the World made from `settings`, kg.
 float granuleMass(const WorldSettings& settings);

@@ -1,0 +1,37 @@
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+#include <sandphys/sandphys.h>
+
+namespace sandphys::scenes::kit {
+
+/// What a scene sets of its World's settings; the rest keeps WorldSettings' defaults.
+struct SettingsRule {
+  /// Capacities, exactly (reserveExactly): granules, other bodies and their particles.
+  std::uint64_t granules = 0;
+  std::uint64_t bodies = 0;
+  std::uint64_t particles = 0;
+  /// Speed guard, m/s.
+  float maxSpeed = 0.0f;
+  float stepsPerContact = WorldSettings{}.stepsPerContact;
+  /// Pa; 0 for sceneYoungsModulus's auto value.
+  float youngsModulus = 0.0f;
+  /// The grains' own, where the scene sets them.
+  std::optional<float> friction;
+  std::optional<float> restitution;
+  /// Per-frame statistics, for scenes that judge settling from every frame.
+  bool statsEachFrame = false;
+};
+
+/// The settings of a World with particles of diameter `d` (m) under `rule`; the Young's modulus
+/// is set last, as it follows from the diameter, the guard and the substeps. Throws
+/// InvalidArgument naming `scene` when the capacities are more than a World can index.
+WorldSettings worldSettings(std::string_view scene, float d, const SettingsRule& rule);
+
+/// Gravity of a World with default settings, m/s², for the scenes' speed guards.
+inline const float kGravity = length(WorldSettings{}.gravity);
+
+}  // namespace sandphys::scenes::kit
