@@ -22,8 +22,8 @@ struct SettingsRule {
   /// The grains' own, where the scene sets them.
   std::optional<float> friction;
   std::optional<float> restitution;
-  /// Per-frame statistics, for scenes that judge settling from every frame.
-  bool statsEachFrame = false;
+  /// Per-frame statistics, which the settle gates judge from.
+  bool statsEachFrame = WorldSettings{}.statsEachFrame;
 };
 
 /// The settings of a World with particles of diameter `d` (m) under `rule`; the Young's modulus
