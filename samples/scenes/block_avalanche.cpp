@@ -138,8 +138,7 @@ StepReport BlockAvalanche::step(World& world, float frameDt) {
 }
 
 std::vector<RecordedInput> BlockAvalanche::externalInputs() const {
-  if (!m_blocks) return {};
-  return m_blocks->bridge->pushes();
+  return m_blocks ? m_blocks->bridge->pushes() : std::vector<RecordedInput>{};
 }
 
 std::vector<SceneBody> BlockAvalanche::blockBodies() const {

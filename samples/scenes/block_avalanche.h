@@ -29,8 +29,6 @@ class BlockAvalanche final : public Scene {
 
   BlockAvalanche();
   ~BlockAvalanche() override;
-  BlockAvalanche(const BlockAvalanche&) = delete;
-  BlockAvalanche& operator=(const BlockAvalanche&) = delete;
 
   /// The sand: block, slope, wall and release (change it before build()).
   SlopeAvalanche& slope() { return m_slope; }

@@ -52,14 +52,10 @@ WorldSettings SandTools::withToolCapacity(WorldSettings settings) {
 }
 
 void SandTools::attach(const World& world, const scenes::Scene& scene) {
+  *this = {};  // nothing poured, no emitter, no sphere
   m_bounds = scene.bounds();
   m_diameter = world.settings().particleDiameter;
   m_maxSpeed = world.settings().maxSpeed;
-  m_emitter = {};
-  m_poured = 0;
-  m_sphere = {};
-  m_sphereSurface.reset();
-  m_pushing = false;
 
   const float radius = kSphereRadius * m_diameter;
   const Vec3 centre = 0.5f * (m_bounds.min + m_bounds.max);

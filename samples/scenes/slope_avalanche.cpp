@@ -14,8 +14,6 @@ namespace sandphys::scenes {
 
 namespace {
 
-using kit::kJitter;
-using kit::kReach;
 // Gap between a wall and the nearest lattice centres, d: the reach and the jitter, with room.
 constexpr float kWallGap = 1.4f;
 // Room above the block's top inside the container, d.
@@ -72,7 +70,8 @@ float SlopeAvalanche::columnLift() const {
   // The lowest particle of a granule is at most kReach from its centre, measured normal to
   // the slope, which is cos(angle) of the vertical gap; the jitter moves a centre vertically and
   // along the slope (where the surface is tan(angle) higher per unit of x).
-  return (kReach / std::cos(angle()) + kJitter * (1.0f + std::tan(angle())) + 0.15f) * d();
+  return (kit::kReach / std::cos(angle()) + kit::kJitter * (1.0f + std::tan(angle())) + 0.15f) *
+         d();
 }
 
 float SlopeAvalanche::columnX(std::uint32_t i) const {
@@ -87,7 +86,7 @@ SceneBounds SlopeAvalanche::bounds() const {
   const float tan = std::tan(angle());
   return {{back, -m_config.slopeLength * d() * tan, -halfWidth},
           {(m_config.slopeLength + m_config.runoutLength) * d(),
-           -back * tan + columnLift() + (layers + kReach + kHeadroom) * d(), halfWidth}};
+           -back * tan + columnLift() + (layers + kit::kReach + kHeadroom) * d(), halfWidth}};
 }
 
 WorldSettings SlopeAvalanche::worldSettings() const {
