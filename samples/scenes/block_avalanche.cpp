@@ -34,14 +34,15 @@ const auto kTable = std::to_array<kit::Param<C>>({
      "friction between the blocks and with the floor (Bullet)"},
 });
 
-// Particles the bridge samples from a box shape, counted by sampling it the same way.
-std::uint32_t sampledParticles(const btBoxShape& shape, float d) {
-  const TriangleMesh mesh = bullet::shapeMesh(shape, bullet::CouplingOptions{}.maxChordError * d);
-  return static_cast<std::uint32_t>(sampleMesh(mesh, d).centres.size());
+btVector3 halfExtents(const Vec3& size, float d) {
+  return bullet::toBullet(0.5f * d * size);
 }
 
-btVector3 halfExtents(const Vec3& size, float d) {
-  return {0.5f * size.x * d, 0.5f * size.y * d, 0.5f * size.z * d};
+// Particles the bridge samples from a box of `size` (d), counted by sampling it the same way.
+std::uint32_t sampledParticles(const Vec3& size, float d) {
+  const btBoxShape shape(halfExtents(size, d));
+  const TriangleMesh mesh = bullet::shapeMesh(shape, bullet::CouplingOptions{}.maxChordError * d);
+  return static_cast<std::uint32_t>(sampleMesh(mesh, d).centres.size());
 }
 
 }  // namespace
@@ -52,7 +53,7 @@ struct BlockAvalanche::Blocks {
     std::string name;
     std::unique_ptr<btBoxShape> shape;
     std::unique_ptr<btRigidBody> body;
-    btVector3 start;
+    Vec3 start;
   };
 
   btDefaultCollisionConfiguration configuration;
@@ -64,12 +65,13 @@ struct BlockAvalanche::Blocks {
   std::unique_ptr<btRigidBody> floor;
   std::vector<Block> blocks;
   std::unique_ptr<bullet::Bridge> bridge;
+  Config config;  // as at build()
 
-  Blocks(float floorY, float friction, const Vec3& gravity)
-      : floorShape(btVector3(0, 1, 0), floorY) {
+  Blocks(float floorY, const Config& blockConfig, const Vec3& gravity)
+      : floorShape(btVector3(0, 1, 0), floorY), config(blockConfig) {
     dynamics.setGravity(bullet::toBullet(gravity));
     btRigidBody::btRigidBodyConstructionInfo info(0.0f, nullptr, &floorShape);
-    info.m_friction = friction;
+    info.m_friction = config.blockFriction;
     floor = std::make_unique<btRigidBody>(info);
     dynamics.addRigidBody(floor.get());
   }
@@ -78,16 +80,16 @@ struct BlockAvalanche::Blocks {
     dynamics.removeRigidBody(floor.get());
   }
 
-  void addBlock(std::string name, const btVector3& half, const btVector3& centre, float density,
-                float friction) {
-    Block block{std::move(name), std::make_unique<btBoxShape>(half), nullptr, centre};
-    const float mass = density * 8.0f * float(half.x() * half.y() * half.z());
+  void addBlock(std::string name, const btVector3& half, const btVector3& centre) {
+    Block block{std::move(name), std::make_unique<btBoxShape>(half), nullptr,
+                bullet::toSand(centre)};
+    const float mass = config.density * 8.0f * float(half.x() * half.y() * half.z());
     btVector3 inertia;
     block.shape->calculateLocalInertia(mass, inertia);
     // No motion state: nothing draws from Bullet's interpolated poses.
     btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, block.shape.get(), inertia);
     info.m_startWorldTransform.setOrigin(centre);
-    info.m_friction = friction;
+    info.m_friction = config.blockFriction;
     block.body = std::make_unique<btRigidBody>(info);
     dynamics.addRigidBody(block.body.get());
     blocks.push_back(std::move(block));
@@ -105,29 +107,24 @@ std::vector<SceneParameter> BlockAvalanche::parameters() {
 
 WorldSettings BlockAvalanche::worldSettings() const {
   WorldSettings settings = m_slope.settings();
-  const float d = this->d();
   settings.maxBodies += 2;
-  settings.maxParticles += sampledParticles(btBoxShape(halfExtents(m_config.lowBlock, d)), d) +
-                           sampledParticles(btBoxShape(halfExtents(m_config.plank, d)), d);
+  settings.maxParticles +=
+      sampledParticles(m_config.lowBlock, d()) + sampledParticles(m_config.plank, d());
   return settings;
 }
 
 void BlockAvalanche::build(World& world) {
   m_slope.build(world);
   const float d = this->d();
-  const SlopeAvalanche::Config& slope = m_slope.config();
-  const float foot = slope.slopeLength * d;
-  const float floorY = -foot * std::tan(slope.slopeAngle * std::numbers::pi_v<float> / 180.0f);
-
+  const float floorY = m_slope.bounds().min.y;
   m_blocks.reset();  // the old bridge refers to the old World
-  m_blocks = std::make_unique<Blocks>(floorY, m_config.blockFriction, world.settings().gravity);
+  m_blocks = std::make_unique<Blocks>(floorY, m_config, world.settings().gravity);
   const btVector3 low = halfExtents(m_config.lowBlock, d);
   const btVector3 plank = halfExtents(m_config.plank, d);
+  const float foot = m_slope.config().slopeLength * d;
   const float lowX = foot + m_config.blockDistance * d + low.x();
-  m_blocks->addBlock("low-block", low, btVector3(lowX, floorY + low.y(), 0.0f), m_config.density,
-                     m_config.blockFriction);
-  m_blocks->addBlock("plank", plank, btVector3(lowX, floorY + 2.0f * low.y() + plank.y(), 0.0f),
-                     m_config.density, m_config.blockFriction);
+  m_blocks->addBlock("low-block", low, btVector3(lowX, floorY + low.y(), 0.0f));
+  m_blocks->addBlock("plank", plank, btVector3(lowX, floorY + 2.0f * low.y() + plank.y(), 0.0f));
   m_blocks->bridge = std::make_unique<bullet::Bridge>(world, m_blocks->dynamics);
   m_surfaces.clear();
   for (Blocks::Block& block : m_blocks->blocks) m_blocks->bridge->couple(block.body.get());
@@ -141,8 +138,7 @@ StepReport BlockAvalanche::step(World& world, float frameDt) {
 }
 
 std::vector<RecordedInput> BlockAvalanche::externalInputs() const {
-  if (!m_blocks) return {};
-  return m_blocks->bridge->pushes();
+  return m_blocks ? m_blocks->bridge->pushes() : std::vector<RecordedInput>{};
 }
 
 std::vector<SceneBody> BlockAvalanche::blockBodies() const {
@@ -176,14 +172,11 @@ std::vector<SceneMetric> BlockAvalanche::metrics(std::span<const BodyState> bodi
   std::vector<SceneMetric> out = m_slope.metrics(bodies);
   const std::vector<SceneBody> now = blockBodies();
   for (std::size_t i = 0; i < now.size(); ++i) {
-    const btVector3& start = m_blocks->blocks[i].start;
-    const Vec3& p = now[i].position;
+    const Vec3 moved = now[i].position - m_blocks->blocks[i].start;
     std::string key = now[i].name;
     std::replace(key.begin(), key.end(), '-', '_');
     out.push_back({key + "_tilt_deg", now[i].tiltDegrees});
-    out.push_back(
-        {key + "_displacement_m",
-         std::hypot(p.x - float(start.x()), p.y - float(start.y()), p.z - float(start.z()))});
+    out.push_back({key + "_displacement_m", std::hypot(moved.x, moved.y, moved.z)});
   }
   return out;
 }

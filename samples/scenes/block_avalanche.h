@@ -29,14 +29,9 @@ class BlockAvalanche final : public Scene {
 
   BlockAvalanche();
   ~BlockAvalanche() override;
-  BlockAvalanche(const BlockAvalanche&) = delete;
-  BlockAvalanche& operator=(const BlockAvalanche&) = delete;
 
-  /// The blocks' parameters (change them before build()).
-  Config& config() { return m_config; }
   /// The sand: block, slope, wall and release (change it before build()).
   SlopeAvalanche& slope() { return m_slope; }
-  const SlopeAvalanche& slope() const { return m_slope; }
 
   std::string_view name() const override { return "avalanche"; }
   WorldSettings worldSettings() const override;

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 
-#include "scenes/kit/geometry.h"
+#include "scenes/kit/settings.h"
+#include "scenes/kit/slopes.h"
 #include "scenes/pour.h"
 
 namespace sandphys::scenes {
@@ -25,26 +25,20 @@ std::span<const kit::Param<C>> BoxDrop::table() const {
 }
 
 WorldSettings BoxDrop::worldSettings() const {
-  WorldSettings settings;
-  settings.particleDiameter = d();
-  kit::reserveExactly(settings, name(), kit::granuleCount(m_config.block));
   const float blockHeight = static_cast<float>(m_config.block[1]) * kDefaultGranuleSpacing;
-  settings.maxSpeed =
-      pourGuardSpeed(0.0f, (m_config.dropHeight + blockHeight) * d(), gravityMagnitude(settings));
-  settings.material.youngsModulus = sceneYoungsModulus(settings);
-  return settings;
+  const float drop = (m_config.dropHeight + blockHeight) * d();
+  return kit::worldSettings(name(), d(),
+                            {.granules = kit::granuleCount(m_config.block),
+                             .maxSpeed = pourGuardSpeed(0.0f, drop, kit::kGravity),
+                             .statsEachFrame = true});
 }
 
 void BoxDrop::build(World& world) {
-  const SceneBounds box = bounds();
-  world.addCollider(Box{.center = {0.0f, 0.5f * box.max.y, 0.0f},
-                        .halfExtents = {box.max.x, 0.5f * box.max.y, box.max.z},
-                        .inside = true});
+  world.addCollider(kit::containerBox(bounds()));
   const float spacing = m_config.spacing * d();
+  const float lowest = m_config.dropHeight * d();
   world.addGranules(GranuleBlock{
-      .center = {0.0f,
-                 m_config.dropHeight * d() + 0.5f * kit::blockSpan(m_config.block[1], spacing),
-                 0.0f},
+      .center = {0.0f, lowest + 0.5f * kit::blockSpan(m_config.block[1], spacing), 0.0f},
       .countX = m_config.block[0],
       .countY = m_config.block[1],
       .countZ = m_config.block[2],
@@ -53,17 +47,14 @@ void BoxDrop::build(World& world) {
 }
 
 bool BoxDrop::contains(const Vec3& centre) const {
-  const SceneBounds box = bounds();
-  return centre.y >= 0.0f && centre.y <= box.max.y && std::abs(centre.x) <= box.max.x &&
-         std::abs(centre.z) <= box.max.z;
+  return kit::inBounds(bounds(), centre);
 }
 
 std::vector<SceneMetric> BoxDrop::metrics(std::span<const BodyState> bodies) const {
   double sum = 0.0;
   double top = 0.0;
   std::size_t count = 0;
-  for (const BodyState& body : bodies) {
-    if (!body.alive || !body.granule) continue;
+  for (const BodyState& body : kit::granulesIn(bodies)) {
     sum += body.position.y;
     top = std::max(top, static_cast<double>(body.position.y));
     ++count;

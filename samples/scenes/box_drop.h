@@ -6,8 +6,6 @@
 
 namespace sandphys::scenes {
 
-/// The smallest useful scene: one block of granules dropped into a smooth box container. Cheap
-/// enough for tests and a first look in the viewer.
 struct BoxDropConfig {
   float particleDiameter = 0.02f;
   Count3 block{8, 8, 8};
@@ -18,6 +16,8 @@ struct BoxDropConfig {
   std::uint64_t seed = 1;
 };
 
+/// The smallest useful scene: one block of granules dropped into a smooth box container. Cheap
+/// enough for tests and a first look in the viewer.
 class BoxDrop final : public kit::SceneWith<BoxDropConfig> {
  public:
   using Config = BoxDropConfig;

@@ -4,8 +4,6 @@
 #include <cmath>
 #include <vector>
 
-#include "scenes/eigen_conversions.h"
-
 namespace sandphys::scenes {
 
 namespace {
@@ -26,18 +24,12 @@ std::vector<Vec3> ballCentres(float radius, float d) {
     for (int j = -n; j <= n; ++j) {
       for (int k = -n; k <= n; ++k) {
         if (i * i + j * j + k * k <= (radius / d) * (radius / d)) {
-          centres.push_back(
-              {static_cast<float>(i) * d, static_cast<float>(j) * d, static_cast<float>(k) * d});
+          centres.push_back(d * Vec3{float(i), float(j), float(k)});
         }
       }
     }
   }
   return centres;
-}
-
-std::uint32_t ballParticleCount() {
-  // The lattice scales with d, so the count does not depend on it.
-  return static_cast<std::uint32_t>(ballCentres(SandTools::kSphereRadius, 1.0f).size());
 }
 
 }  // namespace
@@ -52,31 +44,26 @@ std::optional<Eigen::Vector3f> hitHorizontalPlane(const Ray& ray, float y) {
 WorldSettings SandTools::withToolCapacity(WorldSettings settings) {
   const std::uint32_t particles =
       settings.maxParticles ? settings.maxParticles : 4 * settings.maxBodies;
+  // The lattice scales with d, so the ball's count does not depend on it.
+  const auto ball = static_cast<std::uint32_t>(ballCentres(kSphereRadius, 1.0f).size());
   settings.maxBodies += kPourGranules + 1;
-  settings.maxParticles = particles + 4 * kPourGranules + ballParticleCount();
+  settings.maxParticles = particles + 4 * kPourGranules + ball;
   return settings;
 }
 
 void SandTools::attach(const World& world, const scenes::Scene& scene) {
-  const WorldSettings& settings = world.settings();
+  *this = {};  // nothing poured, no emitter, no sphere
   m_bounds = scene.bounds();
-  m_diameter = settings.particleDiameter;
-  m_maxSpeed = settings.maxSpeed;
-  m_emitter = {};
-  m_poured = 0;
-  m_sphere = {};
-  m_sphereSurface.reset();
-  m_pushing = false;
-  m_floorPoint.reset();
+  m_diameter = world.settings().particleDiameter;
+  m_maxSpeed = world.settings().maxSpeed;
 
   const float radius = kSphereRadius * m_diameter;
-  const Eigen::Vector3f centre = 0.5f * (toEigen(m_bounds.min) + toEigen(m_bounds.max));
+  const Vec3 centre = 0.5f * (m_bounds.min + m_bounds.max);
   // Parked above the scene where the scene counts the point as inside its container (a closed
   // box container pushes at anything outside it), else just under the top of the bounds.
-  const Eigen::Vector3f above(centre.x(), m_bounds.max.y + 3.0f * radius, centre.z());
-  m_parkedAt = scene.contains(toVec3(above))
-                   ? above
-                   : Eigen::Vector3f(centre.x(), m_bounds.max.y - 1.5f * radius, centre.z());
+  const Vec3 above{centre.x, m_bounds.max.y + 3.0f * radius, centre.z};
+  m_parkedAt =
+      scene.contains(above) ? above : Vec3{centre.x, m_bounds.max.y - 1.5f * radius, centre.z};
   m_spherePosition = m_parkedAt;
 }
 
@@ -84,43 +71,44 @@ void SandTools::addSphere(World& world) {
   const float radius = kSphereRadius * m_diameter;
   const ParticleTemplate ball = makeParticleTemplate(ballCentres(radius, m_diameter), m_diameter,
                                                      world.settings().material.density);
-  m_sphere =
-      world.addBody(ball, BodyDesc{.position = toVec3(m_parkedAt), .motion = Motion::Kinematic});
+  m_sphere = world.addBody(ball, BodyDesc{.position = m_parkedAt, .motion = Motion::Kinematic});
   // The lattice is symmetric about its centre, so the mesh needs no shift; the outermost
   // particles reach half a diameter beyond their centres.
   m_sphereSurface = SceneSurface{m_sphere, icosphereMesh(radius + 0.5f * m_diameter, 3),
                                  ball.principalRotation, BodyMaterial::Metal};
 }
 
-Eigen::Vector3f SandTools::clampToScene(Eigen::Vector3f point, float margin) const {
+Vec3 SandTools::clampToScene(Vec3 point, float margin) const {
   const float loX = m_bounds.min.x + margin, hiX = m_bounds.max.x - margin;
   const float loZ = m_bounds.min.z + margin, hiZ = m_bounds.max.z - margin;
-  point.x() = loX < hiX ? std::clamp(point.x(), loX, hiX) : 0.5f * (loX + hiX);
-  point.z() = loZ < hiZ ? std::clamp(point.z(), loZ, hiZ) : 0.5f * (loZ + hiZ);
+  point.x = loX < hiX ? std::clamp(point.x, loX, hiX) : 0.5f * (loX + hiX);
+  point.z = loZ < hiZ ? std::clamp(point.z, loZ, hiZ) : 0.5f * (loZ + hiZ);
   return point;
 }
 
 void SandTools::update(World& world, bool pour, bool push, const Ray& cursorRay, float frameDt) {
-  m_floorPoint = hitHorizontalPlane(cursorRay, m_bounds.min.y);
-  updatePour(world, pour && m_floorPoint.has_value() && !pourBudgetSpent());
-  updatePush(world, push && m_floorPoint.has_value(), frameDt);
+  std::optional<Vec3> floorPoint;
+  if (const auto hit = hitHorizontalPlane(cursorRay, m_bounds.min.y)) {
+    floorPoint = Vec3{hit->x(), hit->y(), hit->z()};
+  }
+  updatePour(world, pour && m_poured < kPourGranules ? floorPoint : std::nullopt);
+  updatePush(world, push ? floorPoint : std::nullopt, frameDt);
 }
 
-void SandTools::updatePour(World& world, bool pour) {
-  if (!pour) {
+void SandTools::updatePour(World& world, const std::optional<Vec3>& floorPoint) {
+  if (!floorPoint) {
     if (m_emitter.isValid()) world.removeEmitter(m_emitter);
     m_emitter = {};
     return;
   }
   const float halfExtent = kPourHalfExtent * m_diameter;
-  Eigen::Vector3f centre = clampToScene(*m_floorPoint, halfExtent + 2.0f * m_diameter);
-  centre.y() = std::min(m_bounds.min.y + kPourHeight * m_diameter, m_bounds.max.y - m_diameter);
+  Vec3 centre = clampToScene(*floorPoint, halfExtent + 2.0f * m_diameter);
+  centre.y = std::min(m_bounds.min.y + kPourHeight * m_diameter, m_bounds.max.y - m_diameter);
   // An emitter cannot move, so a new one replaces it; only once the cursor has left the old
   // rectangle, or the new first layer could land inside the old one's last.
   if (m_emitter.isValid()) {
-    const Eigen::Vector3f moved = centre - m_emitterCentre;
-    if (std::max(std::abs(moved.x()), std::abs(moved.z())) <
-        2.0f * halfExtent + 3.0f * m_diameter) {
+    const Vec3 moved = centre - m_emitterCentre;
+    if (std::max(std::abs(moved.x), std::abs(moved.z)) < 2.0f * halfExtent + 3.0f * m_diameter) {
       return;
     }
     world.removeEmitter(m_emitter);
@@ -128,47 +116,46 @@ void SandTools::updatePour(World& world, bool pour) {
   // The emitter refuses a rate its lattice cannot take; stay well under it.
   const float spacing = kDefaultGranuleSpacing * m_diameter;
   const float perRow = 1.0f + std::floor(2.0f * halfExtent / spacing);
-  const float rate = 0.8f * perRow * perRow * kPourSpeed / spacing;
-  m_emitter = world.addEmitter(EmitterSettings{.center = toVec3(centre),
-                                               .halfExtentX = halfExtent,
-                                               .halfExtentZ = halfExtent,
-                                               .rate = rate,
-                                               .velocity = {0.0f, -kPourSpeed, 0.0f},
-                                               .maxGranules = kPourGranules - m_poured,
-                                               .seed = 1 + m_poured});
+  m_emitter =
+      world.addEmitter(EmitterSettings{.center = centre,
+                                       .halfExtentX = halfExtent,
+                                       .halfExtentZ = halfExtent,
+                                       .rate = 0.8f * perRow * perRow * kPourSpeed / spacing,
+                                       .velocity = {0.0f, -kPourSpeed, 0.0f},
+                                       .maxGranules = kPourGranules - m_poured,
+                                       .seed = 1 + m_poured});
   m_emitterCentre = centre;
 }
 
-void SandTools::updatePush(World& world, bool push, float frameDt) {
+void SandTools::updatePush(World& world, const std::optional<Vec3>& floorPoint, float frameDt) {
   const float radius = kSphereRadius * m_diameter;
-  if (!push) {
+  if (!floorPoint) {
     if (m_pushing && m_sphere.isValid()) {
       // Lifted out of the sand at once: removing overlap is harmless, unlike creating it.
-      world.setBodyState(m_sphere,
-                         BodyDesc{.position = toVec3(m_parkedAt), .motion = Motion::Kinematic});
+      world.setBodyState(m_sphere, BodyDesc{.position = m_parkedAt, .motion = Motion::Kinematic});
       m_spherePosition = m_parkedAt;
       m_pushing = false;
     }
     return;
   }
-  Eigen::Vector3f goal = clampToScene(*m_floorPoint, radius + m_diameter);
-  goal.y() = m_bounds.min.y + radius + kSphereClearance * m_diameter;
+  Vec3 goal = clampToScene(*floorPoint, radius + m_diameter);
+  goal.y = m_bounds.min.y + radius + kSphereClearance * m_diameter;
   if (!m_sphere.isValid()) addSphere(world);
   if (!m_pushing) {
     // Enter above the goal and sink into place at the speed limit below, so that the sand is
     // pushed aside instead of finding a sphere inside it.
-    m_spherePosition = {goal.x(), std::max(m_parkedAt.y(), goal.y()), goal.z()};
+    m_spherePosition = {goal.x, std::max(m_parkedAt.y, goal.y), goal.z};
     m_pushing = true;
   }
   // A kinematic body moves with its velocity through the substeps of the frame, so the velocity
   // that reaches the goal by the end of the frame gives smooth contacts; capped well under the
   // speed guard.
   const float maxSpeed = 0.3f * m_maxSpeed;
-  Eigen::Vector3f velocity = (goal - m_spherePosition) / std::max(frameDt, 1e-4f);
-  if (velocity.norm() > maxSpeed) velocity *= maxSpeed / velocity.norm();
-  world.setBodyState(m_sphere, BodyDesc{.position = toVec3(m_spherePosition),
-                                        .velocity = toVec3(velocity),
-                                        .motion = Motion::Kinematic});
+  Vec3 velocity = (goal - m_spherePosition) / std::max(frameDt, 1e-4f);
+  if (length(velocity) > maxSpeed) velocity = velocity * (maxSpeed / length(velocity));
+  world.setBodyState(
+      m_sphere,
+      BodyDesc{.position = m_spherePosition, .velocity = velocity, .motion = Motion::Kinematic});
   m_spherePosition += velocity * frameDt;
 }
 

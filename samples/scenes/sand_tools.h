@@ -45,30 +45,28 @@ class SandTools {
 
   /// Granules poured since attach().
   std::uint32_t poured() const { return m_poured; }
-  /// Whether the pour budget is used up.
-  bool pourBudgetSpent() const { return m_poured >= kPourGranules; }
   /// Counts what an emitter added this frame (from StepReport::granulesEmitted).
   void countEmitted(std::uint32_t granules) { m_poured += granules; }
   /// The pushing sphere as a metal ball, once it has joined the World; null before.
   const SceneSurface* surface() const { return m_sphereSurface ? &*m_sphereSurface : nullptr; }
 
  private:
-  void updatePour(World& world, bool pour);
-  void updatePush(World& world, bool push, float frameDt);
-  Eigen::Vector3f clampToScene(Eigen::Vector3f point, float margin) const;
+  // Each tool works at the point of the floor under the cursor, and stops without one.
+  void updatePour(World& world, const std::optional<Vec3>& floorPoint);
+  void updatePush(World& world, const std::optional<Vec3>& floorPoint, float frameDt);
+  Vec3 clampToScene(Vec3 point, float margin) const;
   void addSphere(World& world);
 
-  scenes::SceneBounds m_bounds{};
+  SceneBounds m_bounds{};
   float m_diameter = 0.02f;
   float m_maxSpeed = 10.0f;
-  std::optional<Eigen::Vector3f> m_floorPoint;
   EmitterId m_emitter{};
-  Eigen::Vector3f m_emitterCentre = Eigen::Vector3f::Zero();
+  Vec3 m_emitterCentre{};
   std::uint32_t m_poured = 0;
   BodyId m_sphere{};
   std::optional<SceneSurface> m_sphereSurface;
-  Eigen::Vector3f m_parkedAt = Eigen::Vector3f::Zero();
-  Eigen::Vector3f m_spherePosition = Eigen::Vector3f::Zero();
+  Vec3 m_parkedAt{};
+  Vec3 m_spherePosition{};
   bool m_pushing = false;
 };
 

@@ -7,12 +7,13 @@
 #include <numbers>
 #include <string>
 
+#include "scenes/kit/settings.h"
+#include "scenes/kit/slopes.h"
+
 namespace sandphys::scenes {
 
 namespace {
 
-using kit::kJitter;
-using kit::kReach;
 // Gap between a wall and the nearest lattice centres, d: the reach and the jitter, with room.
 constexpr float kWallGap = 1.4f;
 // Room above the block's top inside the container, d.
@@ -47,64 +48,56 @@ const auto kTable = std::to_array<kit::Param<C>>({
     kit::diameterParam(&C::particleDiameter),
 });
 
-float radians(float degrees) {
-  return degrees * std::numbers::pi_v<float> / 180.0f;
-}
-
 }  // namespace
 
 std::span<const kit::Param<C>> SlopeAvalanche::table() const {
   return kTable;
 }
 
-std::uint32_t SlopeAvalanche::blockGranules() const {
-  return m_config.block[0] * m_config.block[1] * m_config.block[2];
-}
-
-float SlopeAvalanche::tanAngle() const {
-  return std::tan(radians(m_config.slopeAngle));
+float SlopeAvalanche::angle() const {
+  return m_config.slopeAngle * std::numbers::pi_v<float> / 180.0f;
 }
 
 Vec3 SlopeAvalanche::downSlope() const {
-  const float angle = radians(m_config.slopeAngle);
-  return {std::cos(angle), -std::sin(angle), 0.0f};
+  return {std::cos(angle()), -std::sin(angle()), 0.0f};
+}
+
+Vec3 SlopeAvalanche::slopeNormal() const {
+  return {std::sin(angle()), std::cos(angle()), 0.0f};
 }
 
 float SlopeAvalanche::columnLift() const {
   // The lowest particle of a granule is at most kReach from its centre, measured normal to
   // the slope, which is cos(angle) of the vertical gap; the jitter moves a centre vertically and
   // along the slope (where the surface is tan(angle) higher per unit of x).
-  const float cosAngle = std::cos(radians(m_config.slopeAngle));
-  return (kReach / cosAngle + kJitter * (1.0f + tanAngle()) + 0.15f) * d();
+  return (kit::kReach / std::cos(angle()) + kit::kJitter * (1.0f + std::tan(angle())) + 0.15f) *
+         d();
 }
 
 float SlopeAvalanche::columnX(std::uint32_t i) const {
   return -(kWallGap + static_cast<float>(i) * kDefaultGranuleSpacing) * d();
 }
 
-SlopeAvalanche::Channel SlopeAvalanche::channel() const {
-  Channel c{};
-  c.back = columnX(m_config.block[0] - 1) - kWallGap * d();
-  c.end = (m_config.slopeLength + m_config.runoutLength) * d();
-  c.halfWidth =
+SceneBounds SlopeAvalanche::bounds() const {
+  const float back = columnX(m_config.block[0] - 1) - kWallGap * d();
+  const float halfWidth =
       (0.5f * static_cast<float>(m_config.block[2] - 1) * kDefaultGranuleSpacing + kWallGap) * d();
-  c.floor = -m_config.slopeLength * d() * tanAngle();
-  const float blockHeight = static_cast<float>(m_config.block[1] - 1) * kDefaultGranuleSpacing;
-  c.top = -c.back * tanAngle() + columnLift() + (blockHeight + kReach + kHeadroom) * d();
-  return c;
+  const float layers = static_cast<float>(m_config.block[1] - 1) * kDefaultGranuleSpacing;
+  const float tan = std::tan(angle());
+  return {{back, -m_config.slopeLength * d() * tan, -halfWidth},
+          {(m_config.slopeLength + m_config.runoutLength) * d(),
+           -back * tan + columnLift() + (layers + kit::kReach + kHeadroom) * d(), halfWidth}};
 }
 
 WorldSettings SlopeAvalanche::worldSettings() const {
-  WorldSettings settings;
-  settings.particleDiameter = d();
-  kit::reserveExactly(settings, name(), kit::granuleCount(m_config.block));
-  const Channel c = channel();
-  const float drop = c.top - c.floor;
-  settings.maxSpeed =
-      std::max(kMinGuardSpeed, kGuardMargin * std::sqrt(2.0f * gravityMagnitude(settings) * drop));
-  settings.stepsPerContact = kStepsPerContact;
-  settings.material.youngsModulus = sceneYoungsModulus(settings);
-  return settings;
+  const SceneBounds box = bounds();
+  const float drop = box.max.y - box.min.y;
+  const float guard = kGuardMargin * std::sqrt(2.0f * kit::kGravity * drop);
+  return kit::worldSettings(name(), d(),
+                            {.granules = kit::granuleCount(m_config.block),
+                             .maxSpeed = std::max(kMinGuardSpeed, guard),
+                             .stepsPerContact = kStepsPerContact,
+                             .statsEachFrame = true});
 }
 
 void SlopeAvalanche::build(World& world) {
@@ -115,15 +108,8 @@ void SlopeAvalanche::build(World& world) {
                          kit::granuleMass(world.settings()));
 
   const SurfaceMaterial surface{.friction = m_config.friction};
-  const Channel c = channel();
-  world.addCollider(
-      Box{.center = {0.5f * (c.back + c.end), 0.5f * (c.floor + c.top), 0.0f},
-          .halfExtents = {0.5f * (c.end - c.back), 0.5f * (c.top - c.floor), c.halfWidth},
-          .inside = true,
-          .material = surface});
-  const float angle = radians(m_config.slopeAngle);
-  world.addCollider(Plane{
-      .normal = {std::sin(angle), std::cos(angle), 0.0f}, .offset = 0.0f, .material = surface});
+  world.addCollider(kit::containerBox(bounds(), surface));
+  world.addCollider(Plane{.normal = slopeNormal(), .offset = 0.0f, .material = surface});
   // Solid where x > 0 (Plane is solid where dot(normal, x) < offset).
   m_wall =
       world.addCollider(Plane{.normal = {-1.0f, 0.0f, 0.0f}, .offset = 0.0f, .material = surface});
@@ -131,11 +117,11 @@ void SlopeAvalanche::build(World& world) {
   // One GranuleBlock per column across the slope, each resting on the slope beneath it; the x
   // spacing between columns alone keeps neighbours apart at any height difference.
   const float spacing = kDefaultGranuleSpacing * d();
-  const float blockHeight = static_cast<float>(m_config.block[1] - 1) * spacing;
+  const float halfHeight = 0.5f * kit::blockSpan(m_config.block[1], spacing);
   for (std::uint32_t i = 0; i < m_config.block[0]; ++i) {
     const float x = columnX(i);
     world.addGranules(
-        GranuleBlock{.center = {x, -x * tanAngle() + columnLift() + 0.5f * blockHeight, 0.0f},
+        GranuleBlock{.center = {x, -x * std::tan(angle()) + columnLift() + halfHeight, 0.0f},
                      .countX = 1,
                      .countY = m_config.block[1],
                      .countZ = m_config.block[2],
@@ -147,11 +133,12 @@ void SlopeAvalanche::build(World& world) {
 }
 
 void SlopeAvalanche::update(World& world, const StepReport& report, double simTime) {
-  if (!m_course.update(report, simTime, blockGranules()) || !m_course.acting()) return;
+  const auto granules = static_cast<std::uint32_t>(kit::granuleCount(m_config.block));
+  if (!m_course.update(report, simTime, granules) || !m_course.acting()) return;
   m_reference = kit::Reference(world.readBodies());
   // Beyond the end of the run-out, where no grain can reach it.
   world.setCollider(m_wall, Plane{.normal = {-1.0f, 0.0f, 0.0f},
-                                  .offset = -(channel().end + 10.0f * d()),
+                                  .offset = -(bounds().max.x + 10.0f * d()),
                                   .material = {.friction = m_config.friction}});
   m_course.endAct(simTime);
 }
@@ -169,25 +156,7 @@ SceneView SlopeAvalanche::view(const std::optional<SceneBounds>& contents) const
 }
 
 bool SlopeAvalanche::contains(const Vec3& centre) const {
-  const Channel c = channel();
-  const Vec3 n = {-downSlope().y, downSlope().x, 0.0f};  // the slope's upward normal
-  return centre.x >= c.back && centre.x <= c.end && std::abs(centre.z) <= c.halfWidth &&
-         centre.y >= c.floor && centre.y <= c.top && n.x * centre.x + n.y * centre.y >= 0.0f;
-}
-
-double SlopeAvalanche::comDisplacement(const kit::Reference& reference,
-                                       std::span<const BodyState> bodies) const {
-  const Vec3 s = downSlope();
-  double sum = 0.0;
-  std::size_t count = 0;
-  for (const BodyState& body : bodies) {
-    const BodyState* before = body.granule && body.alive ? reference.before(body) : nullptr;
-    if (!before) continue;
-    sum +=
-        (body.position.x - before->position.x) * s.x + (body.position.y - before->position.y) * s.y;
-    ++count;
-  }
-  return count ? sum / static_cast<double>(count) : 0.0;
+  return kit::inBounds(bounds(), centre) && dot(slopeNormal(), centre) >= 0.0f;
 }
 
 std::vector<SceneMetric> SlopeAvalanche::metrics(std::span<const BodyState> bodies) const {
@@ -196,21 +165,19 @@ std::vector<SceneMetric> SlopeAvalanche::metrics(std::span<const BodyState> bodi
   double frontBefore = -std::numeric_limits<double>::infinity();
   std::size_t granules = 0;
   std::size_t movedCount = 0;
-  for (const BodyState& body : bodies) {
-    if (!body.granule || !body.alive) continue;
+  for (const BodyState& body : kit::granulesIn(bodies)) {
     ++granules;
     front = std::max(front, static_cast<double>(body.position.x));
     const BodyState* before = m_reference.before(body);
     if (!before) continue;
-    const Vec3& p0 = before->position;
-    frontBefore = std::max(frontBefore, static_cast<double>(p0.x));
-    const double dx = body.position.x - p0.x;
-    const double dy = body.position.y - p0.y;
-    const double dz = body.position.z - p0.z;
+    frontBefore = std::max(frontBefore, static_cast<double>(before->position.x));
+    const double dx = body.position.x - before->position.x;
+    const double dy = body.position.y - before->position.y;
+    const double dz = body.position.z - before->position.z;
     if (dx * dx + dy * dy + dz * dz > moved * moved) ++movedCount;
   }
   if (granules == 0) front = frontBefore = 0.0;
-  const double com = comDisplacement(m_reference, bodies);
+  const double com = kit::meanDisplacement(m_reference, bodies, downSlope());
   return {
       {"granules", static_cast<double>(granules)},
       {"slope_angle_deg", m_config.slopeAngle},
@@ -224,11 +191,6 @@ std::vector<SceneMetric> SlopeAvalanche::metrics(std::span<const BodyState> bodi
       {"front_advance_d", (front - frontBefore) / d()},
       {"moved_fraction", granules ? static_cast<double>(movedCount) / granules : 0.0},
   };
-}
-
-SceneBounds SlopeAvalanche::bounds() const {
-  const Channel c = channel();
-  return {{c.back, c.floor, -c.halfWidth}, {c.end, c.top, c.halfWidth}};
 }
 
 }  // namespace sandphys::scenes

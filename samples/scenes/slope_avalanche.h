@@ -45,35 +45,30 @@ class SlopeAvalanche final : public kit::SceneWith<SlopeAvalancheConfig> {
   /// reference of the metrics).
   void update(World& world, const StepReport& report, double simTime) override;
   bool finished() const override { return m_course.done(); }
-  /// "held", "released at t s", "stopped".
+  /// "held", "released at t s", "came to rest".
   std::string status() const override;
   /// Inside the container and above the slope.
   bool contains(const Vec3& centre) const override;
   /// Since the release: centre of mass displacement down the slope, the front's position and the
   /// fraction of granules that moved more than movedDistance.
   std::vector<SceneMetric> metrics(std::span<const BodyState> bodies) const override;
+  /// The channel: x from behind the block to the run-out's end, y from the run-out up.
   SceneBounds bounds() const override;
   /// The slope and its run-out from the side (+z, a little above), up to a little over the sand:
   /// where the sand goes, not the walls' empty tops.
   SceneView view(const std::optional<SceneBounds>& contents) const override;
 
-  std::uint32_t blockGranules() const;
   /// Unit vector down the slope.
   Vec3 downSlope() const;
   bool released() const { return m_course.actStart() >= 0.0; }
   /// Simulated time of the release, s (negative before it).
   double releasedAt() const { return m_course.actStart(); }
-  /// Distance (m) the granules' centre of mass moved down the slope from `reference` to `bodies`.
-  double comDisplacement(const kit::Reference& reference, std::span<const BodyState> bodies) const;
 
  private:
-  /// The channel in m: x from back to end, z within ±halfWidth, y from floor to top.
-  struct Channel {
-    float back, end, halfWidth, floor, top;
-  };
   std::span<const kit::Param<Config>> table() const override;
-  Channel channel() const;
-  float tanAngle() const;
+  /// The slope's tilt, rad.
+  float angle() const;
+  Vec3 slopeNormal() const;
   /// Height above the slope (vertical, m) of the lowest centres of each column.
   float columnLift() const;
   /// x of the i-th column of the block, m (i = 0 next to the wall).

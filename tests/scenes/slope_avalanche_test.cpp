@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "scenes/kit/slopes.h"
 #include "scenes/slope_avalanche.h"
 #include "support/test_world.h"
 
@@ -84,8 +85,8 @@ TEST(SlopeAvalanche, HeldBlockStaysThenRunsDownTheSlopeOnRelease) {
   ASSERT_TRUE(scene.released());
   EXPECT_LT(r.releasedAt, kRelease + 0.1) << "the block did not settle behind the wall";
 
-  const double held = scene.comDisplacement(r.settled, r.beforeRelease);
-  const double ran = scene.comDisplacement(r.beforeRelease, r.end);
+  const double held = kit::meanDisplacement(r.settled, r.beforeRelease, scene.downSlope());
+  const double ran = kit::meanDisplacement(r.beforeRelease, r.end, scene.downSlope());
   std::printf("30 deg: held %.3f d, after release %.2f d\n", held / d, ran / d);
   EXPECT_LT(std::abs(held), 0.5 * d);
   // Sliding on mu = 0.3 at 30 degrees: a = g (sin - mu cos) = 2.4 m/s², 9 d in 0.4 s.
@@ -101,7 +102,7 @@ TEST(SlopeAvalanche, OnAFlatFloorTheReleasedBlockBarelyMoves) {
   const float d = scene.config().particleDiameter;
   const AvalancheRun r = run(scene, kSettled, 0.4, 2.0);
   ASSERT_TRUE(scene.released());
-  const double ran = scene.comDisplacement(r.beforeRelease, r.end);
+  const double ran = kit::meanDisplacement(r.beforeRelease, r.end, scene.downSlope());
   std::printf("0 deg: after release %.2f d\n", ran / d);
   // Only the open face of the block slumps (a low granular column collapses little).
   EXPECT_LT(std::abs(ran), 2.0 * d);
@@ -112,7 +113,7 @@ TEST(SlopeAvalanche, WithoutReleaseTheSandStaysBehindTheWall) {
   const float d = scene.config().particleDiameter;
   const AvalancheRun r = run(scene, kSettled, 0.4, kRelease + 0.4);
   EXPECT_FALSE(scene.released());
-  const double held = scene.comDisplacement(r.settled, r.end);
+  const double held = kit::meanDisplacement(r.settled, r.end, scene.downSlope());
   std::printf("30 deg, held: %.3f d\n", held / d);
   EXPECT_LT(std::abs(held), 0.5 * d);
   for (const BodyState& body : r.end) {
