@@ -72,8 +72,8 @@ class Compression final : public kit::SceneWith<CompressionConfig> {
   double recoveredFraction() const;
   const Snapshot& atRest() const { return m_atRest; }
   const Snapshot& atPeak() const { return m_atPeak; }
-  /// Granules per lattice layer inside the cylinder.
-  std::uint32_t granulesPerLayer() const;
+  /// Granules of the lattice the pile is dropped from.
+  std::uint64_t granules() const;
   std::span<const SceneSurface> surfaces() const override { return m_surfaces; }
 
  private:
@@ -86,7 +86,6 @@ class Compression final : public kit::SceneWith<CompressionConfig> {
   ParticleTemplate plungerShape() const;
   /// The plunger drawn as a disc.
   SceneSurface plungerSurface(BodyId plunger, const ParticleTemplate& shape) const;
-  std::uint32_t granules() const;
   /// Enters `phase`, the plunger moving as it says from where it is.
   void enter(Phase phase, double simTime);
 
@@ -94,7 +93,6 @@ class Compression final : public kit::SceneWith<CompressionConfig> {
   kit::SettleWait m_settle;
   BodyId m_plunger;
   std::vector<SceneSurface> m_surfaces;
-  float m_granuleMass = 0.0f;
   double m_bottomY = 0.0;  // the plunger's bottom face now, m
   double m_moveFromY = 0.0, m_moveStart = 0.0, m_velocity = 0.0;  // its motion: m, s, m/s
   double m_contactY = 0.0;  // the bottom face where the experiment starts, m

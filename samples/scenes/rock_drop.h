@@ -58,7 +58,6 @@ class RockDrop final : public kit::SceneWith<RockDropConfig> {
 
   /// Config::bed, grown along x and z until the box holds the rock as it is let go.
   Count3 bedCounts() const;
-  std::uint32_t rockParticles() const;
   /// The rock's mesh, scaled to metres, in its file's frame.
   const TriangleMesh& rockMesh() const;
   bool dropped() const { return m_run.rock.isValid(); }
@@ -81,8 +80,6 @@ class RockDrop final : public kit::SceneWith<RockDropConfig> {
   float boxHeight() const;
   float bedTopOf(std::span<const ParticleState> particles) const;
   void drop(World& world, double simTime);
-  /// Cosine of the angle between the rock's up axis at the drop and now.
-  float upright(const BodyState& state) const;
   bool atRest() const;
 
   // The mesh loaded and sampled for the current parameters; settings() is const but fills it.

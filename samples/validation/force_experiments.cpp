@@ -175,7 +175,7 @@ nlohmann::json compressionAndForces(const ExperimentContext& context,
     for (const auto& point : scene.stressStrain()) curve.push_back({point[0], point[1]});
     nlohmann::json entry = runFacts(run);
     entry.update({{"friction", friction},
-                  {"granules", scene.granulesPerLayer() * config.layers},
+                  {"granules", scene.granules()},
                   {"stress_strain", curve},
                   {"turn_index", scene.turnIndex()},
                   {"max_strain", scene.maxStrain()},

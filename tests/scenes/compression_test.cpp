@@ -33,9 +33,9 @@ TEST(Compression, UnloadingFollowsAnotherPathAndLeavesAResidualStrain) {
   ASSERT_GT(turn, 5u) << "a loading curve of a few frames at least";
   ASSERT_GT(curve.size(), turn + 2);
   std::printf(
-      "granules %u: peak %.0f Pa at strain %.4f; residual strain %.4f, recovered %.2f; "
+      "granules %llu: peak %.0f Pa at strain %.4f; residual strain %.4f, recovered %.2f; "
       "%zu contacts at rest, %zu at the peak\n",
-      scene.granulesPerLayer() * config.layers, curve[turn - 1][1], scene.maxStrain(),
+      static_cast<unsigned long long>(scene.granules()), curve[turn - 1][1], scene.maxStrain(),
       scene.residualStrain(), scene.recoveredFraction(), scene.atRest().contacts.size(),
       scene.atPeak().contacts.size());
   EXPECT_GE(curve[turn - 1][1], config.maxStress);

@@ -127,8 +127,8 @@ TEST(RockDrop, RockSinksIntoTheBedAndComesToRestOnSand) {
       "the next second %.2e m; lowest point %.4f m (%.2f d) above the floor, %.4f m (%.2f d) below "
       "the "
       "bed's top %.4f m; %u granule centres inside it\n",
-      scene.rockParticles(), restedAt - scene.droppedAt(), speed, heightChange, lowest, lowest / d,
-      depth, depth / d, scene.bedTop(), inside);
+      world.particleCount() - 4 * world.granulesSpawned(), restedAt - scene.droppedAt(), speed,
+      heightChange, lowest, lowest / d, depth, depth / d, scene.bedTop(), inside);
 
   // At rest: slower than the scene's rest speed (0.01 m/s), and sinking by less than a hundredth
   // of a grain in the second after it stopped (static friction holds the bed: under the paper's
