@@ -142,15 +142,7 @@ void Bulldozer::build(World& world) {
           .duration = travel > 0.0f ? static_cast<double>(travel) / m_config.bladeSpeed : 0.0});
   m_pushStartStep = push.startStep;
   m_pushSteps = travel > 0.0f ? push.endStep - push.startStep : 0;
-  measureFrom(world.readBodies());  // the lattice, until the push starts
-}
-
-void Bulldozer::measureFrom(std::vector<BodyState> bodies) {
-  m_bermFront = -std::numeric_limits<float>::infinity();
-  for (const BodyState& body : bodies) {
-    if (body.granule) m_bermFront = std::max(m_bermFront, body.position.x);
-  }
-  m_reference = kit::Reference(std::move(bodies));
+  m_reference = kit::Reference(world.readBodies());  // the lattice, until the push starts
 }
 
 void Bulldozer::readLoad(World& world) {
@@ -176,13 +168,12 @@ void Bulldozer::endPhases(World& world) {
     readLoad(world);
     if (m_phase == Phase::Waiting) {
       m_atPushStart = world.readBodies();
-      measureFrom(m_atPushStart);
-      m_phase = Phase::Pushing;
+      m_reference = kit::Reference(m_atPushStart);
     } else {
       m_atPushEnd = world.readBodies();
       m_course.endAct(world.simulatedTime());
-      m_phase = Phase::Stopped;
     }
+    m_phase = static_cast<Phase>(static_cast<int>(m_phase) + 1);
   }
 }
 
@@ -225,13 +216,17 @@ bool Bulldozer::contains(const Vec3& centre) const {
 }
 
 std::vector<SceneMetric> Bulldozer::metrics(std::span<const BodyState> bodies) const {
+  float bermFront = -std::numeric_limits<float>::infinity();
+  for (const BodyState& body : m_reference.bodies()) {
+    if (body.granule) bermFront = std::max(bermFront, body.position.x);
+  }
   double shift = 0.0;
   std::size_t granules = 0;
   std::size_t matched = 0;
   std::size_t ahead = 0;
   for (const BodyState& body : kit::granulesIn(bodies)) {
     ++granules;
-    if (body.position.x > m_bermFront) ++ahead;
+    if (body.position.x > bermFront) ++ahead;
     if (const BodyState* before = m_reference.before(body)) {
       shift += body.position.x - before->position.x;
       ++matched;
@@ -260,7 +255,7 @@ std::vector<SceneMetric> Bulldozer::metrics(std::span<const BodyState> bodies) c
       {"drag_now_n", m_drag.empty() ? 0.0 : m_drag.back().drag},
       {"com_shift_m", shift},
       {"com_shift_d", shift / d()},
-      {"berm_front_x_m", m_bermFront},
+      {"berm_front_x_m", bermFront},
       {"pushed_fraction",
        granules > 0 ? static_cast<double>(ahead) / static_cast<double>(granules) : 0.0},
   };

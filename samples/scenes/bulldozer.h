@@ -104,7 +104,6 @@ class Bulldozer final : public kit::SceneWith<BulldozerConfig> {
   /// Ends the phases whose end the World has reached: their force and bodies are read.
   void endPhases(World& world);
   void readLoad(World& world);
-  void measureFrom(std::vector<BodyState> bodies);
 
   BodyId m_blade;
   std::vector<SceneSurface> m_surfaces;
@@ -112,14 +111,13 @@ class Bulldozer final : public kit::SceneWith<BulldozerConfig> {
   kit::Course m_course;  // acting from the start; the rest after the push
   BladeLoad m_loads[3];
   std::vector<DragSample> m_drag;
-  kit::Reference m_reference;
+  kit::Reference m_reference;  // the berm before the push (since build before it)
   std::vector<BodyState> m_atPushStart;
   std::vector<BodyState> m_atPushEnd;
   std::uint64_t m_pushStartStep = 0;
   std::uint64_t m_pushSteps = 0;
   std::uint64_t m_stepsRun = 0;  // World::stepCount after the last frame
   double m_timeStep = 0.0;
-  float m_bermFront = 0.0f;  // m, of the reference
 };
 
 }  // namespace sandphys::scenes

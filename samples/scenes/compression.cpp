@@ -90,14 +90,9 @@ std::vector<Vec3> Compression::plungerFace() const {
   return centres;
 }
 
-ParticleTemplate Compression::plungerShape() const {
-  // A kinematic body: its mass only has to be valid.
-  return makeParticleTemplate(plungerFace(), d(), WorldSettings{}.material.density);
-}
-
-SceneSurface Compression::plungerSurface(BodyId plunger, const ParticleTemplate& shape) const {
+SceneSurface Compression::plungerSurface(BodyId plunger, const ParticleTemplate& shape,
+                                         const std::vector<Vec3>& face) const {
   // A disc one particle thick over the face's particles, about the face's centre of mass.
-  const std::vector<Vec3> face = plungerFace();
   Vec3 centre{};
   for (const Vec3& c : face) centre += c / float(face.size());
   const double radius = (m_config.radius - kPlungerGap) * d() + 0.5 * d();
@@ -114,7 +109,7 @@ WorldSettings Compression::worldSettings() const {
       {.granules = granules(),
        .bodies = 2,
        .particles = roughFloorParticles(RoughFloor{.radius = m_config.radius * d()}, d()) +
-                    plungerShape().offsets.size(),
+                    plungerFace().size(),
        .maxSpeed = pourGuardSpeed(0.0f, blockHeight, kit::kGravity),
        .stepsPerContact = m_config.stepsPerContact,
        .youngsModulus = m_config.youngsModulus,
@@ -139,10 +134,13 @@ void Compression::build(World& world) {
   world.addGranules(kit::blockAbove(kClearance * d(), lattice, spacing, m_config.seed));
   // Parked above the wall until the pile has settled.
   m_bottomY = wallHeight + d();
-  const ParticleTemplate plunger = plungerShape();
+  const std::vector<Vec3> face = plungerFace();
+  // A kinematic body: its mass only has to be valid.
+  const ParticleTemplate plunger =
+      makeParticleTemplate(face, d(), WorldSettings{}.material.density);
   m_plunger = world.addBody(
       plunger, BodyDesc{.position = {0.0f, float(m_bottomY), 0.0f}, .motion = Motion::Kinematic});
-  m_surfaces = {plungerSurface(m_plunger, plunger)};
+  m_surfaces = {plungerSurface(m_plunger, plunger, face)};
   // Calm means nothing until the lattice has fallen onto the floor and slid a while.
   const double landing = 1.5 * fallTime(blockHeight + kClearance * d(), 0.0, kit::kGravity);
   m_settle = {0.0, landing, landing + m_config.maxSettleSeconds};

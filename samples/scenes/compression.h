@@ -56,20 +56,15 @@ class Compression final : public kit::SceneWith<CompressionConfig> {
   /// Inside the cylinder, above the floor.
   bool contains(const Vec3& centre) const override;
   std::vector<SceneMetric> metrics(std::span<const BodyState> bodies) const override;
-  /// "stress_strain": [strain, stress Pa], with max_strain, residual_strain, recovered_fraction.
+  /// "stress_strain": [strain, stress Pa] per frame of the experiment (loading, then unloading),
+  /// with max_strain (at the turn), residual_strain (where unloading brought the stress back to
+  /// zero, or the last strain recorded if it never did) and recovered_fraction ((max − residual) /
+  /// max; 0 before the turn).
   std::vector<SceneSeries> series() const override;
   SceneBounds bounds() const override;
 
-  /// [strain, stress Pa] per frame of the experiment (loading, then unloading).
-  const std::vector<std::array<double, 2>>& stressStrain() const { return m_curve; }
-  /// Index in stressStrain() of the turn from loading to unloading.
+  /// Index in the "stress_strain" points of the turn from loading to unloading.
   std::size_t turnIndex() const { return m_turn; }
-  /// Strain at the turn, and where unloading brought the stress back to zero (the last strain
-  /// recorded if it never did).
-  double maxStrain() const { return m_maxStrain; }
-  double residualStrain() const { return m_residualStrain; }
-  /// (maxStrain − residualStrain) / maxStrain; 0 before the turn.
-  double recoveredFraction() const;
   const Snapshot& atRest() const { return m_atRest; }
   const Snapshot& atPeak() const { return m_atPeak; }
   /// Granules of the lattice the pile is dropped from.
@@ -83,11 +78,12 @@ class Compression final : public kit::SceneWith<CompressionConfig> {
   double area() const;
   /// The plunger's face: a disc of particles in the body's y = 0 plane.
   std::vector<Vec3> plungerFace() const;
-  ParticleTemplate plungerShape() const;
   /// The plunger drawn as a disc.
-  SceneSurface plungerSurface(BodyId plunger, const ParticleTemplate& shape) const;
+  SceneSurface plungerSurface(BodyId plunger, const ParticleTemplate& shape,
+                              const std::vector<Vec3>& face) const;
   /// Enters `phase`, the plunger moving as it says from where it is.
   void enter(Phase phase, double simTime);
+  double recoveredFraction() const;
 
   Phase m_phase = Phase::Settling;
   kit::SettleWait m_settle;

@@ -294,14 +294,6 @@ bool RockDrop::contains(const Vec3& centre) const {
          std::abs(centre.z) <= halfWidth(2);
 }
 
-Vec3 RockDrop::toRockFrame(const BodyState& state, const Vec3& point) const {
-  return rotate(conjugate(state.orientation), point - state.position) + loadedRock().centreOfMass;
-}
-
-float RockDrop::lowestPoint(const BodyState& state) const {
-  return state.position.y + loadedRock().turned(state.orientation).min.y;
-}
-
 std::vector<SceneBody> RockDrop::bodies(const World& world) const {
   if (!dropped()) return {};
   return {kit::sceneBody("rock", world.readBody(m_run.rock), m_run.startUp)};
@@ -323,7 +315,7 @@ std::vector<SceneMetric> RockDrop::metrics(std::span<const BodyState> bodies) co
       {"bed_top_m", m_run.bedTop},
   };
   if (!rock) return out;
-  const float lowest = lowestPoint(*rock);
+  const float lowest = rock->position.y + loaded.turned(rock->orientation).min.y;
   const SceneBody now = kit::sceneBody("rock", *rock, m_run.startUp);
   out.insert(out.end(), {
                             {"rock_lowest_m", lowest},

@@ -51,7 +51,8 @@ class RockDrop final : public kit::SceneWith<RockDropConfig> {
   bool finished() const override { return m_run.finished; }
   std::string status() const override;
   bool contains(const Vec3& centre) const override;  // inside the box
-  /// The bed's top, the rock's depth below it, its speed and tilt, the time it took to stop.
+  /// The bed's top, the rock's lowest point and depth below it, its speed and tilt, the time it
+  /// took to stop.
   std::vector<SceneMetric> metrics(std::span<const BodyState> bodies) const override;
   std::vector<SceneBody> bodies(const World& world) const override;
   SceneBounds bounds() const override;
@@ -64,13 +65,6 @@ class RockDrop final : public kit::SceneWith<RockDropConfig> {
   BodyId rock() const { return m_run.rock; }
   std::span<const SceneSurface> surfaces() const override { return m_run.surfaces; }
   double droppedAt() const { return m_course.actStart(); }  // s, negative before the drop
-  /// Height of the settled bed's top at the drop, m (0 before): the median, over the bed's inside,
-  /// of the highest grain surface in each column 2 d wide.
-  float bedTop() const { return m_run.bedTop; }
-  /// A point of the world in the rock's mesh frame, for the rock `state`.
-  Vec3 toRockFrame(const BodyState& state, const Vec3& point) const;
-  /// Height of the rock mesh's lowest vertex for the rock `state`, m.
-  float lowestPoint(const BodyState& state) const;
 
  private:
   struct LoadedRock;
@@ -87,6 +81,8 @@ class RockDrop final : public kit::SceneWith<RockDropConfig> {
   kit::Course m_course;  // the bed's settle and the drop
   struct Run {
     BodyId rock;
+    // The settled bed's top at the drop, m: the median, over the bed's inside, of the highest
+    // grain surface in each column kTopColumn d wide.
     float bedTop = 0.0f;
     Vec3 startUp{0.0f, 1.0f, 0.0f};  // the rock's up axis at the drop, in its own frame
     double nextCheck = 0.0;          // of the rock's speed, s
