@@ -78,17 +78,9 @@ Quat dropOrientation(float tilt) {
                 Eigen::AngleAxisf(radians(kYawDegrees), Eigen::Vector3f::UnitY()));
 }
 
-// Lowest and highest corner of the box around some vertices, turned about an origin and relative
-// to it, m.
-struct Extent {
-  Vec3 min{kInfinity, kInfinity, kInfinity};
-  Vec3 max = -min;
-  float below() const { return -min.y; }
-  float above() const { return max.y; }
-};
-
-Extent extentOf(const std::vector<Vec3>& vertices, Quat q = {}, Vec3 origin = {}) {
-  Extent extent;
+// The box around some vertices turned about an origin, relative to it, m.
+SceneBounds extentOf(const std::vector<Vec3>& vertices, Quat q = {}, Vec3 origin = {}) {
+  SceneBounds extent{{kInfinity, kInfinity, kInfinity}, {-kInfinity, -kInfinity, -kInfinity}};
   for (const Vec3& v : vertices) {
     const Vec3 r = rotate(q, v - origin);
     extent.min = {std::min(extent.min.x, r.x), std::min(extent.min.y, r.y),
@@ -100,7 +92,7 @@ Extent extentOf(const std::vector<Vec3>& vertices, Quat q = {}, Vec3 origin = {}
 }
 
 float largestExtent(const TriangleMesh& mesh) {
-  const Extent extent = extentOf(mesh.vertices);
+  const SceneBounds extent = extentOf(mesh.vertices);
   const Vec3 size = extent.max - extent.min;
   return std::max({size.x, size.y, size.z});
 }
@@ -118,8 +110,9 @@ struct RockDrop::LoadedRock {
   TriangleMesh mesh;  // scaled to metres
   SampledMesh sampled;
   Vec3 centreOfMass;  // in the mesh's frame, m
-  Extent drop;        // turned as the rock is let go: the box and the bed follow it
-  Extent turned(const Quat& q) const { return extentOf(mesh.vertices, q, centreOfMass); }
+  // Turned as the rock is let go, about its centre of mass: the box and the bed follow it.
+  SceneBounds drop;
+  SceneBounds turned(const Quat& q) const { return extentOf(mesh.vertices, q, centreOfMass); }
 };
 
 std::span<const kit::Param<C>> RockDrop::table() const {
@@ -163,7 +156,7 @@ const TriangleMesh& RockDrop::rockMesh() const {
 Count3 RockDrop::bedCounts() const {
   // The box's inner half width (kWallGap beyond the lattice's outer centres) holds everything the
   // rock covers as it is let go, so that it lands on sand, not on a wall.
-  const Extent& turned = loadedRock().drop;
+  const SceneBounds& turned = loadedRock().drop;
   Count3 counts = m_config.bed;
   for (const auto& [axis, reach] : {std::pair{0, std::max(-turned.min.x, turned.max.x)},
                                     std::pair{2, std::max(-turned.min.z, turned.max.z)}}) {
@@ -187,14 +180,14 @@ float RockDrop::boxHeight() const {
       (kBedClearance + static_cast<float>(m_config.bed[1] - 1) * kDefaultGranuleSpacing + kReach) *
       d();
   const float radius = 0.5f * d();
-  const Extent& rock = loadedRock().drop;
-  return latticeTop + m_config.dropHeight * d() + radius + rock.below() + rock.above() + radius +
+  const SceneBounds& rock = loadedRock().drop;
+  return latticeTop + m_config.dropHeight * d() + radius - rock.min.y + rock.max.y + radius +
          kHeadroom * d();
 }
 
 WorldSettings RockDrop::worldSettings() const {
   const LoadedRock& rock = loadedRock();
-  const float lowestAtDrop = boxHeight() - kHeadroom * d() - rock.drop.above() - rock.drop.below();
+  const float lowestAtDrop = boxHeight() - kHeadroom * d() - rock.drop.max.y + rock.drop.min.y;
   return kit::worldSettings(
       name(), d(),
       {.granules = kit::granuleCount(bedCounts()),
@@ -246,7 +239,7 @@ void RockDrop::drop(World& world, double simTime) {
   m_run.bedTop = bedTopOf(world.readParticles());
   const LoadedRock& rock = loadedRock();
   const Quat q = dropOrientation(m_config.tilt);
-  const float y = m_run.bedTop + m_config.dropHeight * d() + 0.5f * d() + rock.drop.below();
+  const float y = m_run.bedTop + m_config.dropHeight * d() + 0.5f * d() - rock.drop.min.y;
   m_run.rock =
       world.addBody(rock.sampled.shape, BodyDesc{.position = {0.0f, y, 0.0f}, .orientation = q});
   m_run.surfaces = {surfaceOf(m_run.rock, rock.mesh, rock.sampled, BodyMaterial::Stone)};
