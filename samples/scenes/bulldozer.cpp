@@ -5,7 +5,11 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <string>
+
+#include "scenes/kit/bodies.h"
+#include "scenes/kit/settings.h"
 
 namespace sandphys::scenes {
 
@@ -58,10 +62,6 @@ std::span<const kit::Param<C>> Bulldozer::table() const {
   return kTable;
 }
 
-std::uint32_t Bulldozer::bermGranules() const {
-  return m_config.berm[0] * m_config.berm[1] * m_config.berm[2];
-}
-
 float Bulldozer::bermLift() const {
   return (kReach + kJitter + 0.15f) * d();
 }
@@ -88,7 +88,7 @@ float Bulldozer::bladeTravel() const {
 
 TriangleMesh Bulldozer::bladeMesh() const {
   const Vec3 half = bladeHalfExtents();
-  TriangleMesh box = boxMesh({-half.x, -half.y, -half.z}, half);
+  TriangleMesh box = boxMesh(-half, half);
   box.source = "bulldozer blade";
   return box;
 }
@@ -98,37 +98,34 @@ SampledMesh Bulldozer::bladeShape() const {
 }
 
 WorldSettings Bulldozer::worldSettings() const {
-  WorldSettings settings;
-  settings.particleDiameter = d();
-  kit::reserveExactly(settings, name(), kit::granuleCount(m_config.berm), 1,
-                      bladeShape().centres.size());
-  settings.maxSpeed = std::max(kMinGuardSpeed, kGuardPerBladeSpeed * m_config.bladeSpeed);
-  settings.stepsPerContact = kStepsPerContact;
-  settings.material.youngsModulus = sceneYoungsModulus(settings);
-  return settings;
+  return kit::worldSettings(
+      name(), d(),
+      {.granules = kit::granuleCount(m_config.berm),
+       .bodies = 1,
+       .particles = bladeShape().centres.size(),
+       .maxSpeed = std::max(kMinGuardSpeed, kGuardPerBladeSpeed * m_config.bladeSpeed),
+       .stepsPerContact = kStepsPerContact,
+       .statsEachFrame = true});
 }
 
 void Bulldozer::build(World& world) {
   m_phase = Phase::Waiting;
+  m_course = kit::Course({.settleSpeed = m_config.settleSpeed,
+                          .maxSettleSeconds = m_config.maxSettleSeconds,
+                          .minRestSeconds = kMinRestSeconds,
+                          .actFirst = true},
+                         kit::granuleMass(world.settings()));
   for (BladeLoad& load : m_loads) load = {};
   m_drag.clear();
   m_atPushStart.clear();
   m_atPushEnd.clear();
-  m_finished = false;
   m_stepsRun = 0;
-  m_granuleMass = kit::granuleMass(world.settings());
   m_timeStep = world.timeStep();
 
   world.addCollider(Plane{.normal = {0.0f, 1.0f, 0.0f},
                           .offset = 0.0f,
                           .material = {.friction = m_config.floorFriction}});
-  const float bermHeight = kit::blockSpan(m_config.berm[1], spacing());
-  world.addGranules(GranuleBlock{.center = {0.0f, bermLift() + 0.5f * bermHeight, 0.0f},
-                                 .countX = m_config.berm[0],
-                                 .countY = m_config.berm[1],
-                                 .countZ = m_config.berm[2],
-                                 .spacing = spacing(),
-                                 .seed = m_config.seed});
+  world.addGranules(kit::blockAbove(bermLift(), m_config.berm, spacing(), m_config.seed));
   const Vec3 start = bladeStart();
   const SampledMesh blade = bladeShape();
   m_blade = world.addBody(blade.shape, BodyDesc{.position = start, .motion = Motion::Kinematic});
@@ -145,29 +142,18 @@ void Bulldozer::build(World& world) {
           .duration = travel > 0.0f ? static_cast<double>(travel) / m_config.bladeSpeed : 0.0});
   m_pushStartStep = push.startStep;
   m_pushSteps = travel > 0.0f ? push.endStep - push.startStep : 0;
-  measureFrom(world.readBodies());  // the lattice, until the push starts
-}
-
-void Bulldozer::measureFrom(std::vector<BodyState> bodies) {
-  m_bermFront = -std::numeric_limits<float>::infinity();
-  for (const BodyState& body : bodies) {
-    if (body.granule) m_bermFront = std::max(m_bermFront, body.position.x);
-  }
-  m_reference = kit::Reference(std::move(bodies));
+  m_reference = kit::Reference(world.readBodies());  // the lattice, until the push starts
 }
 
 void Bulldozer::readLoad(World& world) {
-  for (const BodyForce& force : world.takeBodyForces()) {
-    if (force.body != m_blade || force.substeps == 0) continue;
-    BladeLoad& load = m_loads[static_cast<int>(m_phase)];
-    load.impulse[0] += static_cast<double>(force.force.x) * m_timeStep;
-    load.impulse[1] += static_cast<double>(force.force.y) * m_timeStep;
-    load.impulse[2] += static_cast<double>(force.force.z) * m_timeStep;
-    load.substeps += force.substeps;
-    const Vec3 mean = force.meanForce();
-    // 0 - x rather than -x: no "-0" drag in the metrics of a blade that never touched sand.
-    m_drag.push_back({world.simulatedTime(), 0.0f - mean.x, mean.y, m_phase});
-  }
+  const std::optional<BodyForce> force = kit::takeForceOn(world, m_blade);
+  if (!force || force->substeps == 0) return;
+  BladeLoad& load = m_loads[static_cast<int>(m_phase)];
+  load.impulse[0] += static_cast<double>(force->force.x) * m_timeStep;
+  load.impulse[1] += static_cast<double>(force->force.y) * m_timeStep;
+  load.substeps += force->substeps;
+  // 0 - x rather than -x: no "-0" drag in the metrics of a blade that never touched sand.
+  m_drag.push_back({world.simulatedTime(), 0.0f - force->meanForce().x, m_phase});
 }
 
 std::uint64_t Bulldozer::phaseEnd() const {
@@ -182,13 +168,12 @@ void Bulldozer::endPhases(World& world) {
     readLoad(world);
     if (m_phase == Phase::Waiting) {
       m_atPushStart = world.readBodies();
-      measureFrom(m_atPushStart);
-      m_phase = Phase::Pushing;
+      m_reference = kit::Reference(m_atPushStart);
     } else {
       m_atPushEnd = world.readBodies();
-      m_rest = {world.simulatedTime(), kMinRestSeconds, m_config.maxSettleSeconds};
-      m_phase = Phase::Stopped;
+      m_course.endAct(world.simulatedTime());
     }
+    m_phase = static_cast<Phase>(static_cast<int>(m_phase) + 1);
   }
 }
 
@@ -207,21 +192,18 @@ StepReport Bulldozer::step(World& world, float frameDt) {
 }
 
 void Bulldozer::update(World& /*world*/, const StepReport& report, double simTime) {
-  if (m_finished || m_phase != Phase::Stopped) return;
-  m_finished = m_rest.over(
-      granulesCalm(report, bermGranules(), m_granuleMass, m_config.settleSpeed), simTime);
+  m_course.update(report, simTime, static_cast<std::uint32_t>(kit::granuleCount(m_config.berm)));
 }
 
 std::string Bulldozer::status() const {
   if (m_phase == Phase::Waiting) return "settling";
-  if (m_phase == Phase::Stopped) return m_finished ? "stopped, sand at rest" : "stopped";
-  char text[96];
-  const float drag = m_drag.empty() ? 0.0f : m_drag.back().drag;
+  if (m_phase == Phase::Stopped) return m_course.done() ? "stopped, sand at rest" : "stopped";
   const double done = static_cast<double>(std::min(m_stepsRun - m_pushStartStep, m_pushSteps));
   const double travelled =
       m_pushSteps > 0 ? m_config.pushDistance * done / static_cast<double>(m_pushSteps) : 0.0;
+  char text[96];
   std::snprintf(text, sizeof text, "pushing %.1f/%.0f d, drag %.2f N", travelled,
-                m_config.pushDistance, drag);
+                m_config.pushDistance, m_drag.empty() ? 0.0f : m_drag.back().drag);
   return text;
 }
 
@@ -234,23 +216,21 @@ bool Bulldozer::contains(const Vec3& centre) const {
 }
 
 std::vector<SceneMetric> Bulldozer::metrics(std::span<const BodyState> bodies) const {
+  float bermFront = -std::numeric_limits<float>::infinity();
+  for (const BodyState& body : m_reference.bodies()) {
+    if (body.granule) bermFront = std::max(bermFront, body.position.x);
+  }
   double shift = 0.0;
   std::size_t granules = 0;
   std::size_t matched = 0;
   std::size_t ahead = 0;
-  float bladeX = bladeStart().x;
-  for (const BodyState& body : bodies) {
-    if (m_blade.isValid() && body.id.index == m_blade.index && !body.granule) {
-      bladeX = body.position.x;
-      continue;
-    }
-    if (!body.granule || !body.alive) continue;
+  for (const BodyState& body : kit::granulesIn(bodies)) {
     ++granules;
-    if (body.position.x > m_bermFront) ++ahead;
-    const BodyState* before = m_reference.before(body);
-    if (!before) continue;
-    shift += body.position.x - before->position.x;
-    ++matched;
+    if (body.position.x > bermFront) ++ahead;
+    if (const BodyState* before = m_reference.before(body)) {
+      shift += body.position.x - before->position.x;
+      ++matched;
+    }
   }
   if (matched > 0) shift /= static_cast<double>(matched);
 
@@ -260,7 +240,8 @@ std::vector<SceneMetric> Bulldozer::metrics(std::span<const BodyState> bodies) c
   for (const DragSample& sample : m_drag) {
     if (sample.phase == Phase::Pushing) peak = std::max(peak, sample.drag);
   }
-  const double travel = bladeX - bladeStart().x;
+  const BodyState* blade = kit::find(bodies, m_blade);
+  const double travel = (blade ? blade->position.x : bladeStart().x) - bladeStart().x;
   return {
       {"granules", static_cast<double>(granules)},
       {"blade_travel_m", travel},
@@ -274,7 +255,7 @@ std::vector<SceneMetric> Bulldozer::metrics(std::span<const BodyState> bodies) c
       {"drag_now_n", m_drag.empty() ? 0.0 : m_drag.back().drag},
       {"com_shift_m", shift},
       {"com_shift_d", shift / d()},
-      {"berm_front_x_m", m_bermFront},
+      {"berm_front_x_m", bermFront},
       {"pushed_fraction",
        granules > 0 ? static_cast<double>(ahead) / static_cast<double>(granules) : 0.0},
   };
@@ -282,12 +263,7 @@ std::vector<SceneMetric> Bulldozer::metrics(std::span<const BodyState> bodies) c
 
 std::vector<SceneBody> Bulldozer::bodies(const World& world) const {
   if (!m_blade.isValid()) return {};
-  const BodyState blade = world.readBody(m_blade);
-  return {{.name = "blade",
-           .position = blade.position,
-           .orientation = blade.orientation,
-           .speed = std::hypot(blade.velocity.x, blade.velocity.y, blade.velocity.z),
-           .tiltDegrees = kit::tiltDegrees(blade.orientation)}};
+  return {kit::sceneBody("blade", world.readBody(m_blade))};
 }
 
 SceneBounds Bulldozer::bounds() const {

@@ -44,7 +44,7 @@ class Bulldozer final : public kit::SceneWith<BulldozerConfig> {
 
   /// The sand's force on the blade summed over the substeps of one phase.
   struct BladeLoad {
-    double impulse[3] = {0.0, 0.0, 0.0};  // Σ force · dt, N s
+    double impulse[2] = {0.0, 0.0};  // Σ force · dt along x and y, N s
     std::uint64_t substeps = 0;
   };
 
@@ -52,7 +52,6 @@ class Bulldozer final : public kit::SceneWith<BulldozerConfig> {
   struct DragSample {
     double time = 0.0;  // s, at the end of the substeps read
     float drag = 0.0f;  // N against the push (-x): positive when the sand resists
-    float lift = 0.0f;  // N, upward
     Phase phase = Phase::Waiting;
   };
 
@@ -61,7 +60,7 @@ class Bulldozer final : public kit::SceneWith<BulldozerConfig> {
   void build(World& world) override;
   StepReport step(World& world, float frameDt) override;
   void update(World& world, const StepReport& report, double simTime) override;
-  bool finished() const override { return m_finished; }
+  bool finished() const override { return m_course.done(); }
   std::string status() const override;
   bool contains(const Vec3& centre) const override;
   /// Blade travel and drag; the sand's shift along x and the fraction beyond the berm's front,
@@ -70,12 +69,9 @@ class Bulldozer final : public kit::SceneWith<BulldozerConfig> {
   std::vector<SceneBody> bodies(const World& world) const override;
   SceneBounds bounds() const override;
 
-  std::uint32_t bermGranules() const;
   /// The blade in its own frame: its box's faces in square cells of 0.8 d, a particle at every
   /// corner.
   SampledMesh bladeShape() const;
-  /// The blade's box, about its centre.
-  TriangleMesh bladeMesh() const;
   /// Where the blade's centre of mass starts, m.
   Vec3 bladeStart() const;
   /// x of the front of the blade's particles at the start, m.
@@ -85,7 +81,6 @@ class Bulldozer final : public kit::SceneWith<BulldozerConfig> {
 
   /// The phase the next substep belongs to.
   Phase phase() const { return m_phase; }
-  BodyId blade() const { return m_blade; }
   std::span<const SceneSurface> surfaces() const override { return m_surfaces; }
   const BladeLoad& load(Phase phase) const { return m_loads[static_cast<int>(phase)]; }
   const std::vector<DragSample>& dragSeries() const { return m_drag; }
@@ -95,12 +90,11 @@ class Bulldozer final : public kit::SceneWith<BulldozerConfig> {
   /// The bodies read back when the push started and ended (empty before).
   const std::vector<BodyState>& atPushStart() const { return m_atPushStart; }
   const std::vector<BodyState>& atPushEnd() const { return m_atPushEnd; }
-  /// kg, valid after build().
-  float granuleMass() const { return m_granuleMass; }
 
  private:
   std::span<const kit::Param<Config>> table() const override;
-  /// Half extents of the box the blade's particle centres lie on, m.
+  /// The blade's box about its centre; its particle centres lie on it, m.
+  TriangleMesh bladeMesh() const;
   Vec3 bladeHalfExtents() const;
   float spacing() const { return kDefaultGranuleSpacing * d(); }
   /// Height of the berm's lowest lattice centres above the floor, m.
@@ -110,24 +104,20 @@ class Bulldozer final : public kit::SceneWith<BulldozerConfig> {
   /// Ends the phases whose end the World has reached: their force and bodies are read.
   void endPhases(World& world);
   void readLoad(World& world);
-  void measureFrom(std::vector<BodyState> bodies);
 
   BodyId m_blade;
   std::vector<SceneSurface> m_surfaces;
   Phase m_phase = Phase::Waiting;
+  kit::Course m_course;  // acting from the start; the rest after the push
   BladeLoad m_loads[3];
   std::vector<DragSample> m_drag;
-  kit::Reference m_reference;
+  kit::Reference m_reference;  // the berm before the push (since build before it)
   std::vector<BodyState> m_atPushStart;
   std::vector<BodyState> m_atPushEnd;
   std::uint64_t m_pushStartStep = 0;
   std::uint64_t m_pushSteps = 0;
   std::uint64_t m_stepsRun = 0;  // World::stepCount after the last frame
   double m_timeStep = 0.0;
-  kit::SettleWait m_rest;
-  float m_bermFront = 0.0f;  // m, of the reference
-  float m_granuleMass = 0.0f;
-  bool m_finished = false;
 };
 
 }  // namespace sandphys::scenes

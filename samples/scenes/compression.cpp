@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 
+#include "scenes/kit/bodies.h"
 #include "scenes/kit/geometry.h"
+#include "scenes/kit/settings.h"
 #include "scenes/pour.h"
 
 namespace sandphys::scenes {
@@ -51,12 +54,8 @@ std::span<const kit::Param<C>> Compression::table() const {
   return kTable;
 }
 
-std::uint32_t Compression::granulesPerLayer() const {
-  return latticeSide() * latticeSide();
-}
-
-std::uint32_t Compression::granules() const {
-  return granulesPerLayer() * m_config.layers;
+std::uint64_t Compression::granules() const {
+  return std::uint64_t(latticeSide()) * latticeSide() * m_config.layers;
 }
 
 std::uint32_t Compression::latticeSide() const {
@@ -91,14 +90,9 @@ std::vector<Vec3> Compression::plungerFace() const {
   return centres;
 }
 
-ParticleTemplate Compression::plungerShape() const {
-  // A kinematic body: its mass only has to be valid.
-  return makeParticleTemplate(plungerFace(), d(), WorldSettings{}.material.density);
-}
-
-SceneSurface Compression::plungerSurface(BodyId plunger, const ParticleTemplate& shape) const {
+SceneSurface Compression::plungerSurface(BodyId plunger, const ParticleTemplate& shape,
+                                         const std::vector<Vec3>& face) const {
   // A disc one particle thick over the face's particles, about the face's centre of mass.
-  const std::vector<Vec3> face = plungerFace();
   Vec3 centre{};
   for (const Vec3& c : face) centre += c / float(face.size());
   const double radius = (m_config.radius - kPlungerGap) * d() + 0.5 * d();
@@ -107,19 +101,20 @@ SceneSurface Compression::plungerSurface(BodyId plunger, const ParticleTemplate&
 }
 
 WorldSettings Compression::worldSettings() const {
-  WorldSettings settings;
-  settings.particleDiameter = d();
-  settings.material.friction = m_config.friction;
-  kit::reserveExactly(settings, name(), std::uint64_t(granulesPerLayer()) * m_config.layers, 2,
-                      roughFloorParticles(RoughFloor{.radius = m_config.radius * d()}, d()) +
-                          plungerShape().offsets.size());
   // The lattice's top falls onto the pile like grains from an emitter at rest.
   const float blockHeight =
       (static_cast<float>(m_config.layers) * kDefaultGranuleSpacing + kClearance) * d();
-  settings.maxSpeed = pourGuardSpeed(0.0f, blockHeight, gravityMagnitude(settings));
-  settings.stepsPerContact = m_config.stepsPerContact;
-  settings.material.youngsModulus = sceneYoungsModulus(settings, m_config.youngsModulus);
-  return settings;
+  return kit::worldSettings(
+      name(), d(),
+      {.granules = granules(),
+       .bodies = 2,
+       .particles = roughFloorParticles(RoughFloor{.radius = m_config.radius * d()}, d()) +
+                    plungerFace().size(),
+       .maxSpeed = pourGuardSpeed(0.0f, blockHeight, kit::kGravity),
+       .stepsPerContact = m_config.stepsPerContact,
+       .youngsModulus = m_config.youngsModulus,
+       .friction = m_config.friction,
+       .statsEachFrame = true});
 }
 
 void Compression::build(World& world) {
@@ -128,7 +123,6 @@ void Compression::build(World& world) {
   m_curve.clear();
   m_atRest = m_atPeak = {};
   m_maxStrain = m_residualStrain = m_peakStress = m_velocity = 0.0;
-  m_granuleMass = kit::granuleMass(world.settings());
 
   const float radius = m_config.radius * d();
   const float spacing = kDefaultGranuleSpacing * d();
@@ -136,21 +130,19 @@ void Compression::build(World& world) {
   const float wallHeight = (kClearance + kHeadroom) * d() + blockHeight + kReach * d();
   world.addRoughFloor(RoughFloor{.center = {0.0f, 0.0f, 0.0f}, .radius = radius, .spacing = d()});
   world.addCollider(Cylinder{.base = {0.0f, 0.0f, 0.0f}, .radius = radius, .height = wallHeight});
-  world.addGranules(GranuleBlock{.center = {0.0f, kClearance * d() + 0.5f * blockHeight, 0.0f},
-                                 .countX = latticeSide(),
-                                 .countY = m_config.layers,
-                                 .countZ = latticeSide(),
-                                 .spacing = spacing,
-                                 .seed = m_config.seed});
+  const Count3 lattice{latticeSide(), m_config.layers, latticeSide()};
+  world.addGranules(kit::blockAbove(kClearance * d(), lattice, spacing, m_config.seed));
   // Parked above the wall until the pile has settled.
   m_bottomY = wallHeight + d();
-  const ParticleTemplate plunger = plungerShape();
+  const std::vector<Vec3> face = plungerFace();
+  // A kinematic body: its mass only has to be valid.
+  const ParticleTemplate plunger =
+      makeParticleTemplate(face, d(), WorldSettings{}.material.density);
   m_plunger = world.addBody(
       plunger, BodyDesc{.position = {0.0f, float(m_bottomY), 0.0f}, .motion = Motion::Kinematic});
-  m_surfaces = {plungerSurface(m_plunger, plunger)};
+  m_surfaces = {plungerSurface(m_plunger, plunger, face)};
   // Calm means nothing until the lattice has fallen onto the floor and slid a while.
-  const double g = gravityMagnitude(world.settings());
-  const double landing = 1.5 * fallTime(blockHeight + kClearance * d(), 0.0, g);
+  const double landing = 1.5 * fallTime(blockHeight + kClearance * d(), 0.0, kit::kGravity);
   m_settle = {0.0, landing, landing + m_config.maxSettleSeconds};
 }
 
@@ -166,22 +158,20 @@ void Compression::enter(Phase phase, double simTime) {
 void Compression::update(World& world, const StepReport& report, double simTime) {
   if (m_phase == Phase::Done) return;
   if (m_phase == Phase::Settling) {
-    const bool calm = granulesCalm(report, granules(), m_granuleMass, m_config.settleSpeed);
+    const bool calm = granulesCalm(report, static_cast<std::uint32_t>(granules()),
+                                   kit::granuleMass(world.settings()), m_config.settleSpeed);
     if (!m_settle.over(calm, simTime)) return;
     m_atRest = {simTime, world.readContacts(), world.readBodies()};
     float top = 0.0f;
-    for (const BodyState& body : m_atRest.bodies) {
-      if (body.granule && body.alive) top = std::max(top, body.position.y);
+    for (const BodyState& body : kit::granulesIn(m_atRest.bodies)) {
+      top = std::max(top, body.position.y);
     }
     m_bottomY = top + (kReach + kPlungerStart) * d();
     enter(Phase::Approach, simTime);
     world.takeBodyForces();  // from now on
   } else {
-    double force = 0.0;
-    for (const BodyForce& f : world.takeBodyForces()) {
-      if (f.body == m_plunger) force = f.meanForce().y;
-    }
-    const double stress = force / area();
+    const std::optional<BodyForce> force = kit::takeForceOn(world, m_plunger);
+    const double stress = (force ? force->meanForce().y : 0.0) / area();
     const float max = m_config.maxStress;  // float: the preload's threshold is a float product
     const auto strain = [&] { return (m_contactY - m_bottomY) / m_height; };  // from Loading on
     if (m_phase == Phase::Loading || m_phase == Phase::Unloading) {

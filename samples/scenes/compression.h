@@ -56,24 +56,19 @@ class Compression final : public kit::SceneWith<CompressionConfig> {
   /// Inside the cylinder, above the floor.
   bool contains(const Vec3& centre) const override;
   std::vector<SceneMetric> metrics(std::span<const BodyState> bodies) const override;
-  /// "stress_strain": [strain, stress Pa], with max_strain, residual_strain, recovered_fraction.
+  /// "stress_strain": [strain, stress Pa] per frame of the experiment (loading, then unloading),
+  /// with max_strain (at the turn), residual_strain (where unloading brought the stress back to
+  /// zero, or the last strain recorded if it never did) and recovered_fraction ((max − residual) /
+  /// max; 0 before the turn).
   std::vector<SceneSeries> series() const override;
   SceneBounds bounds() const override;
 
-  /// [strain, stress Pa] per frame of the experiment (loading, then unloading).
-  const std::vector<std::array<double, 2>>& stressStrain() const { return m_curve; }
-  /// Index in stressStrain() of the turn from loading to unloading.
+  /// Index in the "stress_strain" points of the turn from loading to unloading.
   std::size_t turnIndex() const { return m_turn; }
-  /// Strain at the turn, and where unloading brought the stress back to zero (the last strain
-  /// recorded if it never did).
-  double maxStrain() const { return m_maxStrain; }
-  double residualStrain() const { return m_residualStrain; }
-  /// (maxStrain − residualStrain) / maxStrain; 0 before the turn.
-  double recoveredFraction() const;
   const Snapshot& atRest() const { return m_atRest; }
   const Snapshot& atPeak() const { return m_atPeak; }
-  /// Granules per lattice layer inside the cylinder.
-  std::uint32_t granulesPerLayer() const;
+  /// Granules of the lattice the pile is dropped from.
+  std::uint64_t granules() const;
   std::span<const SceneSurface> surfaces() const override { return m_surfaces; }
 
  private:
@@ -83,18 +78,17 @@ class Compression final : public kit::SceneWith<CompressionConfig> {
   double area() const;
   /// The plunger's face: a disc of particles in the body's y = 0 plane.
   std::vector<Vec3> plungerFace() const;
-  ParticleTemplate plungerShape() const;
   /// The plunger drawn as a disc.
-  SceneSurface plungerSurface(BodyId plunger, const ParticleTemplate& shape) const;
-  std::uint32_t granules() const;
+  SceneSurface plungerSurface(BodyId plunger, const ParticleTemplate& shape,
+                              const std::vector<Vec3>& face) const;
   /// Enters `phase`, the plunger moving as it says from where it is.
   void enter(Phase phase, double simTime);
+  double recoveredFraction() const;
 
   Phase m_phase = Phase::Settling;
   kit::SettleWait m_settle;
   BodyId m_plunger;
   std::vector<SceneSurface> m_surfaces;
-  float m_granuleMass = 0.0f;
   double m_bottomY = 0.0;  // the plunger's bottom face now, m
   double m_moveFromY = 0.0, m_moveStart = 0.0, m_velocity = 0.0;  // its motion: m, s, m/s
   double m_contactY = 0.0;  // the bottom face where the experiment starts, m

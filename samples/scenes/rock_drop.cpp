@@ -10,13 +10,17 @@
 #include <utility>
 
 #include "scenes/eigen_conversions.h"
+#include "scenes/kit/bodies.h"
+#include "scenes/kit/checks.h"
 #include "scenes/kit/geometry.h"
+#include "scenes/kit/settings.h"
 
 namespace sandphys::scenes {
 
 namespace {
 
 using kit::kReach;
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
 // Gaps between the walls and the nearest lattice centres, and between the floor and the lowest
 // ones (the reach and the jitter, with room), and room above the rock when it is let go, d.
 constexpr float kWallGap = 1.4f;
@@ -74,30 +78,23 @@ Quat dropOrientation(float tilt) {
                 Eigen::AngleAxisf(radians(kYawDegrees), Eigen::Vector3f::UnitY()));
 }
 
-// Lowest and highest corner of the box around some vertices, turned about an origin and relative
-// to it, m.
-struct Extent {
-  Eigen::Vector3f min = Eigen::Vector3f::Constant(std::numeric_limits<float>::infinity());
-  Eigen::Vector3f max = -min;
-  float below() const { return -min.y(); }
-  float above() const { return max.y(); }
-};
-
-Extent extentOf(const std::vector<Vec3>& vertices,
-                const Eigen::Quaternionf& q = Eigen::Quaternionf::Identity(),
-                const Eigen::Vector3f& origin = Eigen::Vector3f::Zero()) {
-  Extent extent;
+// The box around some vertices turned about an origin, relative to it, m.
+SceneBounds extentOf(const std::vector<Vec3>& vertices, Quat q = {}, Vec3 origin = {}) {
+  SceneBounds extent{{kInfinity, kInfinity, kInfinity}, {-kInfinity, -kInfinity, -kInfinity}};
   for (const Vec3& v : vertices) {
-    const Eigen::Vector3f r = q * (toEigen(v) - origin);
-    extent.min = extent.min.cwiseMin(r);
-    extent.max = extent.max.cwiseMax(r);
+    const Vec3 r = rotate(q, v - origin);
+    extent.min = {std::min(extent.min.x, r.x), std::min(extent.min.y, r.y),
+                  std::min(extent.min.z, r.z)};
+    extent.max = {std::max(extent.max.x, r.x), std::max(extent.max.y, r.y),
+                  std::max(extent.max.z, r.z)};
   }
   return extent;
 }
 
 float largestExtent(const TriangleMesh& mesh) {
-  const Extent extent = extentOf(mesh.vertices);
-  return (extent.max - extent.min).maxCoeff();
+  const SceneBounds extent = extentOf(mesh.vertices);
+  const Vec3 size = extent.max - extent.min;
+  return std::max({size.x, size.y, size.z});
 }
 
 }  // namespace
@@ -112,9 +109,10 @@ struct RockDrop::LoadedRock {
   RockKey key;
   TriangleMesh mesh;  // scaled to metres
   SampledMesh sampled;
-  Eigen::Vector3f centreOfMass;  // in the mesh's frame, m
-  Extent drop;                   // turned as the rock is let go: the box and the bed follow it
-  Extent turned(const Quat& q) const { return extentOf(mesh.vertices, toEigen(q), centreOfMass); }
+  Vec3 centreOfMass;  // in the mesh's frame, m
+  // Turned as the rock is let go, about its centre of mass: the box and the bed follow it.
+  SceneBounds drop;
+  SceneBounds turned(const Quat& q) const { return extentOf(mesh.vertices, q, centreOfMass); }
 };
 
 std::span<const kit::Param<C>> RockDrop::table() const {
@@ -130,7 +128,7 @@ const RockDrop::LoadedRock& RockDrop::loadedRock() const {
   // validateMesh guarantees a triangle with an area, so the extent is not zero.
   const float scale =
       m_config.fit > 0.0f ? m_config.fit / largestExtent(rock->mesh) : m_config.scale;
-  for (Vec3& v : rock->mesh.vertices) v = {v.x * scale, v.y * scale, v.z * scale};
+  for (Vec3& v : rock->mesh.vertices) v = v * scale;
   // A closed mesh is filled as well: a grain that gets through the surface layer in a hard
   // landing still meets particles inside instead of an empty shell. An open one has no inside.
   const bool closed = analyseEdges(rock->mesh).closed();
@@ -143,14 +141,10 @@ const RockDrop::LoadedRock& RockDrop::loadedRock() const {
   // The time step is sized for contacts between sand particles; a body lighter than one of them
   // has shorter contacts than the step resolves and would be thrown about.
   const float lightest = tetrahedronTemplate(d(), Material{}.density).mass / 4.0f;
-  if (rock->sampled.shape.mass < lightest) {
-    throw InvalidArgument(
-        "rock-drop: the rock from '" + m_config.mesh + "' at scale " + numberText(scale) +
-        " and density " + numberText(m_config.density) + " kg/m^3 weighs " +
-        numberText(rock->sampled.shape.mass) + " kg, less than one sand particle (" +
-        numberText(lightest) +
-        " kg), which the time step cannot resolve: raise scale (or fit) or density");
-  }
+  kit::require(rock->sampled.shape.mass >= lightest, name(), "the rock from '", m_config.mesh,
+               "' at scale ", scale, " and density ", m_config.density, " kg/m^3 weighs ",
+               rock->sampled.shape.mass, " kg, less than one sand particle (", lightest,
+               " kg), which the time step cannot resolve: raise scale (or fit) or density");
   m_loaded = std::move(rock);
   return *m_loaded;
 }
@@ -159,17 +153,13 @@ const TriangleMesh& RockDrop::rockMesh() const {
   return loadedRock().mesh;
 }
 
-std::uint32_t RockDrop::rockParticles() const {
-  return static_cast<std::uint32_t>(loadedRock().sampled.centres.size());
-}
-
 Count3 RockDrop::bedCounts() const {
   // The box's inner half width (kWallGap beyond the lattice's outer centres) holds everything the
   // rock covers as it is let go, so that it lands on sand, not on a wall.
-  const Extent& turned = loadedRock().drop;
+  const SceneBounds& turned = loadedRock().drop;
   Count3 counts = m_config.bed;
-  for (const auto& [axis, reach] : {std::pair{0, std::max(-turned.min.x(), turned.max.x())},
-                                    std::pair{2, std::max(-turned.min.z(), turned.max.z())}}) {
+  for (const auto& [axis, reach] : {std::pair{0, std::max(-turned.min.x, turned.max.x)},
+                                    std::pair{2, std::max(-turned.min.z, turned.max.z)}}) {
     const float needed = (reach + 0.5f * d()) / d() - kWallGap;  // lattice half width, d
     const auto fitting = static_cast<std::uint32_t>(
         std::ceil(std::max(0.0f, 2.0f * needed / kDefaultGranuleSpacing - 1e-4f)) + 1.0f);
@@ -190,22 +180,23 @@ float RockDrop::boxHeight() const {
       (kBedClearance + static_cast<float>(m_config.bed[1] - 1) * kDefaultGranuleSpacing + kReach) *
       d();
   const float radius = 0.5f * d();
-  const Extent& rock = loadedRock().drop;
-  return latticeTop + m_config.dropHeight * d() + radius + rock.below() + rock.above() + radius +
+  const SceneBounds& rock = loadedRock().drop;
+  return latticeTop + m_config.dropHeight * d() + radius - rock.min.y + rock.max.y + radius +
          kHeadroom * d();
 }
 
 WorldSettings RockDrop::worldSettings() const {
-  WorldSettings settings;
-  settings.particleDiameter = d();
-  kit::reserveExactly(settings, name(), kit::granuleCount(bedCounts()), 1, rockParticles());
-  const Extent& rock = loadedRock().drop;
-  const float lowestAtDrop = boxHeight() - kHeadroom * d() - rock.above() - rock.below();
-  settings.maxSpeed = std::max(
-      kMinGuardSpeed, kGuardMargin * std::sqrt(2.0f * gravityMagnitude(settings) * lowestAtDrop));
-  settings.stepsPerContact = kStepsPerContact;
-  settings.material.youngsModulus = sceneYoungsModulus(settings);
-  return settings;
+  const LoadedRock& rock = loadedRock();
+  const float lowestAtDrop = boxHeight() - kHeadroom * d() - rock.drop.max.y + rock.drop.min.y;
+  return kit::worldSettings(
+      name(), d(),
+      {.granules = kit::granuleCount(bedCounts()),
+       .bodies = 1,
+       .particles = rock.sampled.centres.size(),
+       .maxSpeed =
+           std::max(kMinGuardSpeed, kGuardMargin * std::sqrt(2.0f * kit::kGravity * lowestAtDrop)),
+       .stepsPerContact = kStepsPerContact,
+       .statsEachFrame = true});
 }
 
 void RockDrop::build(World& world) {
@@ -218,15 +209,8 @@ void RockDrop::build(World& world) {
   world.addCollider(Box{.center = {0.0f, 0.5f * height, 0.0f},
                         .halfExtents = {halfWidth(0), 0.5f * height, halfWidth(2)},
                         .inside = true});
-  const float spacing = kDefaultGranuleSpacing * d();
-  const Count3 bed = bedCounts();
-  world.addGranules(GranuleBlock{
-      .center = {0.0f, kBedClearance * d() + 0.5f * kit::blockSpan(bed[1], spacing), 0.0f},
-      .countX = bed[0],
-      .countY = bed[1],
-      .countZ = bed[2],
-      .spacing = spacing,
-      .seed = m_config.seed});
+  world.addGranules(kit::blockAbove(kBedClearance * d(), bedCounts(), kDefaultGranuleSpacing * d(),
+                                    m_config.seed));
 }
 
 float RockDrop::bedTopOf(std::span<const ParticleState> particles) const {
@@ -253,18 +237,18 @@ float RockDrop::bedTopOf(std::span<const ParticleState> particles) const {
 void RockDrop::drop(World& world, double simTime) {
   // Before the drop every particle is sand.
   m_run.bedTop = bedTopOf(world.readParticles());
+  const LoadedRock& rock = loadedRock();
   const Quat q = dropOrientation(m_config.tilt);
-  const float y = m_run.bedTop + m_config.dropHeight * d() + 0.5f * d() + loadedRock().drop.below();
-  m_run.rock = world.addBody(loadedRock().sampled.shape,
-                             BodyDesc{.position = {0.0f, y, 0.0f}, .orientation = q});
-  m_run.surfaces = {
-      surfaceOf(m_run.rock, loadedRock().mesh, loadedRock().sampled, BodyMaterial::Stone)};
-  m_run.startUp = toVec3(toEigen(q).conjugate() * Eigen::Vector3f::UnitY());
+  const float y = m_run.bedTop + m_config.dropHeight * d() + 0.5f * d() - rock.drop.min.y;
+  m_run.rock =
+      world.addBody(rock.sampled.shape, BodyDesc{.position = {0.0f, y, 0.0f}, .orientation = q});
+  m_run.surfaces = {surfaceOf(m_run.rock, rock.mesh, rock.sampled, BodyMaterial::Stone)};
+  m_run.startUp = rotate(conjugate(q), {0.0f, 1.0f, 0.0f});
   m_course.endAct(simTime);
   // The first check after the fall onto the bed: before it the rock is in the air (and calm at
   // the very start).
-  const double g = gravityMagnitude(world.settings());
-  m_run.nextCheck = simTime + fallTime(m_config.dropHeight * d(), 0.0, g) + kCheckSeconds;
+  m_run.nextCheck =
+      simTime + fallTime(m_config.dropHeight * d(), 0.0, kit::kGravity) + kCheckSeconds;
 }
 
 void RockDrop::update(World& world, const StepReport& report, double simTime) {
@@ -279,9 +263,8 @@ void RockDrop::update(World& world, const StepReport& report, double simTime) {
   m_run.nextCheck = simTime + kCheckSeconds;
   const BodyState state = world.readBody(m_run.rock);
   // No point of the rock moves faster than |v| + |ω| · (its farthest particle).
-  const float fastest =
-      toEigen(state.velocity).norm() +
-      toEigen(state.angularVelocity).norm() * loadedRock().sampled.shape.boundingRadius;
+  const float fastest = length(state.velocity) +
+                        length(state.angularVelocity) * loadedRock().sampled.shape.boundingRadius;
   m_run.calmChecks = fastest < m_config.restSpeed ? m_run.calmChecks + 1 : 0;
   if (m_run.calmChecks == 1) m_run.restedAt = simTime;
   m_run.finished = atRest();
@@ -304,41 +287,17 @@ bool RockDrop::contains(const Vec3& centre) const {
          std::abs(centre.z) <= halfWidth(2);
 }
 
-Vec3 RockDrop::toRockFrame(const BodyState& state, const Vec3& point) const {
-  return toVec3(toEigen(state.orientation).conjugate() *
-                    (toEigen(point) - toEigen(state.position)) +
-                loadedRock().centreOfMass);
-}
-
-float RockDrop::lowestPoint(const BodyState& state) const {
-  return state.position.y + loadedRock().turned(state.orientation).min.y();
-}
-
-float RockDrop::upright(const BodyState& state) const {
-  return std::clamp((toEigen(state.orientation) * toEigen(m_run.startUp)).y(), -1.0f, 1.0f);
-}
-
 std::vector<SceneBody> RockDrop::bodies(const World& world) const {
   if (!dropped()) return {};
-  const BodyState state = world.readBody(m_run.rock);
-  return {{.name = "rock",
-           .position = state.position,
-           .orientation = state.orientation,
-           .speed = toEigen(state.velocity).norm(),
-           .tiltDegrees = std::acos(upright(state)) * 180.0f / std::numbers::pi_v<float>}};
+  return {kit::sceneBody("rock", world.readBody(m_run.rock), m_run.startUp)};
 }
 
 std::vector<SceneMetric> RockDrop::metrics(std::span<const BodyState> bodies) const {
-  std::uint32_t granules = 0;
-  const BodyState* rock = nullptr;
-  for (const BodyState& body : bodies) {
-    if (body.granule && body.alive) ++granules;
-    if (dropped() && body.id.index == m_run.rock.index) rock = &body;
-  }
+  const BodyState* rock = kit::find(bodies, m_run.rock);
   const LoadedRock& loaded = loadedRock();
   const float extent = largestExtent(loaded.mesh);
   std::vector<SceneMetric> out{
-      {"granules", static_cast<double>(granules)},
+      {"granules", static_cast<double>(std::ranges::distance(kit::granulesIn(bodies)))},
       {"rock_particles", static_cast<double>(loaded.sampled.centres.size())},
       {"rock_surface_particles", static_cast<double>(loaded.sampled.surfaceParticles)},
       {"rock_mass_kg", loaded.sampled.shape.mass},
@@ -349,15 +308,16 @@ std::vector<SceneMetric> RockDrop::metrics(std::span<const BodyState> bodies) co
       {"bed_top_m", m_run.bedTop},
   };
   if (!rock) return out;
-  const float lowest = lowestPoint(*rock);
+  const float lowest = rock->position.y + loaded.turned(rock->orientation).min.y;
+  const SceneBody now = kit::sceneBody("rock", *rock, m_run.startUp);
   out.insert(out.end(), {
                             {"rock_lowest_m", lowest},
                             // Positive when the rock's lowest point is below the bed's top.
                             {"rock_rest_depth_m", m_run.bedTop - lowest},
                             {"rock_rest_depth_d", (m_run.bedTop - lowest) / d()},
                             {"rock_height_m", rock->position.y},
-                            {"rock_speed_m_per_s", toEigen(rock->velocity).norm()},
-                            {"rock_tilt_deg", std::acos(upright(*rock)) * 180.0 / std::numbers::pi},
+                            {"rock_speed_m_per_s", now.speed},
+                            {"rock_tilt_deg", now.tiltDegrees},
                             {"rock_at_rest", atRest() ? 1.0 : 0.0},
                             {"time_to_rest_s", atRest() ? m_run.restedAt - droppedAt() : -1.0},
                         });

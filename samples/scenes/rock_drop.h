@@ -51,27 +51,20 @@ class RockDrop final : public kit::SceneWith<RockDropConfig> {
   bool finished() const override { return m_run.finished; }
   std::string status() const override;
   bool contains(const Vec3& centre) const override;  // inside the box
-  /// The bed's top, the rock's depth below it, its speed and tilt, the time it took to stop.
+  /// The bed's top, the rock's lowest point and depth below it, its speed and tilt, the time it
+  /// took to stop.
   std::vector<SceneMetric> metrics(std::span<const BodyState> bodies) const override;
   std::vector<SceneBody> bodies(const World& world) const override;
   SceneBounds bounds() const override;
 
   /// Config::bed, grown along x and z until the box holds the rock as it is let go.
   Count3 bedCounts() const;
-  std::uint32_t rockParticles() const;
   /// The rock's mesh, scaled to metres, in its file's frame.
   const TriangleMesh& rockMesh() const;
   bool dropped() const { return m_run.rock.isValid(); }
   BodyId rock() const { return m_run.rock; }
   std::span<const SceneSurface> surfaces() const override { return m_run.surfaces; }
   double droppedAt() const { return m_course.actStart(); }  // s, negative before the drop
-  /// Height of the settled bed's top at the drop, m (0 before): the median, over the bed's inside,
-  /// of the highest grain surface in each column 2 d wide.
-  float bedTop() const { return m_run.bedTop; }
-  /// A point of the world in the rock's mesh frame, for the rock `state`.
-  Vec3 toRockFrame(const BodyState& state, const Vec3& point) const;
-  /// Height of the rock mesh's lowest vertex for the rock `state`, m.
-  float lowestPoint(const BodyState& state) const;
 
  private:
   struct LoadedRock;
@@ -81,8 +74,6 @@ class RockDrop final : public kit::SceneWith<RockDropConfig> {
   float boxHeight() const;
   float bedTopOf(std::span<const ParticleState> particles) const;
   void drop(World& world, double simTime);
-  /// Cosine of the angle between the rock's up axis at the drop and now.
-  float upright(const BodyState& state) const;
   bool atRest() const;
 
   // The mesh loaded and sampled for the current parameters; settings() is const but fills it.
@@ -90,6 +81,8 @@ class RockDrop final : public kit::SceneWith<RockDropConfig> {
   kit::Course m_course;  // the bed's settle and the drop
   struct Run {
     BodyId rock;
+    // The settled bed's top at the drop, m: the median, over the bed's inside, of the highest
+    // grain surface in each column kTopColumn d wide.
     float bedTop = 0.0f;
     Vec3 startUp{0.0f, 1.0f, 0.0f};  // the rock's up axis at the drop, in its own frame
     double nextCheck = 0.0;          // of the rock's speed, s

@@ -172,15 +172,16 @@ nlohmann::json compressionAndForces(const ExperimentContext& context,
     const samples::RunSummary run = runToEnd(context, scene, kLongestRunSeconds);
     const double d = config.particleDiameter;
     nlohmann::json curve = nlohmann::json::array();
-    for (const auto& point : scene.stressStrain()) curve.push_back({point[0], point[1]});
+    const scenes::SceneSeries stressStrain = scene.series().at(0);
+    for (const auto& point : stressStrain.points) curve.push_back({point[0], point[1]});
     nlohmann::json entry = runFacts(run);
     entry.update({{"friction", friction},
-                  {"granules", scene.granulesPerLayer() * config.layers},
+                  {"granules", scene.granules()},
                   {"stress_strain", curve},
-                  {"turn_index", scene.turnIndex()},
-                  {"max_strain", scene.maxStrain()},
-                  {"residual_strain", scene.residualStrain()},
-                  {"recovered_fraction", scene.recoveredFraction()}});
+                  {"turn_index", scene.turnIndex()}});
+    // max_strain, residual_strain and recovered_fraction.
+    for (const scenes::SceneMetric& derived : stressStrain.derived)
+      entry[derived.name] = derived.value;
     if (scene.atRest().time >= 0.0) entry["rest"] = forces(scene.atRest(), d, true);
     if (scene.atPeak().time >= 0.0) entry["peak"] = forces(scene.atPeak(), d, false);
     runs.push_back(std::move(entry));

@@ -120,13 +120,14 @@ class BulldozerRun : public ::testing::Test {
 
   static const Bulldozer& scene() { return *s_scene; }
   static float d() { return s_scene->config().particleDiameter; }
-  static double weight() { return momentum(s_end, s_scene->granuleMass()).mass * kG; }
+  static float granuleMass() { return kit::granuleMass(s_world->settings()); }
+  static double weight() { return momentum(s_end, granuleMass()).mass * kG; }
 
   // The bound's terms over `phase`, between the bodies read at its start and at its end.
   static Balance balance(Phase phase, const std::vector<BodyState>& from,
                          const std::vector<BodyState>& to) {
-    const Momentum p0 = momentum(from, scene().granuleMass());
-    const Momentum p1 = momentum(to, scene().granuleMass());
+    const Momentum p0 = momentum(from, granuleMass());
+    const Momentum p1 = momentum(to, granuleMass());
     const Bulldozer::BladeLoad& load = scene().load(phase);
     Balance b;
     b.seconds = static_cast<double>(load.substeps) * s_world->timeStep();
@@ -173,7 +174,8 @@ TEST_F(BulldozerRun, BladeKeepsExactlyToItsPath) {
   const SampledMesh blade = scene().bladeShape();
   EXPECT_TRUE(blade.closed);
   EXPECT_TRUE(blade.warnings.empty());
-  EXPECT_EQ(s_world->particleCount(), 4 * scene().bermGranules() + blade.centres.size());
+  EXPECT_EQ(s_world->particleCount(),
+            4 * kit::granuleCount(scene().config().berm) + blade.centres.size());
   EXPECT_EQ(s_world->particleCount(), s_world->particleCapacity());
   EXPECT_EQ(s_world->bodyCount(), s_world->bodyCapacity());
 
@@ -195,7 +197,7 @@ TEST_F(BulldozerRun, BladeKeepsExactlyToItsPath) {
   EXPECT_GT(waiting, 5u);
   EXPECT_GT(pushing, 5u);
   EXPECT_GT(stopped, 2u);
-  const BodyState end = s_world->readBody(scene().blade());
+  const SceneBody end = scene().bodies(*s_world).at(0);
   EXPECT_FLOAT_EQ(end.position.x, start.x + static_cast<float>(travel));
 }
 
@@ -263,14 +265,14 @@ TEST_F(BulldozerRun, DragResistsThePushAsTheFloorFrictionOfTheSandItMoves) {
   const double mean = push.bladeX / push.seconds;
   double carried = 0.0;  // kg
   for (const BodyState& body : scene().atPushEnd()) {
-    if (body.granule && body.velocity.x > 0.5f * kBladeSpeed) carried += scene().granuleMass();
+    if (body.granule && body.velocity.x > 0.5f * kBladeSpeed) carried += granuleMass();
   }
   const double mu = scene().config().floorFriction;
   std::printf(
       "push: mean drag %.2f N, peak %.2f N, carried %.2f kg (mu g m %.2f N), floor %.3f "
       "N s of mu * %.3f N s\n",
       mean, peak, carried, mu * kG * carried, push.floorX, push.normal);
-  EXPECT_GT(carried, 0.5 * momentum(s_end, scene().granuleMass()).mass);
+  EXPECT_GT(carried, 0.5 * momentum(s_end, granuleMass()).mass);
   EXPECT_GE(mean, mu * kG * carried);
   EXPECT_GE(peak, mean);
   EXPECT_LT(push.floorX, 0.0) << "the floor must hold the sand back";
@@ -364,8 +366,8 @@ TEST_F(BulldozerRun, SandComesToRestAfterTheStop) {
       EXPECT_TRUE(scene().contains(body.position)) << "granule " << body.id.index;
     }
   }
-  const Momentum pushed = momentum(scene().atPushEnd(), scene().granuleMass());
-  const Momentum now = momentum(s_end, scene().granuleMass());
+  const Momentum pushed = momentum(scene().atPushEnd(), granuleMass());
+  const Momentum now = momentum(s_end, granuleMass());
   std::printf("sand's momentum along x: %.3f N s at the stop, %.4f N s at the end\n", pushed.x,
               now.x);
   EXPECT_GT(pushed.x, 0.5 * pushed.mass * kBladeSpeed);
