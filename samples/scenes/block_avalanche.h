@@ -56,8 +56,6 @@ class BlockAvalanche final : public Scene {
   /// "low-block" and "plank", as Bullet has them now.
   std::vector<SceneBody> bodies(const World& /*world*/) const override { return blockBodies(); }
   std::vector<RecordedInput> externalInputs() const override;
-  /// The blocks, in wood.
-  std::span<const SceneSurface> surfaces() const override { return m_surfaces; }
 
  private:
   struct Blocks;
@@ -67,7 +65,6 @@ class BlockAvalanche final : public Scene {
   Config m_config;
   SlopeAvalanche m_slope;
   std::unique_ptr<Blocks> m_blocks;
-  std::vector<SceneSurface> m_surfaces;
 };
 
 }  // namespace sandphys::scenes

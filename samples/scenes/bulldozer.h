@@ -81,7 +81,6 @@ class Bulldozer final : public kit::SceneWith<BulldozerConfig> {
 
   /// The phase the next substep belongs to.
   Phase phase() const { return m_phase; }
-  std::span<const SceneSurface> surfaces() const override { return m_surfaces; }
   const BladeLoad& load(Phase phase) const { return m_loads[static_cast<int>(phase)]; }
   const std::vector<DragSample>& dragSeries() const { return m_drag; }
   /// Substep at which the push starts and how many it lasts (0 when the blade does not move).
@@ -106,7 +105,6 @@ class Bulldozer final : public kit::SceneWith<BulldozerConfig> {
   void readLoad(World& world);
 
   BodyId m_blade;
-  std::vector<SceneSurface> m_surfaces;
   Phase m_phase = Phase::Waiting;
   kit::Course m_course;  // acting from the start; the rest after the push
   BladeLoad m_loads[3];

@@ -69,7 +69,6 @@ class Compression final : public kit::SceneWith<CompressionConfig> {
   const Snapshot& atPeak() const { return m_atPeak; }
   /// Granules of the lattice the pile is dropped from.
   std::uint64_t granules() const;
-  std::span<const SceneSurface> surfaces() const override { return m_surfaces; }
 
  private:
   enum class Phase { Settling, Approach, Preload, Easing, Loading, Unloading, Done };
@@ -88,7 +87,6 @@ class Compression final : public kit::SceneWith<CompressionConfig> {
   Phase m_phase = Phase::Settling;
   kit::SettleWait m_settle;
   BodyId m_plunger;
-  std::vector<SceneSurface> m_surfaces;
   double m_bottomY = 0.0;  // the plunger's bottom face now, m
   double m_moveFromY = 0.0, m_moveStart = 0.0, m_velocity = 0.0;  // its motion: m, s, m/s
   double m_contactY = 0.0;  // the bottom face where the experiment starts, m

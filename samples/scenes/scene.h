@@ -177,8 +177,9 @@ class Scene {
   virtual std::vector<SceneBody> bodies(const World& /*world*/) const { return {}; }
 
   /// The surfaces of the scene's bodies that are not sand, for the renderer (the bodies
-  /// build() added; empty before). The default has none: every body is drawn as its particles.
-  virtual std::span<const SceneSurface> surfaces() const { return {}; }
+  /// build() added; empty before): m_surfaces unless overridden. A body without one is drawn as
+  /// its particles.
+  virtual std::span<const SceneSurface> surfaces() const { return m_surfaces; }
 
   /// Body states set from outside the sand during the last step, in order: what a Bullet bridge
   /// pushed (Bridge::pushes). A recording keeps them as the frame's external inputs and a replay
@@ -196,6 +197,10 @@ class Scene {
   /// (contentsOf). The default frames them, or the whole scene while it holds none; a scene whose
   /// action goes elsewhere (a run-out, a pour still to come) widens the focus or turns the eye.
   virtual SceneView view(const std::optional<SceneBounds>& contents) const;
+
+ protected:
+  /// What surfaces() returns; build() fills it.
+  std::vector<SceneSurface> m_surfaces;
 
  private:
   ContactLaw m_contactLaw = ContactLaw::HertzMindlin;
