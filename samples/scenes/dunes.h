@@ -5,7 +5,7 @@
 #include <span>
 #include <vector>
 
-#include "scenes/kit/course.h"
+#include "scenes/kit/pour.h"
 #include "scenes/kit/scene_with.h"
 
 namespace sandphys::scenes {
@@ -50,7 +50,7 @@ class Dunes final : public kit::SceneWith<DunesConfig> {
   void build(World& world) override;
   void update(World& world, const StepReport& report, double simTime) override;
   bool finished() const override { return m_course.done(); }
-  std::string status() const override;
+  std::string status() const override { return m_course.status(); }
   bool contains(const Vec3& centre) const override;  // on or above the floor
   /// The crests, the saddle and its depth below the lower crest, the granules on the floor.
   std::vector<SceneMetric> metrics(std::span<const BodyState> bodies) const override;
@@ -64,11 +64,10 @@ class Dunes final : public kit::SceneWith<DunesConfig> {
 
  private:
   std::span<const kit::Param<Config>> table() const override;
-  float emitterSpeed() const;
+  kit::Pour pour() const;
 
   Profile m_profile;
-  kit::Course m_course;
-  std::uint32_t m_poured = 0;
+  kit::PourCourse m_course;
 };
 
 }  // namespace sandphys::scenes

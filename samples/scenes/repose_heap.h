@@ -6,7 +6,7 @@
 
 #include <sandphys/analysis/heap.h>
 
-#include "scenes/kit/course.h"
+#include "scenes/kit/pour.h"
 #include "scenes/kit/scene_with.h"
 
 namespace sandphys::scenes {
@@ -44,7 +44,7 @@ class ReposeHeap final : public kit::SceneWith<ReposeHeapConfig> {
   void build(World& world) override;
   void update(World& world, const StepReport& report, double simTime) override;
   bool finished() const override { return m_course.done(); }
-  std::string status() const override;
+  std::string status() const override { return m_course.status(); }
   /// On or above the floor, within its radius.
   bool contains(const Vec3& centre) const override;
   /// The angle of repose and its fit, the heap's height, the granules on and off the floor.
@@ -56,17 +56,15 @@ class ReposeHeap final : public kit::SceneWith<ReposeHeapConfig> {
   /// The heap's surface and angle from the granules in `bodies`; throws InvalidArgument when the
   /// heap is too small to have a flank.
   analysis::HeapAngle heapAngle(std::span<const BodyState> bodies) const;
-  /// Speed of the emitter's granules, m/s.
-  float emitterSpeed() const;
   /// Floor radius, d, on which a cone of `granules` settled granules with its flank at
   /// `angleDegrees` ends a margin short of the edge.
   static float floorRadiusHolding(std::uint32_t granules, float angleDegrees);
 
  private:
   std::span<const kit::Param<Config>> table() const override;
+  kit::Pour pour() const;
 
-  kit::Course m_course;
-  std::uint32_t m_poured = 0;
+  kit::PourCourse m_course;
 };
 
 }  // namespace sandphys::scenes

@@ -1,10 +1,11 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
 
-#include "scenes/kit/course.h"
+#include "scenes/kit/pour.h"
 #include "scenes/kit/scene_with.h"
 
 namespace sandphys::scenes {
@@ -39,7 +40,7 @@ class SandBoxPour final : public kit::SceneWith<SandBoxPourConfig> {
   void build(World& world) override;
   void update(World& world, const StepReport& report, double simTime) override;
   bool finished() const override { return m_course.done(); }
-  std::string status() const override;
+  std::string status() const override { return m_course.status(); }
   /// Inside the box.
   bool contains(const Vec3& centre) const override;
   std::vector<SceneMetric> metrics(std::span<const BodyState> bodies) const override;
@@ -47,29 +48,19 @@ class SandBoxPour final : public kit::SceneWith<SandBoxPourConfig> {
   /// The box the sand is poured into.
   SceneView view(const std::optional<SceneBounds>&) const override { return {bounds()}; }
 
-  std::uint32_t bedGranules() const;
-  /// Granules in one layer of the emitter's lattice: the most its count can lag rate × time.
-  std::uint32_t layerGranules() const;
-  /// Downward speed of the emitted granules, m/s.
-  float emitterSpeed() const;
-  std::uint32_t poured() const { return m_poured; }
-  /// Simulated time at which the pour started, s (negative before it).
-  double pourStartTime() const { return m_course.actStart(); }
-  /// Top of the pile above the floor, m: the 99th percentile of the centre heights of the
-  /// contained granules slower than 0.3 m/s (not the ones still falling) plus the granule's reach.
-  float pileHeight(std::span<const BodyState> bodies) const;
-  /// Radius of the pile's footprint around the pour axis, m: as pileHeight, of their horizontal
-  /// distances from the axis.
-  float footprintRadius(std::span<const BodyState> bodies) const;
-
  private:
   std::span<const kit::Param<Config>> table() const override;
   float halfWidth() const { return 0.5f * m_config.boxWidth * d(); }
-  float emitterHalfExtent() const { return 0.5f * m_config.emitterSize * d(); }
-  void startPour(World& world);
+  std::uint32_t bedGranules() const {
+    return m_config.block[0] * m_config.block[1] * m_config.block[2];
+  }
+  kit::Pour pour() const;
+  /// Top and footprint radius of the pile, m: the 99th percentiles of the heights and of the
+  /// distances from the pour axis of the contained granules slower than 0.3 m/s (not the ones
+  /// still falling), each plus the granule's reach; 0 without such granules.
+  std::array<float, 2> pileExtent(std::span<const BodyState> bodies) const;
 
-  kit::Course m_course;
-  std::uint32_t m_poured = 0;
+  kit::PourCourse m_course;
 };
 
 }  // namespace sandphys::scenes
