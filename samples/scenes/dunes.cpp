@@ -37,14 +37,6 @@ std::span<const kit::Param<C>> Dunes::table() const {
   return kTable;
 }
 
-kit::Pour Dunes::pour() const {
-  return {.d = d(),
-          .outlet = m_config.outlet,
-          .height = m_config.pourHeight,
-          .rate = m_config.rate,
-          .granules = m_config.granules};
-}
-
 WorldSettings Dunes::worldSettings() const {
   const Config& c = m_config;
   kit::require(0.5f * c.separation + 0.5f * c.outlet + kit::kReach <= c.floorHalfLength &&

@@ -44,14 +44,6 @@ std::span<const kit::Param<C>> ReposeHeap::table() const {
   return kTable;
 }
 
-kit::Pour ReposeHeap::pour() const {
-  return {.d = d(),
-          .outlet = m_config.outlet,
-          .height = m_config.pourHeight,
-          .rate = m_config.rate,
-          .granules = m_config.granules};
-}
-
 float ReposeHeap::floorRadiusHolding(std::uint32_t granules, float angleDegrees) {
   kit::require(angleDegrees > 0.0f && angleDegrees < 90.0f, "repose-heap", "the flank's angle ",
                angleDegrees, "° must lie in (0°, 90°)");
@@ -87,11 +79,6 @@ void ReposeHeap::build(World& world) {
   world.addRoughFloor(RoughFloor{.center = {0.0f, 0.0f, 0.0f}, .radius = radius, .spacing = d()});
   world.addSink(pour().sink(radius));
   world.addEmitter(pour().emitter(0.0f, m_config.seed));
-}
-
-void ReposeHeap::update(World& world, const StepReport& report, double simTime) {
-  m_course.count(world, simTime);
-  m_course.update(report, simTime);
 }
 
 bool ReposeHeap::contains(const Vec3& centre) const {

@@ -29,8 +29,8 @@ const auto kTable = std::to_array<kit::Param<C>>({
     {"granules", &C::granules, "", 1, 1e8, "granules poured in total (the emitter's budget)"},
     {"box-width", &C::boxWidth, "d", 4.0, 1e4, "inner width of the box along x and z"},
     {"box-height", &C::boxHeight, "d", 4.0, 1e4, "inner height of the box"},
-    {"emitter-height", &C::emitterHeight, "d", 2.0, 1e4, "height of the emitter above the floor"},
-    {"emitter-size", &C::emitterSize, "d", 0.5, 1e4, "width of the square emitter"},
+    {"emitter-height", &C::pourHeight, "d", 2.0, 1e4, "height of the emitter above the floor"},
+    {"emitter-size", &C::outlet, "d", 0.5, 1e4, "width of the square emitter"},
     {"block", &C::block, "", 0, 1024,
      "bed of granules on the floor before the pour, x, y (layers), z; 0,0,0 for none"},
     {"settle-speed", &C::settleSpeed, "m/s", 0.0, 10.0,
@@ -48,24 +48,15 @@ std::span<const kit::Param<C>> SandBoxPour::table() const {
   return kTable;
 }
 
-kit::Pour SandBoxPour::pour() const {
-  return {.d = d(),
-          .outlet = m_config.emitterSize,
-          .height = m_config.emitterHeight,
-          .rate = m_config.rate,
-          .granules = m_config.granules};
-}
-
 WorldSettings SandBoxPour::worldSettings() const {
   const Config& c = m_config;
   const auto check = [&](std::string_view what, float needs, std::string_view limit, float room) {
     kit::require(needs <= room, name(), what, " needs ", needs, " d, more than ", limit, " ", room,
                  " d");
   };
-  check("emitter-size with a granule's reach each side", c.emitterSize + 2.0f * kReach, "box-width",
+  check("emitter-size with a granule's reach each side", c.outlet + 2.0f * kReach, "box-width",
         c.boxWidth);
-  check("emitter-height with a granule's reach", c.emitterHeight + kReach, "box-height",
-        c.boxHeight);
+  check("emitter-height with a granule's reach", c.pourHeight + kReach, "box-height", c.boxHeight);
   if (bedGranules() > 0) {
     const auto span = [&](int axis) {
       return static_cast<float>(c.block[axis] - 1) * kDefaultGranuleSpacing;
@@ -76,7 +67,7 @@ WorldSettings SandBoxPour::worldSettings() const {
     check("the bed (block) along z", wide(2), "box-width", c.boxWidth);
     // A granule's room above the bed's top.
     check("the bed (block) in height", kBedClearance + span(1) + kReach + kReach, "emitter-height",
-          c.emitterHeight);
+          c.pourHeight);
   }
   pour().checkSpeed(name(), "emitter-size");
   return kit::worldSettings(name(), d(),

@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "scenes/kit/pour.h"
-#include "scenes/kit/scene_with.h"
 
 namespace sandphys::scenes {
 
@@ -17,8 +16,8 @@ struct SandBoxPourConfig {
   std::uint32_t granules = 1500;
   float boxWidth = 40.0f;
   float boxHeight = 30.0f;
-  float emitterHeight = 20.0f;
-  float emitterSize = 13.0f;
+  float pourHeight = 20.0f;   // "emitter-height"
+  float outlet = 13.0f;       // "emitter-size"
   Count3 block{0, 0, 0};      // the bed; none when a count is 0
   float settleSpeed = 0.05f;  // m/s
   float maxSettleSeconds = 3.0f;
@@ -30,23 +29,19 @@ struct SandBoxPourConfig {
 /// its budget is spent: the grains heap up into a pile. Optionally the pour lands on a bed (a
 /// block resting on the floor) and starts once the bed has settled. The emitter moves as slowly
 /// as its lattice can take the rate, so that the grains fall as gently as the rate allows.
-class SandBoxPour final : public kit::SceneWith<SandBoxPourConfig> {
+class SandBoxPour final : public kit::PourScene<SandBoxPourConfig> {
  public:
   using Config = SandBoxPourConfig;
-  using SceneWith::SceneWith;
+  using PourScene::PourScene;
 
   std::string_view name() const override { return "sand-box-pour"; }
   WorldSettings worldSettings() const override;
   void build(World& world) override;
   void update(World& world, const StepReport& report, double simTime) override;
-  bool finished() const override { return m_course.done(); }
-  std::string status() const override { return m_course.status(); }
   /// Inside the box.
   bool contains(const Vec3& centre) const override;
   std::vector<SceneMetric> metrics(std::span<const BodyState> bodies) const override;
   SceneBounds bounds() const override;
-  /// The box the sand is poured into.
-  SceneView view(const std::optional<SceneBounds>&) const override { return {bounds()}; }
 
  private:
   std::span<const kit::Param<Config>> table() const override;
@@ -54,13 +49,10 @@ class SandBoxPour final : public kit::SceneWith<SandBoxPourConfig> {
   std::uint32_t bedGranules() const {
     return m_config.block[0] * m_config.block[1] * m_config.block[2];
   }
-  kit::Pour pour() const;
   /// Top and footprint radius of the pile, m: the 99th percentiles of the heights and of the
   /// distances from the pour axis of the contained granules slower than 0.3 m/s (not the ones
   /// still falling), each plus the granule's reach; 0 without such granules.
   std::array<float, 2> pileExtent(std::span<const BodyState> bodies) const;
-
-  kit::PourCourse m_course;
 };
 
 }  // namespace sandphys::scenes

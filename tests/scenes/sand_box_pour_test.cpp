@@ -34,8 +34,8 @@ SandBoxPour::Config smallPour() {
           .granules = 240,
           .boxWidth = 14.0f,
           .boxHeight = 20.0f,
-          .emitterHeight = 14.0f,
-          .emitterSize = 10.0f};
+          .pourHeight = 14.0f,
+          .outlet = 10.0f};
 }
 
 // Pours `granules` with the small settings until the scene reports the pile settled, checking
@@ -56,7 +56,7 @@ float pourUntilSettled(std::uint32_t granules) {
   const float d = pour.config().particleDiameter;
   const double rate = pour.config().rate;
   const double budget = granules;
-  const double layer = emitterLayerGranules(0.5f * pour.config().emitterSize * d, d);
+  const double layer = emitterLayerGranules(0.5f * pour.config().outlet * d, d);
   EXPECT_EQ(layer, 25.0);  // 5 x 5 slots across 10 d at 2.4 d
   while (!pour.finished() && world.simulatedTime() < 2.0) {
     const StepReport report = world.step(kFrame);
@@ -144,7 +144,7 @@ TEST(SandBoxPour, RefusesARateItsEmitterCannotPourGently) {
     EXPECT_NE(std::string(error.what()).find("rate 5000"), std::string::npos) << error.what();
   }
   pour.config().rate = 600.0f;
-  pour.config().emitterSize = 14.0f;  // as wide as the box: grains would start in the walls
+  pour.config().outlet = 14.0f;  // as wide as the box: grains would start in the walls
   EXPECT_THROW((void)pour.settings(), InvalidArgument);
 }
 

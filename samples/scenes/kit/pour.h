@@ -7,6 +7,7 @@
 #include <sandphys/sandphys.h>
 
 #include "scenes/kit/course.h"
+#include "scenes/kit/scene_with.h"
 #include "scenes/scene.h"
 
 namespace sandphys::scenes::kit {
@@ -88,6 +89,37 @@ class PourCourse : public Course {
   std::uint32_t m_budget = 0;
   std::uint32_t m_before = 0;
   std::uint32_t m_poured = 0;
+};
+
+/// The base of a scene that pours: its Config describes the pour in fields named as Pour's
+/// (particleDiameter, outlet and pourHeight in d, rate, granules per emitter), and the scene keeps
+/// its course in m_course. The scene is finished when the course is done; it opens on its bounds.
+template <class Config>
+class PourScene : public SceneWith<Config> {
+ public:
+  using SceneWith<Config>::SceneWith;
+
+  /// Counts the granules poured and updates the course for the granules alive.
+  void update(World& world, const StepReport& report, double simTime) override {
+    m_course.count(world, simTime);
+    m_course.update(report, simTime);
+  }
+  bool finished() const override { return m_course.done(); }
+  std::string status() const override { return m_course.status(); }
+  /// The scene's bounds: the floor or box and the pour above it, where the sand gathers.
+  SceneView view(const std::optional<SceneBounds>&) const override { return {this->bounds()}; }
+
+ protected:
+  Pour pour() const {
+    const Config& c = this->m_config;
+    return {.d = c.particleDiameter,
+            .outlet = c.outlet,
+            .height = c.pourHeight,
+            .rate = c.rate,
+            .granules = c.granules};
+  }
+
+  PourCourse m_course;
 };
 
 }  // namespace sandphys::scenes::kit
