@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <ranges>
-#include <string>
 
 #include "scenes/kit/checks.h"
 #include "scenes/kit/geometry.h"
@@ -44,8 +43,7 @@ WorldSettings Dunes::worldSettings() const {
                name(), "the columns (separation ", c.separation, " d, outlet ", c.outlet,
                " d) reach past the floor (floor-half-length ", c.floorHalfLength,
                " d, floor-half-width ", c.floorHalfWidth, " d)");
-  pour().checkRoomAboveFloor(name());
-  pour().checkSpeed(name(), "the outlet");
+  pour().checkAboveFloor(name());
   // The floor's particles, at most (World::addRoughFloor rounds each half down to whole d).
   const std::uint64_t floorParticles =
       static_cast<std::uint64_t>(2.0 * std::floor(c.floorHalfLength) + 1.0) *
@@ -120,7 +118,6 @@ std::vector<SceneMetric> Dunes::metrics(std::span<const BodyState> bodies) const
   const Profile p = profile(bodies);
   std::uint32_t onFloor = 0;
   for (const BodyState& b : kit::granulesIn(bodies)) onFloor += contains(b.position);
-  const double lowerCrest = std::min(p.leftCrest[1], p.rightCrest[1]);
   return {
       {"granules_poured", static_cast<double>(m_course.poured())},
       {"granules_on_floor", static_cast<double>(onFloor)},
@@ -130,7 +127,7 @@ std::vector<SceneMetric> Dunes::metrics(std::span<const BodyState> bodies) const
       {"right_crest_x_d", p.rightCrest[0] / d()},
       {"saddle_height_d", p.saddle[1] / d()},
       {"saddle_x_d", p.saddle[0] / d()},
-      {"saddle_depth_d", (lowerCrest - p.saddle[1]) / d()},
+      {"saddle_depth_d", (std::min(p.leftCrest[1], p.rightCrest[1]) - p.saddle[1]) / d()},
       {"crest_separation_d", (p.rightCrest[0] - p.leftCrest[0]) / d()},
       {"settled", m_course.calm() ? 1.0 : 0.0},
   };

@@ -57,8 +57,7 @@ WorldSettings ReposeHeap::worldSettings() const {
   const Config& c = m_config;
   kit::require(0.5f * c.outlet + kit::kReach <= c.floorRadius, name(), "outlet ", c.outlet,
                " d is wider than the floor (floor-radius ", c.floorRadius, " d)");
-  pour().checkRoomAboveFloor(name());
-  pour().checkSpeed(name(), "the outlet");
+  pour().checkAboveFloor(name());
   return kit::worldSettings(
       name(), d(),
       {.granules = c.granules,

@@ -1,9 +1,7 @@
 #include "scenes/sand_box_pour.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <string>
 
 #include "scenes/kit/checks.h"
 #include "scenes/kit/geometry.h"
@@ -33,10 +31,8 @@ const auto kTable = std::to_array<kit::Param<C>>({
     {"emitter-size", &C::outlet, "d", 0.5, 1e4, "width of the square emitter"},
     {"block", &C::block, "", 0, 1024,
      "bed of granules on the floor before the pour, x, y (layers), z; 0,0,0 for none"},
-    {"settle-speed", &C::settleSpeed, "m/s", 0.0, 10.0,
-     "the sand has settled below this rms speed"},
-    {"max-settle-seconds", &C::maxSettleSeconds, "s", 0.0, 1e6,
-     "longest wait for the bed or the pile to settle"},
+    kit::settleSpeedParam(&C::settleSpeed),
+    kit::maxSettleSecondsParam(&C::maxSettleSeconds),
     kit::youngsModulusParam(&C::youngsModulus),
     kit::seedParam(&C::seed),
     kit::diameterParam(&C::particleDiameter),
@@ -63,8 +59,7 @@ WorldSettings SandBoxPour::worldSettings() const {
     };
     // Lattice, jitter and reach on both sides.
     const auto wide = [&](int axis) { return span(axis) + 2.0f * kit::kJitter + 2.0f * kReach; };
-    check("the bed (block) along x", wide(0), "box-width", c.boxWidth);
-    check("the bed (block) along z", wide(2), "box-width", c.boxWidth);
+    check("the bed (block) along x or z", std::max(wide(0), wide(2)), "box-width", c.boxWidth);
     // A granule's room above the bed's top.
     check("the bed (block) in height", kBedClearance + span(1) + kReach + kReach, "emitter-height",
           c.pourHeight);
@@ -97,8 +92,8 @@ void SandBoxPour::build(World& world) {
   // Calm means nothing while the bed collapses onto the floor (its top layer falls about its own
   // height) or the last granule falls from the emitter. The bed's wait is limited from its drop,
   // the pile's from the pour's end.
-  const double g = gravityMagnitude(world.settings());
-  const double bedLanding = bed ? 1.5 * fallTime(bedHeight + kBedClearance * d(), 0.0, g) : 0.0;
+  const double bedLanding =
+      bed ? 1.5 * fallTime(bedHeight + kBedClearance * d(), 0.0, kit::kGravity) : 0.0;
   m_course = kit::PourCourse({.settleSpeed = m_config.settleSpeed,
                               .maxSettleSeconds = m_config.maxSettleSeconds - bedLanding,
                               .actAfter = bedLanding,

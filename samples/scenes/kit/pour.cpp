@@ -48,9 +48,10 @@ void Pour::checkSpeed(std::string_view scene, std::string_view widthName) const 
           kMaxPourSpeed, " m/s; lower the rate or widen ", widthName);
 }
 
-void Pour::checkRoomAboveFloor(std::string_view scene) const {
+void Pour::checkAboveFloor(std::string_view scene) const {
   require(height >= 2.0f * kReach, scene, "pour-height ", height,
           " d leaves no room for a granule above the floor (at least ", 2.0f * kReach, " d)");
+  checkSpeed(scene, "the outlet");
 }
 
 EmitterSettings Pour::emitter(float x, std::uint64_t seed) const {

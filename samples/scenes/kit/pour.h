@@ -52,9 +52,10 @@ struct Pour {
   /// v m/s, more than 3 m/s; lower the rate or widen `widthName`" when speed() is over
   /// kMaxPourSpeed.
   void checkSpeed(std::string_view scene, std::string_view widthName) const;
-  /// Throws InvalidArgument naming `scene` and "pour-height" when a granule has no room between
-  /// the emitters and a rough floor.
-  void checkRoomAboveFloor(std::string_view scene) const;
+  /// checkSpeed of an emitter whose width is "the outlet" over a rough floor; first throws
+  /// InvalidArgument naming `scene` and "pour-height" when a granule has no room between the
+  /// emitters and the floor.
+  void checkAboveFloor(std::string_view scene) const;
   /// The emitter centred at x = `x` (m), z = 0, whose granules take their orientations from
   /// `seed`.
   EmitterSettings emitter(float x, std::uint64_t seed) const;
@@ -81,6 +82,7 @@ class PourCourse : public Course {
 
   /// After each frame, before update(): the granules poured by now; ends the act once all are.
   void count(const World& world, double simTime);
+  /// Granules poured by the last count().
   std::uint32_t poured() const { return m_poured; }
   /// "pouring n/N", "settling", "settled" (calm) or "stopped" (the wait ran out).
   std::string status() const;
@@ -91,9 +93,9 @@ class PourCourse : public Course {
   std::uint32_t m_poured = 0;
 };
 
-/// The base of a scene that pours: its Config describes the pour in fields named as Pour's
-/// (particleDiameter, outlet and pourHeight in d, rate, granules per emitter), and the scene keeps
-/// its course in m_course. The scene is finished when the course is done; it opens on its bounds.
+/// The base of a scene that pours: its Config describes the pour in the fields particleDiameter
+/// (m), outlet and pourHeight (d), rate and granules (of each emitter), and the scene keeps its
+/// course in m_course. The scene is finished when the course is done; it opens on its bounds.
 template <class Config>
 class PourScene : public SceneWith<Config> {
  public:
@@ -110,6 +112,7 @@ class PourScene : public SceneWith<Config> {
   SceneView view(const std::optional<SceneBounds>&) const override { return {this->bounds()}; }
 
  protected:
+  /// The pour the Config describes.
   Pour pour() const {
     const Config& c = this->m_config;
     return {.d = c.particleDiameter,
