@@ -65,8 +65,7 @@ void Dunes::build(World& world) {
                              kit::granuleMass(world.settings()), 2 * m_config.granules);
   const float halfX = m_config.floorHalfLength * d();
   const float halfZ = m_config.floorHalfWidth * d();
-  world.addRoughFloor(RoughFloor{
-      .center = {0.0f, 0.0f, 0.0f}, .halfExtentX = halfX, .halfExtentZ = halfZ, .spacing = d()});
+  world.addRoughFloor(RoughFloor{.halfExtentX = halfX, .halfExtentZ = halfZ, .spacing = d()});
   world.addSink(pour().sink(std::max(halfX, halfZ)));
   for (int side : {-1, 1}) {
     const float x = static_cast<float>(side) * 0.5f * m_config.separation * d();

@@ -75,7 +75,7 @@ void ReposeHeap::build(World& world) {
   m_course = kit::PourCourse(pour().course(m_config.settleSpeed, m_config.maxSettleSeconds),
                              kit::granuleMass(world.settings()), m_config.granules);
   const float radius = m_config.floorRadius * d();
-  world.addRoughFloor(RoughFloor{.center = {0.0f, 0.0f, 0.0f}, .radius = radius, .spacing = d()});
+  world.addRoughFloor(RoughFloor{.radius = radius, .spacing = d()});
   world.addSink(pour().sink(radius));
   world.addEmitter(pour().emitter(0.0f, m_config.seed));
 }

@@ -54,11 +54,9 @@ WorldSettings SandBoxPour::worldSettings() const {
         c.boxWidth);
   check("emitter-height with a granule's reach", c.pourHeight + kReach, "box-height", c.boxHeight);
   if (bedGranules() > 0) {
-    const auto span = [&](int axis) {
-      return static_cast<float>(c.block[axis] - 1) * kDefaultGranuleSpacing;
-    };
+    const auto span = [&](int i) { return kit::blockSpan(c.block[i], kDefaultGranuleSpacing); };
     // Lattice, jitter and reach on both sides.
-    const auto wide = [&](int axis) { return span(axis) + 2.0f * kit::kJitter + 2.0f * kReach; };
+    const auto wide = [&](int i) { return span(i) + 2.0f * kit::kJitter + 2.0f * kReach; };
     check("the bed (block) along x or z", std::max(wide(0), wide(2)), "box-width", c.boxWidth);
     // A granule's room above the bed's top.
     check("the bed (block) in height", kBedClearance + span(1) + kReach + kReach, "emitter-height",
