@@ -25,10 +25,9 @@ struct SandBoxPourConfig {
   std::uint64_t seed = 1;
 };
 
-/// Sand poured into a smooth box from a square emitter high above its floor, at a fixed rate until
-/// its budget is spent: the grains heap up into a pile. Optionally the pour lands on a bed (a
-/// block resting on the floor) and starts once the bed has settled. The emitter moves as slowly
-/// as its lattice can take the rate, so that the grains fall as gently as the rate allows.
+/// Sand poured into a smooth box from a square emitter high above its floor (kit::Pour), at a fixed
+/// rate until its budget is spent: the grains heap up into a pile. Optionally the pour lands on a
+/// bed (a block resting on the floor) and starts once the bed has settled.
 class SandBoxPour final : public kit::PourScene<SandBoxPourConfig> {
  public:
   using Config = SandBoxPourConfig;

@@ -25,7 +25,8 @@ float pourGuardSpeed(float speed, float height, float g);
 
 /// A steady pour from square emitters at a height above a floor, as the pouring scenes
 /// (sand-box-pour, repose-heap, dunes) set it up. The floor's top is at y = 0 for a box; a rough
-/// floor has its particle centres there.
+/// floor has its particle centres there. Each emitter moves as slowly as its lattice can take the
+/// rate, so that the grains fall as gently as the rate allows.
 struct Pour {
   /// Particle diameter d, m.
   float d = 0.0f;
