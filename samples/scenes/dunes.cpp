@@ -2,20 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <string>
+#include <ranges>
 
 #include "scenes/kit/checks.h"
 #include "scenes/kit/geometry.h"
 #include "scenes/kit/settings.h"
-#include "scenes/pour.h"
 
 namespace sandphys::scenes {
 
 namespace {
-
-// Depth of the sink's top below the floor's particle centres, d.
-constexpr float kSinkDepth = 3.0f;
 
 using C = DunesConfig;
 const auto kTable = std::to_array<kit::Param<C>>({
@@ -41,10 +36,6 @@ std::span<const kit::Param<C>> Dunes::table() const {
   return kTable;
 }
 
-float Dunes::emitterSpeed() const {
-  return pourSpeed(0.5f * m_config.outlet * d(), m_config.rate, d());
-}
-
 WorldSettings Dunes::worldSettings() const {
   const Config& c = m_config;
   kit::require(0.5f * c.separation + 0.5f * c.outlet + kit::kReach <= c.floorHalfLength &&
@@ -52,64 +43,41 @@ WorldSettings Dunes::worldSettings() const {
                name(), "the columns (separation ", c.separation, " d, outlet ", c.outlet,
                " d) reach past the floor (floor-half-length ", c.floorHalfLength,
                " d, floor-half-width ", c.floorHalfWidth, " d)");
-  kit::require(c.pourHeight >= 2.0f * kit::kReach, name(), "pour-height ", c.pourHeight,
-               " d leaves no room for a granule above the floor (at least ", 2.0f * kit::kReach,
-               " d)");
-  checkPourSpeed(name(), "the outlet", 0.5f * c.outlet * d(), c.rate, d());
+  pour().checkAboveFloor(name());
   // The floor's particles, at most (World::addRoughFloor rounds each half down to whole d).
   const std::uint64_t floorParticles =
       static_cast<std::uint64_t>(2.0 * std::floor(c.floorHalfLength) + 1.0) *
       static_cast<std::uint64_t>(2.0 * std::floor(c.floorHalfWidth) + 1.0);
-  return kit::worldSettings(
-      name(), d(),
-      {.granules = 2ull * c.granules,
-       .bodies = 1,
-       .particles = floorParticles,
-       .maxSpeed = pourGuardSpeed(emitterSpeed(), c.pourHeight * d(), kit::kGravity),
-       .stepsPerContact = c.stepsPerContact,
-       .youngsModulus = c.youngsModulus,
-       .friction = c.friction,
-       .statsEachFrame = true});  // settling is judged every frame
+  return kit::worldSettings(name(), d(),
+                            {.granules = 2ull * c.granules,
+                             .bodies = 1,
+                             .particles = floorParticles,
+                             .maxSpeed = pour().guardSpeed(),
+                             .stepsPerContact = c.stepsPerContact,
+                             .youngsModulus = c.youngsModulus,
+                             .friction = c.friction,
+                             .statsEachFrame = true});  // settling is judged every frame
 }
 
 void Dunes::build(World& world) {
-  m_poured = 0;
   m_profile = {};
-  m_course = kit::Course(pourCourse(fallTime(m_config.pourHeight * d(), emitterSpeed(),
-                                             gravityMagnitude(world.settings())),
-                                    m_config.settleSpeed, m_config.maxSettleSeconds),
-                         kit::granuleMass(world.settings()));
+  m_course = kit::PourCourse(pour().course(m_config.settleSpeed, m_config.maxSettleSeconds),
+                             kit::granuleMass(world.settings()), 2 * m_config.granules);
   const float halfX = m_config.floorHalfLength * d();
   const float halfZ = m_config.floorHalfWidth * d();
-  world.addRoughFloor(RoughFloor{
-      .center = {0.0f, 0.0f, 0.0f}, .halfExtentX = halfX, .halfExtentZ = halfZ, .spacing = d()});
-  const float wide = std::max(halfX, halfZ) + m_config.pourHeight * d();
-  world.addSink(Sink{.min = {-wide, -(kSinkDepth + 10.0f) * d(), -wide},
-                     .max = {wide, -kSinkDepth * d(), wide}});
-  const float half = 0.5f * m_config.outlet * d();
+  world.addRoughFloor(RoughFloor{.halfExtentX = halfX, .halfExtentZ = halfZ, .spacing = d()});
+  world.addSink(pour().sink(std::max(halfX, halfZ)));
   for (int side : {-1, 1}) {
     const float x = static_cast<float>(side) * 0.5f * m_config.separation * d();
-    world.addEmitter(EmitterSettings{.center = {x, m_config.pourHeight * d(), 0.0f},
-                                     .halfExtentX = half,
-                                     .halfExtentZ = half,
-                                     .rate = m_config.rate,
-                                     .velocity = {0.0f, -emitterSpeed(), 0.0f},
-                                     .maxGranules = m_config.granules,
-                                     // Two different streams of orientations.
-                                     .seed = m_config.seed * 2 + (side > 0 ? 1 : 0)});
+    // Two different streams of orientations.
+    world.addEmitter(pour().emitter(x, m_config.seed * 2 + (side > 0 ? 1 : 0)));
   }
 }
 
 void Dunes::update(World& world, const StepReport& report, double simTime) {
-  if (m_course.done()) return;
-  m_poured = world.granulesSpawned();
-  if (m_course.acting() && m_poured >= 2 * m_config.granules) m_course.endAct(simTime);
+  m_course.count(world, simTime);
   // Once per run, when the sand has settled: the profile for series().
   if (m_course.update(report, simTime)) m_profile = profile(world.readBodies());
-}
-
-std::string Dunes::status() const {
-  return pourStatus(m_course, m_poured, 2 * m_config.granules);
 }
 
 bool Dunes::contains(const Vec3& centre) const {
@@ -123,9 +91,9 @@ Dunes::Profile Dunes::profile(std::span<const BodyState> bodies) const {
   const auto strips = static_cast<std::size_t>(std::ceil(2.0 * halfLength / strip));
   // The highest [x, height] of each strip; an empty strip keeps its height of -1.
   std::vector<std::array<double, 2>> top(strips, {0.0, -1.0});
-  for (const BodyState& body : bodies) {
+  for (const BodyState& body : kit::granulesIn(bodies)) {
     const Vec3& c = body.position;
-    if (!body.alive || !body.granule || !contains(c) || std::abs(c.z) > strip) continue;
+    if (!contains(c) || std::abs(c.z) > strip) continue;
     const auto i = std::min(strips - 1, static_cast<std::size_t>((c.x + halfLength) / strip));
     const double h = c.y - 0.5 * d();  // above the floor particles' tops
     if (h > top[i][1]) top[i] = {c.x, h};
@@ -137,13 +105,11 @@ Dunes::Profile Dunes::profile(std::span<const BodyState> bodies) const {
     auto& crest = point[0] < 0.0 ? p.leftCrest : p.rightCrest;
     if (point[1] > crest[1]) crest = point;
   }
-  p.saddle = {0.0, std::numeric_limits<double>::infinity()};
-  for (const auto& point : p.points) {
-    if (point[0] > p.leftCrest[0] && point[0] < p.rightCrest[0] && point[1] < p.saddle[1]) {
-      p.saddle = point;
-    }
-  }
-  if (!std::isfinite(p.saddle[1])) p.saddle = {0.0, 0.0};
+  auto between = p.points | std::views::filter([&](const auto& point) {
+                   return point[0] > p.leftCrest[0] && point[0] < p.rightCrest[0];
+                 });
+  const auto lowest = std::ranges::min_element(between, {}, [](const auto& q) { return q[1]; });
+  if (lowest != between.end()) p.saddle = *lowest;
   return p;
 }
 
@@ -151,9 +117,8 @@ std::vector<SceneMetric> Dunes::metrics(std::span<const BodyState> bodies) const
   const Profile p = profile(bodies);
   std::uint32_t onFloor = 0;
   for (const BodyState& b : kit::granulesIn(bodies)) onFloor += contains(b.position);
-  const double lowerCrest = std::min(p.leftCrest[1], p.rightCrest[1]);
   return {
-      {"granules_poured", static_cast<double>(m_poured)},
+      {"granules_poured", static_cast<double>(m_course.poured())},
       {"granules_on_floor", static_cast<double>(onFloor)},
       {"left_crest_height_d", p.leftCrest[1] / d()},
       {"left_crest_x_d", p.leftCrest[0] / d()},
@@ -161,7 +126,7 @@ std::vector<SceneMetric> Dunes::metrics(std::span<const BodyState> bodies) const
       {"right_crest_x_d", p.rightCrest[0] / d()},
       {"saddle_height_d", p.saddle[1] / d()},
       {"saddle_x_d", p.saddle[0] / d()},
-      {"saddle_depth_d", (lowerCrest - p.saddle[1]) / d()},
+      {"saddle_depth_d", (std::min(p.leftCrest[1], p.rightCrest[1]) - p.saddle[1]) / d()},
       {"crest_separation_d", (p.rightCrest[0] - p.leftCrest[0]) / d()},
       {"settled", m_course.calm() ? 1.0 : 0.0},
   };
@@ -174,9 +139,7 @@ std::vector<SceneSeries> Dunes::series() const {
 }
 
 SceneBounds Dunes::bounds() const {
-  const float x = m_config.floorHalfLength * d();
-  const float z = m_config.floorHalfWidth * d();
-  return {{-x, -kSinkDepth * d(), -z}, {x, (m_config.pourHeight + 1.0f) * d(), z}};
+  return pour().bounds(m_config.floorHalfLength * d(), m_config.floorHalfWidth * d());
 }
 
 }  // namespace sandphys::scenes

@@ -5,8 +5,7 @@
 #include <span>
 #include <vector>
 
-#include "scenes/kit/course.h"
-#include "scenes/kit/scene_with.h"
+#include "scenes/kit/pour.h"
 
 namespace sandphys::scenes {
 
@@ -32,10 +31,10 @@ struct DunesConfig {
 /// onto a rough floor (static particles, centres at y = 0, long along x) at the same rate; the two
 /// cones grow into a dune with two crests and a saddle between them. Grains that roll off the
 /// floor fall into a sink. Once the sand has settled, one read-back gives the profile.
-class Dunes final : public kit::SceneWith<DunesConfig> {
+class Dunes final : public kit::PourScene<DunesConfig> {
  public:
   using Config = DunesConfig;
-  using SceneWith::SceneWith;
+  using PourScene::PourScene;
 
   /// The dune along the x axis: the highest granule centre of each strip one granule wide, from
   /// the granules within a granule of z = 0; [x, height above the floor's top], m.
@@ -49,26 +48,19 @@ class Dunes final : public kit::SceneWith<DunesConfig> {
   WorldSettings worldSettings() const override;
   void build(World& world) override;
   void update(World& world, const StepReport& report, double simTime) override;
-  bool finished() const override { return m_course.done(); }
-  std::string status() const override;
   bool contains(const Vec3& centre) const override;  // on or above the floor
   /// The crests, the saddle and its depth below the lower crest, the granules on the floor.
   std::vector<SceneMetric> metrics(std::span<const BodyState> bodies) const override;
   /// "dune_profile": [x, height] in d, of the settled sand (empty before it settles).
   std::vector<SceneSeries> series() const override;
   SceneBounds bounds() const override;
-  /// The floor the two dunes grow on.
-  SceneView view(const std::optional<SceneBounds>&) const override { return {bounds()}; }
 
   Profile profile(std::span<const BodyState> bodies) const;
 
  private:
   std::span<const kit::Param<Config>> table() const override;
-  float emitterSpeed() const;
 
   Profile m_profile;
-  kit::Course m_course;
-  std::uint32_t m_poured = 0;
 };
 
 }  // namespace sandphys::scenes

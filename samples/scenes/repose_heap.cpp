@@ -8,16 +8,14 @@
 #include <string>
 
 #include "scenes/heap_metrics.h"
+#include "scenes/kit/checks.h"
 #include "scenes/kit/geometry.h"
-#include "scenes/pour.h"
+#include "scenes/kit/settings.h"
 
 namespace sandphys::scenes {
 
 namespace {
 
-// Depth of the sink's top below the floor's particle centres, d: past the floor's edge a grain
-// that deep has left.
-constexpr float kSinkDepth = 3.0f;
 // Bulk volume of one granule in a settled heap, d³ (its four spheres fill 2.1 d³, loosely packed).
 constexpr double kSettledVolume = 3.6;
 // Room left between the foot of the heap and the floor's edge, d.
@@ -46,15 +44,9 @@ std::span<const kit::Param<C>> ReposeHeap::table() const {
   return kTable;
 }
 
-float ReposeHeap::emitterSpeed() const {
-  return pourSpeed(0.5f * m_config.outlet * d(), m_config.rate, d());
-}
-
 float ReposeHeap::floorRadiusHolding(std::uint32_t granules, float angleDegrees) {
-  if (!(angleDegrees > 0.0f && angleDegrees < 90.0f)) {
-    throw InvalidArgument("repose-heap: the flank's angle " + numberText(angleDegrees) +
-                          "° must lie in (0°, 90°)");
-  }
+  kit::require(angleDegrees > 0.0f && angleDegrees < 90.0f, "repose-heap", "the flank's angle ",
+               angleDegrees, "° must lie in (0°, 90°)");
   // A cone of radius r and flank angle θ holds π r³ tan θ / 3.
   const double slope = std::tan(angleDegrees * std::numbers::pi / 180.0);
   const double radius = std::cbrt(3.0 * kSettledVolume * granules / (std::numbers::pi * slope));
@@ -62,63 +54,30 @@ float ReposeHeap::floorRadiusHolding(std::uint32_t granules, float angleDegrees)
 }
 
 WorldSettings ReposeHeap::worldSettings() const {
-  const std::string scene = "repose-heap: ";
-  if (0.5f * m_config.outlet + kit::kReach > m_config.floorRadius) {
-    throw InvalidArgument(scene + "outlet " + numberText(m_config.outlet) +
-                          " d is wider than the floor (floor-radius " +
-                          numberText(m_config.floorRadius) + " d)");
-  }
-  if (m_config.pourHeight < 2.0f * kit::kReach) {
-    throw InvalidArgument(scene + "pour-height " + numberText(m_config.pourHeight) +
-                          " d leaves no room for a granule above the floor (at least " +
-                          numberText(2.0f * kit::kReach) + " d)");
-  }
-  checkPourSpeed(name(), "the outlet", 0.5f * m_config.outlet * d(), m_config.rate, d());
-  WorldSettings settings;
-  settings.particleDiameter = d();
-  settings.material.friction = m_config.friction;
-  settings.material.restitution = m_config.restitution;
-  kit::reserveExactly(settings, name(), m_config.granules, 1,
-                      roughFloorParticles(RoughFloor{.radius = m_config.floorRadius * d()}, d()));
-  // Settling is judged from every frame's kinetic energy.
-  settings.statsEachFrame = true;
-  settings.maxSpeed =
-      pourGuardSpeed(emitterSpeed(), m_config.pourHeight * d(), gravityMagnitude(settings));
-  settings.stepsPerContact = m_config.stepsPerContact;
-  settings.material.youngsModulus = sceneYoungsModulus(settings, m_config.youngsModulus);
-  return settings;
+  const Config& c = m_config;
+  kit::require(0.5f * c.outlet + kit::kReach <= c.floorRadius, name(), "outlet ", c.outlet,
+               " d is wider than the floor (floor-radius ", c.floorRadius, " d)");
+  pour().checkAboveFloor(name());
+  return kit::worldSettings(
+      name(), d(),
+      {.granules = c.granules,
+       .bodies = 1,
+       .particles = roughFloorParticles(RoughFloor{.radius = c.floorRadius * d()}, d()),
+       .maxSpeed = pour().guardSpeed(),
+       .stepsPerContact = c.stepsPerContact,
+       .youngsModulus = c.youngsModulus,
+       .friction = c.friction,
+       .restitution = c.restitution,
+       .statsEachFrame = true});  // settling is judged every frame
 }
 
 void ReposeHeap::build(World& world) {
-  m_poured = 0;
-  m_course = kit::Course(pourCourse(fallTime(m_config.pourHeight * d(), emitterSpeed(),
-                                             gravityMagnitude(world.settings())),
-                                    m_config.settleSpeed, m_config.maxSettleSeconds),
-                         kit::granuleMass(world.settings()));
+  m_course = kit::PourCourse(pour().course(m_config.settleSpeed, m_config.maxSettleSeconds),
+                             kit::granuleMass(world.settings()), m_config.granules);
   const float radius = m_config.floorRadius * d();
-  world.addRoughFloor(RoughFloor{.center = {0.0f, 0.0f, 0.0f}, .radius = radius, .spacing = d()});
-  // Everything that rolls off the floor's edge (or, by a fault, through it) ends here.
-  const float wide = radius + m_config.pourHeight * d();
-  world.addSink(Sink{.min = {-wide, -(kSinkDepth + 10.0f) * d(), -wide},
-                     .max = {wide, -kSinkDepth * d(), wide}});
-  const float half = 0.5f * m_config.outlet * d();
-  world.addEmitter(EmitterSettings{.center = {0.0f, m_config.pourHeight * d(), 0.0f},
-                                   .halfExtentX = half,
-                                   .halfExtentZ = half,
-                                   .rate = m_config.rate,
-                                   .velocity = {0.0f, -emitterSpeed(), 0.0f},
-                                   .maxGranules = m_config.granules,
-                                   .seed = m_config.seed});
-}
-
-void ReposeHeap::update(World& world, const StepReport& report, double simTime) {
-  m_poured = world.granulesSpawned();
-  if (m_course.acting() && m_poured >= m_config.granules) m_course.endAct(simTime);
-  m_course.update(report, simTime);
-}
-
-std::string ReposeHeap::status() const {
-  return pourStatus(m_course, m_poured, m_config.granules);
+  world.addRoughFloor(RoughFloor{.radius = radius, .spacing = d()});
+  world.addSink(pour().sink(radius));
+  world.addEmitter(pour().emitter(0.0f, m_config.seed));
 }
 
 bool ReposeHeap::contains(const Vec3& centre) const {
@@ -127,9 +86,8 @@ bool ReposeHeap::contains(const Vec3& centre) const {
 
 analysis::HeapAngle ReposeHeap::heapAngle(std::span<const BodyState> bodies) const {
   std::vector<Vec3> centres;
-  centres.reserve(bodies.size());
-  for (const BodyState& body : bodies) {
-    if (body.alive && body.granule && contains(body.position)) centres.push_back(body.position);
+  for (const BodyState& body : kit::granulesIn(bodies)) {
+    if (contains(body.position)) centres.push_back(body.position);
   }
   // The floor's surface is the top of its particles; cells one granule wide.
   return analysis::angleOfRepose(centres, {.floorY = 0.5 * d(),
@@ -140,14 +98,14 @@ analysis::HeapAngle ReposeHeap::heapAngle(std::span<const BodyState> bodies) con
 std::vector<SceneMetric> ReposeHeap::metrics(std::span<const BodyState> bodies) const {
   std::uint32_t onFloor = 0;
   std::uint32_t elsewhere = 0;
-  for (const BodyState& body : bodies) {
-    if (!body.granule || !body.alive) continue;
+  for (const BodyState& body : kit::granulesIn(bodies)) {
     (contains(body.position) ? onFloor : elsewhere) += 1;
   }
+  const std::uint32_t poured = m_course.poured();
   std::vector<SceneMetric> result{
-      {"granules_poured", static_cast<double>(m_poured)},
+      {"granules_poured", static_cast<double>(poured)},
       {"granules_on_floor", static_cast<double>(onFloor)},
-      {"granules_off_floor", static_cast<double>(m_poured - std::min(m_poured, onFloor))},
+      {"granules_off_floor", static_cast<double>(poured - std::min(poured, onFloor))},
       {"granules_in_flight", static_cast<double>(elsewhere)},
       {"pour_end_s", m_course.actEnd()},
       {"friction", m_config.friction},
@@ -160,7 +118,7 @@ std::vector<SceneMetric> ReposeHeap::metrics(std::span<const BodyState> bodies) 
 
 SceneBounds ReposeHeap::bounds() const {
   const float r = m_config.floorRadius * d();
-  return {{-r, -kSinkDepth * d(), -r}, {r, (m_config.pourHeight + 1.0f) * d(), r}};
+  return pour().bounds(r, r);
 }
 
 }  // namespace sandphys::scenes

@@ -6,8 +6,7 @@
 
 #include <sandphys/analysis/heap.h>
 
-#include "scenes/kit/course.h"
-#include "scenes/kit/scene_with.h"
+#include "scenes/kit/pour.h"
 
 namespace sandphys::scenes {
 
@@ -34,39 +33,29 @@ struct ReposeHeapConfig {
 /// surface granules (analysis::angleOfRepose). Grains that roll off the floor fall into a sink.
 /// Unlike the paper, the heap is poured from above (no reservoir and scupper) and the floor's
 /// friction is the grains' μ.
-class ReposeHeap final : public kit::SceneWith<ReposeHeapConfig> {
+class ReposeHeap final : public kit::PourScene<ReposeHeapConfig> {
  public:
   using Config = ReposeHeapConfig;
-  using SceneWith::SceneWith;
+  using PourScene::PourScene;
 
   std::string_view name() const override { return "repose-heap"; }
   WorldSettings worldSettings() const override;
   void build(World& world) override;
-  void update(World& world, const StepReport& report, double simTime) override;
-  bool finished() const override { return m_course.done(); }
-  std::string status() const override;
   /// On or above the floor, within its radius.
   bool contains(const Vec3& centre) const override;
   /// The angle of repose and its fit, the heap's height, the granules on and off the floor.
   std::vector<SceneMetric> metrics(std::span<const BodyState> bodies) const override;
   SceneBounds bounds() const override;
-  /// The floor and the pour above it: the heap grows there.
-  SceneView view(const std::optional<SceneBounds>&) const override { return {bounds()}; }
 
   /// The heap's surface and angle from the granules in `bodies`; throws InvalidArgument when the
   /// heap is too small to have a flank.
   analysis::HeapAngle heapAngle(std::span<const BodyState> bodies) const;
-  /// Speed of the emitter's granules, m/s.
-  float emitterSpeed() const;
   /// Floor radius, d, on which a cone of `granules` settled granules with its flank at
   /// `angleDegrees` ends a margin short of the edge.
   static float floorRadiusHolding(std::uint32_t granules, float angleDegrees);
 
  private:
   std::span<const kit::Param<Config>> table() const override;
-
-  kit::Course m_course;
-  std::uint32_t m_poured = 0;
 };
 
 }  // namespace sandphys::scenes

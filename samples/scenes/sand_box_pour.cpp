@@ -1,13 +1,11 @@
 #include "scenes/sand_box_pour.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <functional>
-#include <string>
 
+#include "scenes/kit/checks.h"
 #include "scenes/kit/geometry.h"
-#include "scenes/pour.h"
+#include "scenes/kit/settings.h"
 
 namespace sandphys::scenes {
 
@@ -20,7 +18,7 @@ constexpr float kBedClearance = 1.4f;
 // contacts get more substeps, and 10 (the minimum is 8) halves the cost of the default 20.
 constexpr float kStepsPerContact = 10.0f;
 // Granules slower than this (m/s) belong to the pile: the falling ones leave the emitter at
-// kMinPourSpeed or more and only speed up.
+// kit::kMinPourSpeed or more and only speed up.
 constexpr float kRestSpeed = 0.3f;
 
 using C = SandBoxPourConfig;
@@ -29,34 +27,16 @@ const auto kTable = std::to_array<kit::Param<C>>({
     {"granules", &C::granules, "", 1, 1e8, "granules poured in total (the emitter's budget)"},
     {"box-width", &C::boxWidth, "d", 4.0, 1e4, "inner width of the box along x and z"},
     {"box-height", &C::boxHeight, "d", 4.0, 1e4, "inner height of the box"},
-    {"emitter-height", &C::emitterHeight, "d", 2.0, 1e4, "height of the emitter above the floor"},
-    {"emitter-size", &C::emitterSize, "d", 0.5, 1e4, "width of the square emitter"},
+    {"emitter-height", &C::pourHeight, "d", 2.0, 1e4, "height of the emitter above the floor"},
+    {"emitter-size", &C::outlet, "d", 0.5, 1e4, "width of the square emitter"},
     {"block", &C::block, "", 0, 1024,
      "bed of granules on the floor before the pour, x, y (layers), z; 0,0,0 for none"},
-    {"settle-speed", &C::settleSpeed, "m/s", 0.0, 10.0,
-     "the sand has settled below this rms speed"},
-    {"max-settle-seconds", &C::maxSettleSeconds, "s", 0.0, 1e6,
-     "longest wait for the bed or the pile to settle"},
+    kit::settleSpeedParam(&C::settleSpeed),
+    kit::maxSettleSecondsParam(&C::maxSettleSeconds),
     kit::youngsModulusParam(&C::youngsModulus),
     kit::seedParam(&C::seed),
     kit::diameterParam(&C::particleDiameter),
 });
-
-// The 99th percentile of `value` over the contained granules at rest in `bodies`, plus the
-// granule's reach; 0 without such granules.
-float pileExtent(const SandBoxPour& scene, std::span<const BodyState> bodies, float reach,
-                 const std::function<float(const Vec3&)>& value) {
-  std::vector<float> values;
-  values.reserve(bodies.size());
-  for (const BodyState& body : bodies) {
-    const Vec3& v = body.velocity;
-    const bool atRest = v.x * v.x + v.y * v.y + v.z * v.z < kRestSpeed * kRestSpeed;
-    if (body.alive && body.granule && atRest && scene.contains(body.position)) {
-      values.push_back(value(body.position));
-    }
-  }
-  return values.empty() ? 0.0f : percentile(values, 0.99) + reach;
-}
 
 }  // namespace
 
@@ -64,54 +44,34 @@ std::span<const kit::Param<C>> SandBoxPour::table() const {
   return kTable;
 }
 
-std::uint32_t SandBoxPour::bedGranules() const {
-  return m_config.block[0] * m_config.block[1] * m_config.block[2];
-}
-
-std::uint32_t SandBoxPour::layerGranules() const {
-  return emitterLayerGranules(emitterHalfExtent(), d());
-}
-
-float SandBoxPour::emitterSpeed() const {
-  return pourSpeed(emitterHalfExtent(), m_config.rate, d());
-}
-
 WorldSettings SandBoxPour::worldSettings() const {
   const Config& c = m_config;
-  const auto check = [&](const std::string& what, float needs, const char* limit, float room) {
-    if (needs <= room) return;
-    throw InvalidArgument("sand-box-pour: " + what + " needs " + numberText(needs) +
-                          " d, more than " + limit + " " + numberText(room) + " d");
+  const auto check = [&](std::string_view what, float needs, std::string_view limit, float room) {
+    kit::require(needs <= room, name(), what, " needs ", needs, " d, more than ", limit, " ", room,
+                 " d");
   };
-  check("emitter-size with a granule's reach each side", c.emitterSize + 2.0f * kReach, "box-width",
+  check("emitter-size with a granule's reach each side", c.outlet + 2.0f * kReach, "box-width",
         c.boxWidth);
-  check("emitter-height with a granule's reach", c.emitterHeight + kReach, "box-height",
-        c.boxHeight);
+  check("emitter-height with a granule's reach", c.pourHeight + kReach, "box-height", c.boxHeight);
   if (bedGranules() > 0) {
-    const auto span = [&](int axis) {
-      return static_cast<float>(c.block[axis] - 1) * kDefaultGranuleSpacing;
-    };
+    const auto span = [&](int i) { return kit::blockSpan(c.block[i], kDefaultGranuleSpacing); };
     // Lattice, jitter and reach on both sides.
-    const auto wide = [&](int axis) { return span(axis) + 2.0f * kit::kJitter + 2.0f * kReach; };
-    check("the bed (block) along x", wide(0), "box-width", c.boxWidth);
-    check("the bed (block) along z", wide(2), "box-width", c.boxWidth);
+    const auto wide = [&](int i) { return span(i) + 2.0f * kit::kJitter + 2.0f * kReach; };
+    check("the bed (block) along x or z", std::max(wide(0), wide(2)), "box-width", c.boxWidth);
     // A granule's room above the bed's top.
     check("the bed (block) in height", kBedClearance + span(1) + kReach + kReach, "emitter-height",
-          c.emitterHeight);
+          c.pourHeight);
   }
-  checkPourSpeed(name(), "emitter-size", emitterHalfExtent(), c.rate, d());
-  WorldSettings settings;
-  settings.particleDiameter = d();
-  kit::reserveExactly(settings, name(), std::uint64_t(c.granules) + bedGranules());
-  settings.maxSpeed =
-      pourGuardSpeed(emitterSpeed(), c.emitterHeight * d(), gravityMagnitude(settings));
-  settings.stepsPerContact = kStepsPerContact;
-  settings.material.youngsModulus = sceneYoungsModulus(settings, c.youngsModulus);
-  return settings;
+  pour().checkSpeed(name(), "emitter-size");
+  return kit::worldSettings(name(), d(),
+                            {.granules = std::uint64_t(c.granules) + bedGranules(),
+                             .maxSpeed = pour().guardSpeed(),
+                             .stepsPerContact = kStepsPerContact,
+                             .youngsModulus = c.youngsModulus,
+                             .statsEachFrame = true});
 }
 
 void SandBoxPour::build(World& world) {
-  m_poured = 0;
   const float height = m_config.boxHeight * d();
   world.addCollider(Box{.center = {0.0f, 0.5f * height, 0.0f},
                         .halfExtents = {halfWidth(), 0.5f * height, halfWidth()},
@@ -128,42 +88,26 @@ void SandBoxPour::build(World& world) {
                                    .seed = m_config.seed * 1000003u + 1u});  // not the emitter's
   }
   // Calm means nothing while the bed collapses onto the floor (its top layer falls about its own
-  // height) or the last granule falls from the emitter; then the sand slides a while. The bed's
-  // wait is limited from its drop, the pile's from the pour's end.
-  const double g = gravityMagnitude(world.settings());
-  const double bedLanding = bed ? 1.5 * fallTime(bedHeight + kBedClearance * d(), 0.0, g) : 0.0;
-  m_course = kit::Course(
-      {.settleSpeed = m_config.settleSpeed,
-       .maxSettleSeconds = m_config.maxSettleSeconds - bedLanding,
-       .actAfter = bedLanding,
-       .minRestSeconds = 1.5 * fallTime(m_config.emitterHeight * d(), emitterSpeed(), g),
-       .maxRestSeconds = m_config.maxSettleSeconds,
-       .actFirst = !bed},
-      kit::granuleMass(world.settings()));
-  if (!bed) startPour(world);
-}
-
-void SandBoxPour::startPour(World& world) {
-  const float half = emitterHalfExtent();
-  world.addEmitter(EmitterSettings{.center = {0.0f, m_config.emitterHeight * d(), 0.0f},
-                                   .halfExtentX = half,
-                                   .halfExtentZ = half,
-                                   .rate = m_config.rate,
-                                   .velocity = {0.0f, -emitterSpeed(), 0.0f},
-                                   .maxGranules = m_config.granules,
-                                   .seed = m_config.seed});
+  // height) or the last granule falls from the emitter. The bed's wait is limited from its drop,
+  // the pile's from the pour's end.
+  const double bedLanding =
+      bed ? 1.5 * fallTime(bedHeight + kBedClearance * d(), 0.0, kit::kGravity) : 0.0;
+  m_course = kit::PourCourse({.settleSpeed = m_config.settleSpeed,
+                              .maxSettleSeconds = m_config.maxSettleSeconds - bedLanding,
+                              .actAfter = bedLanding,
+                              .minRestSeconds = pour().landingSeconds(),
+                              .maxRestSeconds = m_config.maxSettleSeconds,
+                              .actFirst = !bed},
+                             kit::granuleMass(world.settings()), m_config.granules, bedGranules());
+  if (!bed) world.addEmitter(pour().emitter(0.0f, m_config.seed));
 }
 
 void SandBoxPour::update(World& world, const StepReport& report, double simTime) {
-  m_poured = world.granulesSpawned() - bedGranules();
-  if (m_course.acting() && m_poured >= m_config.granules) m_course.endAct(simTime);
-  const bool bedSettling = m_course.phase() == kit::Course::Phase::Settling;
-  const std::uint32_t granules = bedGranules() + (bedSettling ? 0u : m_config.granules);
-  if (m_course.update(report, simTime, granules) && m_course.acting()) startPour(world);
-}
-
-std::string SandBoxPour::status() const {
-  return pourStatus(m_course, m_poured, m_config.granules);
+  m_course.count(world, simTime);
+  // While the bed settles its granules are all there are; once poured, the pour's join them.
+  if (m_course.update(report, simTime, world.granulesSpawned()) && m_course.acting()) {
+    world.addEmitter(pour().emitter(0.0f, m_config.seed));
+  }
 }
 
 bool SandBoxPour::contains(const Vec3& centre) const {
@@ -172,30 +116,34 @@ bool SandBoxPour::contains(const Vec3& centre) const {
          std::abs(centre.z) <= half;
 }
 
-float SandBoxPour::pileHeight(std::span<const BodyState> bodies) const {
-  return pileExtent(*this, bodies, kReach * d(), [](const Vec3& p) { return p.y; });
-}
-
-float SandBoxPour::footprintRadius(std::span<const BodyState> bodies) const {
-  return pileExtent(*this, bodies, kReach * d(),
-                    [](const Vec3& p) { return std::hypot(p.x, p.z); });
+std::array<float, 2> SandBoxPour::pileExtent(std::span<const BodyState> bodies) const {
+  std::vector<float> heights;
+  std::vector<float> radii;
+  for (const BodyState& body : kit::granulesIn(bodies)) {
+    const Vec3& p = body.position;
+    if (dot(body.velocity, body.velocity) < kRestSpeed * kRestSpeed && contains(p)) {
+      heights.push_back(p.y);
+      radii.push_back(std::hypot(p.x, p.z));
+    }
+  }
+  if (heights.empty()) return {0.0f, 0.0f};
+  return {percentile(heights, 0.99) + kReach * d(), percentile(radii, 0.99) + kReach * d()};
 }
 
 std::vector<SceneMetric> SandBoxPour::metrics(std::span<const BodyState> bodies) const {
-  const double height = pileHeight(bodies);
-  const double radius = footprintRadius(bodies);
+  const auto [height, radius] = pileExtent(bodies);
   const double pourEnd = m_course.actEnd();
   return {
-      {"granules_poured", static_cast<double>(m_poured)},
+      {"granules_poured", static_cast<double>(m_course.poured())},
       {"granules_budget", static_cast<double>(m_config.granules)},
       {"bed_granules", static_cast<double>(bedGranules())},
       {"pour_rate_per_s", m_config.rate},
       {"pour_seconds", pourEnd >= 0.0 ? pourEnd - m_course.actStart() : 0.0},
-      {"emitter_speed_m_per_s", emitterSpeed()},
+      {"emitter_speed_m_per_s", pour().speed()},
       {"pile_height_m", height},
-      {"pile_height_d", height / d()},
+      {"pile_height_d", static_cast<double>(height) / d()},
       {"footprint_radius_m", radius},
-      {"footprint_radius_d", radius / d()},
+      {"footprint_radius_d", static_cast<double>(radius) / d()},
       {"box_half_width_m", halfWidth()},
   };
 }

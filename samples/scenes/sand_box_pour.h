@@ -1,11 +1,11 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
 
-#include "scenes/kit/course.h"
-#include "scenes/kit/scene_with.h"
+#include "scenes/kit/pour.h"
 
 namespace sandphys::scenes {
 
@@ -16,8 +16,8 @@ struct SandBoxPourConfig {
   std::uint32_t granules = 1500;
   float boxWidth = 40.0f;
   float boxHeight = 30.0f;
-  float emitterHeight = 20.0f;
-  float emitterSize = 13.0f;
+  float pourHeight = 20.0f;   // "emitter-height"
+  float outlet = 13.0f;       // "emitter-size"
   Count3 block{0, 0, 0};      // the bed; none when a count is 0
   float settleSpeed = 0.05f;  // m/s
   float maxSettleSeconds = 3.0f;
@@ -25,51 +25,33 @@ struct SandBoxPourConfig {
   std::uint64_t seed = 1;
 };
 
-/// Sand poured into a smooth box from a square emitter high above its floor, at a fixed rate until
-/// its budget is spent: the grains heap up into a pile. Optionally the pour lands on a bed (a
-/// block resting on the floor) and starts once the bed has settled. The emitter moves as slowly
-/// as its lattice can take the rate, so that the grains fall as gently as the rate allows.
-class SandBoxPour final : public kit::SceneWith<SandBoxPourConfig> {
+/// Sand poured into a smooth box from a square emitter high above its floor (kit::Pour), at a fixed
+/// rate until its budget is spent: the grains heap up into a pile. Optionally the pour lands on a
+/// bed (a block resting on the floor) and starts once the bed has settled.
+class SandBoxPour final : public kit::PourScene<SandBoxPourConfig> {
  public:
   using Config = SandBoxPourConfig;
-  using SceneWith::SceneWith;
+  using PourScene::PourScene;
 
   std::string_view name() const override { return "sand-box-pour"; }
   WorldSettings worldSettings() const override;
   void build(World& world) override;
   void update(World& world, const StepReport& report, double simTime) override;
-  bool finished() const override { return m_course.done(); }
-  std::string status() const override;
   /// Inside the box.
   bool contains(const Vec3& centre) const override;
   std::vector<SceneMetric> metrics(std::span<const BodyState> bodies) const override;
   SceneBounds bounds() const override;
-  /// The box the sand is poured into.
-  SceneView view(const std::optional<SceneBounds>&) const override { return {bounds()}; }
-
-  std::uint32_t bedGranules() const;
-  /// Granules in one layer of the emitter's lattice: the most its count can lag rate × time.
-  std::uint32_t layerGranules() const;
-  /// Downward speed of the emitted granules, m/s.
-  float emitterSpeed() const;
-  std::uint32_t poured() const { return m_poured; }
-  /// Simulated time at which the pour started, s (negative before it).
-  double pourStartTime() const { return m_course.actStart(); }
-  /// Top of the pile above the floor, m: the 99th percentile of the centre heights of the
-  /// contained granules slower than 0.3 m/s (not the ones still falling) plus the granule's reach.
-  float pileHeight(std::span<const BodyState> bodies) const;
-  /// Radius of the pile's footprint around the pour axis, m: as pileHeight, of their horizontal
-  /// distances from the axis.
-  float footprintRadius(std::span<const BodyState> bodies) const;
 
  private:
   std::span<const kit::Param<Config>> table() const override;
   float halfWidth() const { return 0.5f * m_config.boxWidth * d(); }
-  float emitterHalfExtent() const { return 0.5f * m_config.emitterSize * d(); }
-  void startPour(World& world);
-
-  kit::Course m_course;
-  std::uint32_t m_poured = 0;
+  std::uint32_t bedGranules() const {
+    return m_config.block[0] * m_config.block[1] * m_config.block[2];
+  }
+  /// Top and footprint radius of the pile, m: the 99th percentiles of the heights and of the
+  /// distances from the pour axis of the contained granules slower than 0.3 m/s (not the ones
+  /// still falling), each plus the granule's reach; 0 without such granules.
+  std::array<float, 2> pileExtent(std::span<const BodyState> bodies) const;
 };
 
 }  // namespace sandphys::scenes

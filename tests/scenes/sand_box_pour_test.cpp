@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -18,13 +19,23 @@ namespace {
 
 constexpr float kFrame = 1.0f / 60.0f;
 
+// The value of the metric called `name`; a metric the scene does not report fails the test (and
+// is NaN, which no comparison accepts).
+double metricNamed(const std::vector<SceneMetric>& metrics, const std::string& name) {
+  for (const SceneMetric& metric : metrics) {
+    if (metric.name == name) return metric.value;
+  }
+  ADD_FAILURE() << "no metric " << name;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
 SandBoxPour::Config smallPour() {
   return {.rate = 600.0f,
           .granules = 240,
           .boxWidth = 14.0f,
           .boxHeight = 20.0f,
-          .emitterHeight = 14.0f,
-          .emitterSize = 10.0f};
+          .pourHeight = 14.0f,
+          .outlet = 10.0f};
 }
 
 // Pours `granules` with the small settings until the scene reports the pile settled, checking
@@ -40,11 +51,12 @@ float pourUntilSettled(std::uint32_t granules) {
   EXPECT_EQ(settings.maxBodies, granules);
   World world(testing::gpu(), settings);
   pour.build(world);
-  EXPECT_EQ(pour.pourStartTime(), 0.0);
+  EXPECT_EQ(pour.status(), "pouring 0/" + std::to_string(granules)) << "the pour starts at once";
 
+  const float d = pour.config().particleDiameter;
   const double rate = pour.config().rate;
   const double budget = granules;
-  const double layer = pour.layerGranules();
+  const double layer = emitterLayerGranules(0.5f * pour.config().outlet * d, d);
   EXPECT_EQ(layer, 25.0);  // 5 x 5 slots across 10 d at 2.4 d
   while (!pour.finished() && world.simulatedTime() < 2.0) {
     const StepReport report = world.step(kFrame);
@@ -60,20 +72,22 @@ float pourUntilSettled(std::uint32_t granules) {
   }
   EXPECT_TRUE(pour.finished()) << "not settled after " << world.simulatedTime() << " s";
   EXPECT_EQ(world.granulesSpawned(), granules);
-  EXPECT_EQ(pour.poured(), granules);
 
   const std::vector<BodyState> bodies = world.readBodies();
+  const std::vector<SceneMetric> metrics = pour.metrics(bodies);
+  EXPECT_EQ(metricNamed(metrics, "granules_poured"), granules);
   for (const BodyState& body : bodies) {
     EXPECT_TRUE(pour.contains(body.position))
         << "granule " << body.id.index << " escaped to (" << body.position.x << ", "
         << body.position.y << ", " << body.position.z << ")";
   }
-  const float d = pour.config().particleDiameter;
-  const float height = pour.pileHeight(bodies);
+  // The pile's top and footprint as the scene measures them (its granules at rest), m.
+  const auto height = static_cast<float>(metricNamed(metrics, "pile_height_m"));
+  const auto footprint = static_cast<float>(metricNamed(metrics, "footprint_radius_m"));
   std::printf("%u granules: pile height %.2f d, footprint radius %.2f d, settled at %.3f s\n",
-              granules, height / d, pour.footprintRadius(bodies) / d, world.simulatedTime());
+              granules, height / d, footprint / d, world.simulatedTime());
   // Inside the box, below the emitter: the grains have landed.
-  EXPECT_LE(pour.footprintRadius(bodies), 7.0f * std::sqrt(2.0f) * d + 1.2f * d);
+  EXPECT_LE(footprint, 7.0f * std::sqrt(2.0f) * d + 1.2f * d);
   EXPECT_LT(height, 14.0f * d);
   return height;
 }
@@ -96,24 +110,28 @@ TEST(SandBoxPour, PourWaitsForTheBedToSettle) {
   World world(testing::gpu(), pour.settings());
   pour.build(world);
   EXPECT_EQ(world.granulesSpawned(), 32u);
-  EXPECT_LT(pour.pourStartTime(), 0.0);
+  EXPECT_EQ(pour.status(), "settling");
 
-  // Two layers fall about 1.4 d onto the floor: nothing is poured until they have landed.
-  while (pour.pourStartTime() < 0.0 && world.simulatedTime() < 1.0) {
+  // Two layers fall about 1.4 d onto the floor: nothing is poured until they have landed. The
+  // pour starts on the frame the status leaves "settling", at that frame's simulated time.
+  double pourStart = -1.0;
+  while (pourStart < 0.0 && world.simulatedTime() < 1.0) {
     const StepReport report = world.step(kFrame);
     pour.update(world, report, world.simulatedTime());
-    if (pour.pourStartTime() < 0.0) {
+    if (pour.status() == "settling") {
       ASSERT_EQ(world.granulesSpawned(), 32u);
+    } else {
+      pourStart = world.simulatedTime();
     }
   }
-  EXPECT_GT(pour.pourStartTime(), 0.1);
-  EXPECT_LT(pour.pourStartTime(), 1.0);
-  while (world.simulatedTime() < pour.pourStartTime() + 0.2) {
+  EXPECT_GT(pourStart, 0.1);
+  EXPECT_LT(pourStart, 1.0);
+  while (world.simulatedTime() < pourStart + 0.2) {
     const StepReport report = world.step(kFrame);
     pour.update(world, report, world.simulatedTime());
   }
   EXPECT_EQ(world.granulesSpawned(), 72u);
-  EXPECT_EQ(pour.poured(), 40u);
+  EXPECT_EQ(metricNamed(pour.metrics(world.readBodies()), "granules_poured"), 40.0);
 }
 
 TEST(SandBoxPour, RefusesARateItsEmitterCannotPourGently) {
@@ -126,7 +144,7 @@ TEST(SandBoxPour, RefusesARateItsEmitterCannotPourGently) {
     EXPECT_NE(std::string(error.what()).find("rate 5000"), std::string::npos) << error.what();
   }
   pour.config().rate = 600.0f;
-  pour.config().emitterSize = 14.0f;  // as wide as the box: grains would start in the walls
+  pour.config().outlet = 14.0f;  // as wide as the box: grains would start in the walls
   EXPECT_THROW((void)pour.settings(), InvalidArgument);
 }
 

@@ -1,0 +1,94 @@
+#include "scenes/kit/pour.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "scenes/kit/checks.h"
+#include "scenes/kit/geometry.h"
+#include "scenes/kit/settings.h"
+
+namespace sandphys::scenes::kit {
+
+namespace {
+
+constexpr float kPourSpeedMargin = 1.1f;
+constexpr float kGuardMargin = 1.25f;
+constexpr float kMinGuardSpeed = 2.0f;
+// Fraction of the last granule's fall added before the sand may count as settled: after landing
+// the grains still slide and bounce for a while.
+constexpr double kLandingMargin = 0.5;
+// Depth of the sink's top below the floor's particle centres, d: past the floor's edge a grain
+// that deep has left.
+constexpr float kSinkDepth = 3.0f;
+
+}  // namespace
+
+float pourGuardSpeed(float speed, float height, float g) {
+  const float impact = std::sqrt(speed * speed + 2.0f * g * height);
+  return std::max(kMinGuardSpeed, kGuardMargin * impact);
+}
+
+float Pour::speed() const {
+  const float needed =
+      rate * kDefaultGranuleSpacing * d / static_cast<float>(emitterLayerGranules(halfExtent(), d));
+  return std::max(kMinPourSpeed, kPourSpeedMargin * needed);
+}
+
+float Pour::guardSpeed() const {
+  return pourGuardSpeed(speed(), height * d, kGravity);
+}
+
+double Pour::landingSeconds() const {
+  return (1.0 + kLandingMargin) * fallTime(height * d, speed(), kGravity);
+}
+
+void Pour::checkSpeed(std::string_view scene, std::string_view widthName) const {
+  require(speed() <= kMaxPourSpeed, scene, "rate ", rate, " granules/s needs the emitter's ",
+          emitterLayerGranules(halfExtent(), d), " slots to move at ", speed(), " m/s, more than ",
+          kMaxPourSpeed, " m/s; lower the rate or widen ", widthName);
+}
+
+void Pour::checkAboveFloor(std::string_view scene) const {
+  require(height >= 2.0f * kReach, scene, "pour-height ", height,
+          " d leaves no room for a granule above the floor (at least ", 2.0f * kReach, " d)");
+  checkSpeed(scene, "the outlet");
+}
+
+EmitterSettings Pour::emitter(float x, std::uint64_t seed) const {
+  return {.center = {x, height * d, 0.0f},
+          .halfExtentX = halfExtent(),
+          .halfExtentZ = halfExtent(),
+          .rate = rate,
+          .velocity = {0.0f, -speed(), 0.0f},
+          .maxGranules = granules,
+          .seed = seed};
+}
+
+Sink Pour::sink(float floorHalfExtent) const {
+  const float wide = floorHalfExtent + height * d;
+  return {.min = {-wide, -(kSinkDepth + 10.0f) * d, -wide}, .max = {wide, -kSinkDepth * d, wide}};
+}
+
+Course::Rule Pour::course(float settleSpeed, float maxSettleSeconds) const {
+  return {.settleSpeed = settleSpeed,
+          .minRestSeconds = landingSeconds(),
+          .maxRestSeconds = landingSeconds() + maxSettleSeconds,
+          .actFirst = true};
+}
+
+SceneBounds Pour::bounds(float halfX, float halfZ) const {
+  return {{-halfX, -kSinkDepth * d, -halfZ}, {halfX, (height + 1.0f) * d, halfZ}};
+}
+
+void PourCourse::count(const World& world, double simTime) {
+  m_poured = world.granulesSpawned() - m_before;
+  if (acting() && m_poured >= m_budget) endAct(simTime);
+}
+
+std::string PourCourse::status() const {
+  if (acting()) return "pouring " + std::to_string(m_poured) + "/" + std::to_string(m_budget);
+  if (!done()) return "settling";
+  return calm() ? "settled" : "stopped";
+}
+
+}  // namespace sandphys::scenes::kit
