@@ -130,7 +130,6 @@ std::vector<SceneMetric> CylinderPile::metrics(std::span<const BodyState> bodies
   return {
       {"batches_dropped", static_cast<double>(m_batchesDropped)},
       {"batches_settled", settled},
-      {"batch_granules", static_cast<double>(batchGranules())},
       {"mean_settle_seconds", settled > 0.0 ? settleSum / settled : 0.0},
       {"pile_top_m", top},
       {"pile_top_d", top / d()},

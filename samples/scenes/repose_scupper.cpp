@@ -87,7 +87,6 @@ std::vector<GranuleBlock> ReposeScupper::fillBlocks() const {
     // Layers alternate a quarter spacing either side of the centre along x and z: half a spacing
     // apart, each clear of the walls by the same room.
     const float shift = (i % 2 == 1 ? 0.25f : -0.25f) * spacing;
-    // Whole rows along x, then the rest of a row.
     const std::uint32_t fullRows = count / rowLen;
     const std::uint32_t rest = count % rowLen;
     if (fullRows > 0) {
@@ -222,8 +221,9 @@ analysis::HeapAngle ReposeScupper::heapAngle(std::span<const BodyState> bodies) 
   const float zMax = (0.5f * m_config.depth - m_config.wallMargin) * d();
   std::vector<Vec3> centres;
   for (const BodyState& body : kit::granulesIn(bodies)) {
-    if (inSump(body.position) && std::abs(body.position.z) <= zMax)
+    if (inSump(body.position) && std::abs(body.position.z) <= zMax) {
       centres.push_back(body.position);
+    }
   }
   // The pile leans on the ledge's face (x = 0) and falls toward +x; the floor's surface is the
   // top of its particles; cells one granule wide.
