@@ -95,7 +95,7 @@ std::vector<GranuleBlock> Hourglass::fillRows() const {
                 .spacing = s * d()});
     }
   }
-  return std::move(fill).blocks();
+  return fill.blocks();
 }
 
 std::vector<BodyState> Hourglass::keptPacking() const {

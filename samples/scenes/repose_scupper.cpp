@@ -106,7 +106,7 @@ std::vector<GranuleBlock> ReposeScupper::fillBlocks() const {
                 .spacing = spacing});
     }
   }
-  return std::move(fill).blocks();
+  return fill.blocks();
 }
 
 float ReposeScupper::wallTop() const {

@@ -2,7 +2,6 @@
 
 #include <cstdint>
 #include <span>
-#include <utility>
 #include <vector>
 
 #include <sandphys/sandphys.h>
@@ -47,13 +46,16 @@ class FillBlocks {
   FillBlocks(std::uint32_t granules, std::uint64_t seed)
       : m_left(granules), m_seed(seed * 1000003u) {}
 
+  /// Granules of the fill not yet in a block.
   std::uint32_t left() const { return m_left; }
+  /// Adds `block` (at most left() granules) with the next seed of the stream.
   void add(GranuleBlock block) {
     block.seed = m_seed + m_blocks.size();
     m_left -= block.countX * block.countY * block.countZ;
     m_blocks.push_back(block);
   }
-  std::vector<GranuleBlock> blocks() && { return std::move(m_blocks); }
+  /// The blocks in the order added, which is the order of adds to the World.
+  const std::vector<GranuleBlock>& blocks() const { return m_blocks; }
 
  private:
   std::uint32_t m_left;
