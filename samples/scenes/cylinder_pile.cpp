@@ -5,9 +5,11 @@
 #include <cmath>
 #include <numeric>
 #include <string>
-#include <tuple>
 
+#include "scenes/kit/checks.h"
+#include "scenes/kit/flow.h"
 #include "scenes/kit/geometry.h"
+#include "scenes/kit/settings.h"
 #include "scenes/pour.h"
 
 namespace sandphys::scenes {
@@ -30,72 +32,34 @@ const auto kTable = std::to_array<kit::Param<C>>({
     {"max-batch-seconds", &C::maxSecondsPerBatch, "s", 0.0, 1e6, "longest wait for a batch"},
 });
 
-// A run of `count` lattice columns from x = first at z = row, in spacings.
-struct Row {
-  std::int32_t row, first;
-  std::uint32_t count;
-};
-
-// The `columns` lattice columns nearest the axis (ties by row, then column, so that each row's
-// share is one run), as rows.
-std::vector<Row> footprint(std::uint32_t columns) {
-  const auto half = static_cast<std::int32_t>(std::ceil(std::sqrt(columns / 3.14159265))) + 2;
-  std::vector<std::array<std::int32_t, 3>> sites;  // (x² + z², z, x)
-  for (std::int32_t j = -half; j <= half; ++j) {
-    for (std::int32_t i = -half; i <= half; ++i) sites.push_back({i * i + j * j, j, i});
-  }
-  std::sort(sites.begin(), sites.end());
-  sites.resize(columns);
-  std::sort(sites.begin(), sites.end(), [](const auto& a, const auto& b) {
-    return std::tie(a[1], a[2]) < std::tie(b[1], b[2]);
-  });
-  std::vector<Row> rows;
-  for (const auto& [r2, j, i] : sites) {
-    if (rows.empty() || rows.back().row != j) rows.push_back({j, i, 0});
-    ++rows.back().count;
-  }
-  return rows;
-}
-
 }  // namespace
 
 std::span<const kit::Param<C>> CylinderPile::table() const {
   return kTable;
 }
 
-std::uint32_t CylinderPile::batchGranules() const {
-  return m_config.batch[0] * m_config.batch[1] * m_config.batch[2];
-}
-
 float CylinderPile::batchReach() const {
-  double farthest = 0.0;
-  for (const Row& row : footprint(m_config.batch[0] * m_config.batch[2])) {
-    for (std::int32_t i : {row.first, row.first + std::int32_t(row.count) - 1}) {
-      farthest = std::max(farthest, std::hypot(double(i), double(row.row)));
-    }
-  }
+  const double farthest = kit::discRadius(kit::discRuns(m_config.batch[0] * m_config.batch[2]));
   const double jitter = GranuleBlock{}.jitter * std::sqrt(2.0);
   return static_cast<float>(((farthest + jitter) * m_config.spacing + kGranuleReach) * d());
 }
 
 WorldSettings CylinderPile::worldSettings() const {
-  WorldSettings settings;
-  settings.particleDiameter = d();
-  // Every batch is allocated up front, as in the paper, and the rough floor.
-  kit::reserveExactly(
-      settings, name(), static_cast<std::uint64_t>(batchGranules()) * m_config.batches, 1,
-      roughFloorParticles(RoughFloor{.radius = m_config.cylinderRadius * d()}, d()));
-  if (batchReach() > m_config.cylinderRadius * d()) {
-    throw InvalidArgument("cylinder-pile: a batch reaches " + numberText(batchReach() / d()) +
-                          " d from the axis, outside the cylinder (radius " +
-                          numberText(m_config.cylinderRadius) + " d)");
-  }
+  const Config& c = m_config;
   // The top layer of a batch falls its drop height and the batch's height.
-  const float fall = (std::max(m_config.firstDropHeight, m_config.dropGap) +
-                      kit::blockSpan(m_config.batch[1], m_config.spacing)) *
-                     d();
-  settings.maxSpeed = pourGuardSpeed(0.0f, fall, gravityMagnitude(settings));
-  settings.material.youngsModulus = sceneYoungsModulus(settings);
+  const float fall =
+      (std::max(c.firstDropHeight, c.dropGap) + kit::blockSpan(c.batch[1], c.spacing)) * d();
+  // Every batch is allocated up front, as in the paper, and the rough floor.
+  const WorldSettings settings = kit::worldSettings(
+      name(), d(),
+      {.granules = static_cast<std::uint64_t>(batchGranules()) * c.batches,
+       .bodies = 1,
+       .particles = roughFloorParticles(RoughFloor{.radius = c.cylinderRadius * d()}, d()),
+       .maxSpeed = pourGuardSpeed(0.0f, fall, kit::kGravity),
+       .statsEachFrame = true});
+  kit::require(batchReach() <= c.cylinderRadius * d(), name(), "a batch reaches ",
+               batchReach() / d(), " d from the axis, outside the cylinder (radius ",
+               c.cylinderRadius, " d)");
   return settings;
 }
 
@@ -105,13 +69,8 @@ void CylinderPile::build(World& world) {
   const ParticleTemplate granule = tetrahedronTemplate(d(), world.settings().material.density);
   m_granuleMass = granule.mass;
   m_granuleOuterRadius = granule.boundingRadius + 0.5f * d();
-  const float radius = m_config.cylinderRadius * d();
-  world.addCollider(Cylinder{
-      .base = {0.0f, 0.0f, 0.0f}, .radius = radius, .height = m_config.cylinderHeight * d()});
-  world.addRoughFloor(RoughFloor{.center = {0.0f, 0.0f, 0.0f}, .radius = radius, .spacing = d()});
-  // A grain that slips through the floor's lattice (it should not) rests on this net instead of
-  // falling forever at maxSpeed.
-  world.addCollider(Plane{.normal = {0.0f, 1.0f, 0.0f}, .offset = -d()});
+  kit::addCylinderContainer(world, m_config.cylinderRadius * d(), m_config.cylinderHeight * d(),
+                            d());
   m_pileTop = 0.0f;
   dropBatch(world, m_config.firstDropHeight * d(), world.simulatedTime());
 }
@@ -120,11 +79,11 @@ void CylinderPile::dropBatch(World& world, float bottomLayerY, double simTime) {
   const float spacing = m_config.spacing * d();
   const float blockHeight = kit::blockSpan(m_config.batch[1], spacing);
   std::uint64_t seed = m_config.seed * 1000003u + m_batchesDropped * 4099u;
-  for (const Row& row : footprint(m_config.batch[0] * m_config.batch[2])) {
-    const float middle = static_cast<float>(row.first) + 0.5f * static_cast<float>(row.count - 1);
+  for (const kit::LatticeRun& run : kit::discRuns(m_config.batch[0] * m_config.batch[2])) {
+    const float middle = static_cast<float>(run.first) + 0.5f * static_cast<float>(run.count - 1);
     world.addGranules(GranuleBlock{
-        .center = {middle * spacing, bottomLayerY + 0.5f * blockHeight, row.row * spacing},
-        .countX = row.count,
+        .center = {middle * spacing, bottomLayerY + 0.5f * blockHeight, run.row * spacing},
+        .countX = run.count,
         .countY = m_config.batch[1],
         .countZ = 1,
         .spacing = spacing,
@@ -169,15 +128,11 @@ std::vector<SceneMetric> CylinderPile::metrics(std::span<const BodyState> bodies
   const double settled = static_cast<double>(m_settleTimes.size());
   const double settleSum = std::accumulate(m_settleTimes.begin(), m_settleTimes.end(), 0.0);
   return {
-      {"batches", static_cast<double>(m_config.batches)},
       {"batches_dropped", static_cast<double>(m_batchesDropped)},
       {"batches_settled", settled},
-      {"batch_granules", static_cast<double>(batchGranules())},
       {"mean_settle_seconds", settled > 0.0 ? settleSum / settled : 0.0},
       {"pile_top_m", top},
       {"pile_top_d", top / d()},
-      {"cylinder_radius_m", m_config.cylinderRadius * d()},
-      {"cylinder_height_m", m_config.cylinderHeight * d()},
   };
 }
 

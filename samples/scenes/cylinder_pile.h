@@ -46,14 +46,11 @@ class CylinderPile final : public kit::SceneWith<CylinderPileConfig> {
   std::vector<SceneMetric> metrics(std::span<const BodyState> bodies) const override;
   SceneBounds bounds() const override;
 
-  std::uint32_t batchGranules() const;
+  std::uint32_t batchGranules() const {
+    return m_config.batch[0] * m_config.batch[1] * m_config.batch[2];
+  }
   /// Largest distance of a dropped batch's particle from the axis, m.
   float batchReach() const;
-  std::uint32_t batchesDropped() const { return m_batchesDropped; }
-  /// Top of the pile (m) when the last batch was dropped; the floor before the first.
-  float lastPileTop() const { return m_pileTop; }
-  /// Simulated time (s) each batch took to settle or to reach maxSecondsPerBatch.
-  const std::vector<double>& settleTimes() const { return m_settleTimes; }
   /// pileSurface of the contained granules with the granule's outer radius, which only build()
   /// sets (0 before).
   float pileTop(std::span<const BodyState> bodies) const;
@@ -64,10 +61,10 @@ class CylinderPile final : public kit::SceneWith<CylinderPileConfig> {
 
   std::uint32_t m_batchesDropped = 0;
   kit::SettleWait m_wait;
-  float m_pileTop = 0.0f;
+  float m_pileTop = 0.0f;  // m, when the newest batch was dropped
   float m_granuleMass = 0.0f;
   float m_granuleOuterRadius = 0.0f;
-  std::vector<double> m_settleTimes;
+  std::vector<double> m_settleTimes;  // s, each batch's wait
 };
 
 }  // namespace sandphys::scenes

@@ -4,21 +4,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numbers>
 #include <string>
 
-#include "scenes/kit/geometry.h"
-#include "scenes/pour.h"
+#include "scenes/kit/checks.h"
+#include "scenes/kit/flow.h"
 
 namespace sandphys::scenes {
 
 namespace {
 
 using kit::kReach;
-// In d. A fill granule's centre stays kReach + kJitterReach + kClearance from the wall and the
-// gate (the jitter along three axes: the wall is a cone); the wall stands kHeadroom above it.
+// In d. A fill granule's centre stays kReach + kJitterReach + kFillClearance from the wall and
+// the gate (the jitter along three axes: the wall is a cone); the wall stands kHeadroom above it.
 const float kJitterReach = kit::kJitter * std::numbers::sqrt3_v<float>;
-constexpr float kClearance = 0.2f;
 constexpr float kHeadroom = 6.0f;
 // The gate's slab reaches kGateOverlap beyond the outlet's rim, and kGateClearance clear of the
 // rim when open. The sink's top lies kSinkDepth below the outlet, where a granule has wholly
@@ -71,41 +71,39 @@ std::vector<GranuleBlock> Hourglass::fillRows() const {
   const float s = kDefaultGranuleSpacing;
   const float cosAngle = std::cos(halfAngle());
   const float tanAngle = tanHalfAngle();
-  const float gap = kReach + kJitterReach + kClearance;
-  std::vector<GranuleBlock> rows;
-  std::uint32_t left = m_config.granules;
-  for (std::uint32_t layer = 0; left > 0; ++layer) {
+  const float gap = kReach + kJitterReach + kit::kFillClearance;
+  kit::FillBlocks fill(m_config.granules, m_config.seed);
+  for (std::uint32_t layer = 0; fill.left() > 0; ++layer) {
     const float h = gap + static_cast<float>(layer) * kShiftedLayerHeight;
     // Largest distance of a centre from the axis at height h above the outlet.
     const float rho = 0.5f * m_config.outlet + h * tanAngle - gap / cosAngle;
     if (rho < 0.0f) continue;  // still too narrow here; halfAngle > 0 ends this
     const float offset = (layer % 2 == 1) ? 0.5f : 0.0f;
     const auto [firstRow, lastRow] = slots(rho, offset);
-    for (std::int64_t j = firstRow; j <= lastRow && left > 0; ++j) {
+    for (std::int64_t j = firstRow; j <= lastRow && fill.left() > 0; ++j) {
       const float z = (static_cast<float>(j) + offset) * s;
       const auto [first, last] = slots(std::sqrt(std::max(rho * rho - z * z, 0.0f)), offset);
       if (last < first) continue;
-      const auto count = static_cast<std::uint32_t>(std::min<std::int64_t>(last - first + 1, left));
+      const auto count =
+          static_cast<std::uint32_t>(std::min<std::int64_t>(last - first + 1, fill.left()));
       const float x =
           (static_cast<float>(first) + 0.5f * static_cast<float>(count - 1) + offset) * s;
-      rows.push_back({.center = {x * d(), outletY() + h * d(), z * d()},
-                      .countX = count,
-                      .countY = 1,
-                      .countZ = 1,
-                      .spacing = s * d(),
-                      .seed = m_config.seed * 1000003u + rows.size()});
-      left -= count;
+      fill.add({.center = {x * d(), outletY() + h * d(), z * d()},
+                .countX = count,
+                .countY = 1,
+                .countZ = 1,
+                .spacing = s * d()});
     }
   }
-  return rows;
+  return fill.blocks();
 }
 
 std::vector<BodyState> Hourglass::keptPacking() const {
   // A granule reaches kReach below its centre: one lower would start in the gate.
   const float lowest = outletY() + kReach * d();
   std::vector<BodyState> kept;
-  for (const BodyState& body : m_packing) {
-    if (body.alive && body.granule && body.position.y >= lowest) kept.push_back(body);
+  for (const BodyState& body : kit::granulesIn(m_packing)) {
+    if (body.position.y >= lowest) kept.push_back(body);
   }
   return kept;
 }
@@ -122,57 +120,39 @@ Box Hourglass::gate(bool open) const {
   return Box{.center = {x, outletY() - 0.5f * kGateThickness * d(), 0.0f},
              .halfExtents = {half, 0.5f * kGateThickness * d(), half},
              .inside = false,
-             .material = {.friction = m_config.wallFriction, .restitution = m_config.restitution}};
+             .material = kit::wallMaterial(m_config)};
 }
 
 WorldSettings Hourglass::worldSettings() const {
-  if (!(m_config.steadyFrom < m_config.steadyTo)) {
-    throw InvalidArgument("hourglass: steady-from " + numberText(m_config.steadyFrom) +
-                          " must be below steady-to " + numberText(m_config.steadyTo));
-  }
-  const std::uint64_t granules = m_packing.empty() ? m_config.granules : keptPacking().size();
-  if (granules == 0) {
-    throw InvalidArgument("hourglass: no granule of the packing lies above the outlet plane (" +
-                          numberText(m_config.outlet) + " d wide)");
-  }
-  WorldSettings settings;
-  settings.particleDiameter = d();
-  settings.material.friction = m_config.friction;
-  settings.material.restitution = m_config.restitution;
-  kit::reserveExactly(settings, name(), granules);
-  settings.statsEachFrame = true;  // the count left
+  const Config& c = m_config;
+  kit::require(c.steadyFrom < c.steadyTo, name(), "steady-from ", c.steadyFrom,
+               " must be below steady-to ", c.steadyTo);
+  const std::uint64_t granules = m_packing.empty() ? c.granules : keptPacking().size();
+  kit::require(granules > 0, name(), "no granule of the packing lies above the outlet plane (",
+               c.outlet, " d wide)");
   // The guard: a fall from an arch over the outlet to the sink, or from half the lattice's
   // height as it collapses while it settles.
-  float fall = (0.5f * m_config.outlet + kSinkDepth) * d();
+  float fall = (0.5f * c.outlet + kSinkDepth) * d();
   if (m_packing.empty()) {
     const std::vector<GranuleBlock> rows = fillRows();
     fall = std::max(fall, 0.5f * (rows.back().center.y - rows.front().center.y));
   }
-  settings.maxSpeed = pourGuardSpeed(0.0f, fall, gravityMagnitude(settings));
-  settings.stepsPerContact = m_config.stepsPerContact;
-  settings.material.youngsModulus = sceneYoungsModulus(settings, m_config.youngsModulus);
-  return settings;
+  return kit::worldSettings(name(), d(), kit::gatedFillRule(c, granules, fall));
 }
 
 void Hourglass::build(World& world) {
-  m_course = kit::Course({.settleSpeed = m_config.settleSpeed,
-                          .maxSettleSeconds = m_config.maxSettleSeconds,
-                          .actAfter = m_config.releaseTime},
-                         kit::granuleMass(world.settings()));
+  m_course = kit::gateCourse(m_config, world.settings());
   m_remaining.clear();
   m_packingAtRelease.clear();
   m_lastDrainTime = 0.0;
-  m_granulesAtRelease = m_lastRemaining = 0;
+  m_granulesAtRelease = 0;
   m_guardsAtRelease = m_guards = {};
   m_funnelTop = funnelTop();
-
-  const SurfaceMaterial wall{.friction = m_config.wallFriction,
-                             .restitution = m_config.restitution};
   world.addCollider(Funnel{.outletCenter = {0.0f, outletY(), 0.0f},
                            .outletRadius = outletRadius(),
                            .halfAngle = halfAngle(),
                            .height = m_funnelTop - outletY(),
-                           .material = wall});
+                           .material = kit::wallMaterial(m_config)});
   m_gate = world.addCollider(gate(false));
   const float sinkHalf = outletRadius() + kSinkHalfWidth * d();
   world.addSink(Sink{.min = {-sinkHalf, outletY() - (kSinkDepth + kSinkHeight) * d(), -sinkHalf},
@@ -192,13 +172,10 @@ void Hourglass::update(World& world, const StepReport& report, double simTime) {
   if (finished()) return;
   if (m_course.update(report, simTime)) {
     // The fill as it settled, for startFrom of later runs: one read-back per run.
-    for (const BodyState& body : world.readBodies()) {
-      if (body.alive && body.granule) m_packingAtRelease.push_back(body);
-    }
+    std::ranges::copy(kit::granulesIn(world.readBodies()), std::back_inserter(m_packingAtRelease));
     world.setCollider(m_gate, gate(true));
     m_granulesAtRelease = report.hasStats ? report.stats.granulesAlive : world.granulesSpawned();
     m_guardsAtRelease = m_guards = {report.stats.penetrationClamps, report.stats.velocityClamps};
-    m_lastRemaining = m_granulesAtRelease;
     m_lastDrainTime = simTime;
     m_remaining.push_back({0.0, static_cast<double>(m_granulesAtRelease)});
     return;
@@ -209,11 +186,9 @@ void Hourglass::update(World& world, const StepReport& report, double simTime) {
   }
   const std::uint32_t left = report.stats.granulesAlive;
   m_guards = {report.stats.penetrationClamps, report.stats.velocityClamps};
+  // Granules only ever leave: a count below the last sample's is a new low.
+  if (left < m_remaining.back()[1]) m_lastDrainTime = simTime;
   m_remaining.push_back({simTime - releasedAt(), static_cast<double>(left)});
-  if (left < m_lastRemaining) {
-    m_lastRemaining = left;
-    m_lastDrainTime = simTime;
-  }
   if (left == 0 || simTime - m_lastDrainTime >= m_config.stallSeconds) m_course.endAct(simTime);
 }
 
@@ -245,9 +220,10 @@ Hourglass::FlowFit Hourglass::flowFit() const {
 }
 
 std::string Hourglass::status() const {
-  if (!released()) return "settling";
-  if (m_lastRemaining == 0) return "empty";
-  const std::string left = std::to_string(m_lastRemaining) + " left";
+  if (releasedAt() < 0.0) return "settling";
+  const auto remaining = static_cast<std::uint32_t>(m_remaining.back()[1]);
+  if (remaining == 0) return "empty";
+  const std::string left = std::to_string(remaining) + " left";
   return finished() ? "stopped: " + left : "draining: " + left;
 }
 
@@ -263,9 +239,7 @@ bool Hourglass::contains(const Vec3& centre) const {
 
 std::vector<SceneMetric> Hourglass::metrics(std::span<const BodyState> bodies) const {
   std::size_t inFunnel = 0;
-  for (const BodyState& body : bodies) {
-    if (body.alive && body.granule && body.position.y > outletY()) ++inFunnel;
-  }
+  for (const BodyState& body : kit::granulesIn(bodies)) inFunnel += body.position.y > outletY();
   const FlowFit fit = flowFit();
   // The fill's height above the outlet and its width there at the release, for the paper's
   // conditions of a steady flow (height >= 2.5 W, W > D + 30 d).
@@ -282,11 +256,8 @@ std::vector<SceneMetric> Hourglass::metrics(std::span<const BodyState> bodies) c
       {"fill_height_d", fillHeight / d()},
       {"fill_width_d", fillWidth / d()},
       {"granules_in_funnel", static_cast<double>(inFunnel)},
-      {"released", released() ? 1.0 : 0.0},
+      {"released", releasedAt() >= 0.0 ? 1.0 : 0.0},
       {"release_time_s", releasedAt()},
-      {"outlet_d", m_config.outlet},
-      {"half_angle_deg", m_config.halfAngle},
-      {"friction", m_config.friction},
       {"flow_rate_per_s", fit.rate},
       {"flow_rate_r2", fit.rSquared},
       // The settling lattice collapses hard; what counts is the guards while it drains.

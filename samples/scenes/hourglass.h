@@ -77,7 +77,6 @@ class Hourglass final : public kit::SceneWith<HourglassConfig> {
   void startFrom(std::vector<BodyState> packing) { m_packing = std::move(packing); }
   /// The fill just before the gate opened (one read-back); empty before.
   const std::vector<BodyState>& packingAtRelease() const { return m_packingAtRelease; }
-  bool released() const { return m_course.actStart() >= 0.0; }
   /// Simulated time the gate opened, s (negative before).
   double releasedAt() const { return m_course.actStart(); }
   std::uint32_t granulesAtRelease() const { return m_granulesAtRelease; }
@@ -104,7 +103,6 @@ class Hourglass final : public kit::SceneWith<HourglassConfig> {
   std::vector<BodyState> m_packingAtRelease;
   std::vector<std::array<double, 2>> m_remaining;
   std::uint32_t m_granulesAtRelease = 0;
-  std::uint32_t m_lastRemaining = 0;
   double m_lastDrainTime = 0.0;  // s, when the count last fell
   std::array<std::uint64_t, 2> m_guardsAtRelease{};
   std::array<std::uint64_t, 2> m_guards{};

@@ -5,8 +5,8 @@
 #include <string>
 
 #include "scenes/heap_metrics.h"
-#include "scenes/kit/geometry.h"
-#include "scenes/pour.h"
+#include "scenes/kit/checks.h"
+#include "scenes/kit/flow.h"
 
 namespace sandphys::scenes {
 
@@ -14,11 +14,10 @@ namespace {
 
 using kit::kJitter;
 using kit::kReach;
-// In d. Walls, the gate and the ledge's sides are kWall thick; a fill granule at its farthest
-// jitter (along one axis: the walls are axis-aligned) stays kClearance clear of them, and the
-// walls stand kHeadroom above the fill.
+// In d. Walls, the gate and the ledge's sides are kWall thick; a fill granule's centre stays
+// kReach + kJitter + kFillClearance clear of them (the jitter along one axis: the walls are
+// axis-aligned), and the walls stand kHeadroom above the fill.
 constexpr float kWall = 2.0f;
-constexpr float kClearance = 0.2f;
 constexpr float kHeadroom = 4.0f;
 // In d. The sink's top lies kSinkDepth below the sump floor's centres, where a grain past the
 // sump's end has left; it is kSinkHeight high and reaches kRunout past the sump's end.
@@ -60,7 +59,7 @@ const auto kTable = std::to_array<kit::Param<C>>({
 // Lattice slots across a reservoir `width` d wide, clear of the walls on either side; alternate
 // layers are half a spacing apart, which costs half a spacing of the room.
 std::uint32_t latticeSlots(float width) {
-  const float room = width - 2.0f * (kReach + kJitter + kClearance);
+  const float room = width - 2.0f * (kReach + kJitter + kit::kFillClearance);
   return static_cast<std::uint32_t>(std::max(
       0.0f, std::floor((room - 0.5f * kDefaultGranuleSpacing) / kDefaultGranuleSpacing) + 1.0f));
 }
@@ -75,47 +74,39 @@ std::vector<GranuleBlock> ReposeScupper::fillBlocks() const {
   const std::uint32_t rowLen = latticeSlots(m_config.reservoirWidth);
   const std::uint32_t rows = latticeSlots(m_config.depth);
   const std::uint32_t perLayer = rowLen * rows;
-  std::vector<GranuleBlock> blocks;
-  if (perLayer == 0) return blocks;
+  if (perLayer == 0) return {};
+  kit::FillBlocks fill(m_config.granules, m_config.seed);
   const float spacing = kDefaultGranuleSpacing * d();
   const float centreX = -kWall * d() - 0.5f * m_config.reservoirWidth * d();
   const float firstX = centreX - 0.5f * static_cast<float>(rowLen - 1) * spacing;
   const float firstZ = -0.5f * static_cast<float>(rows - 1) * spacing;
-  const float bottom = (m_config.ledge + kReach + kJitter + kClearance) * d();
-  std::uint64_t seed = m_config.seed * 1000003u;
-  std::uint32_t left = m_config.granules;
-  for (std::uint32_t i = 0; left > 0; ++i) {
-    const std::uint32_t count = std::min(left, perLayer);
-    left -= count;
+  const float bottom = (m_config.ledge + kReach + kJitter + kit::kFillClearance) * d();
+  for (std::uint32_t i = 0; fill.left() > 0; ++i) {
+    const std::uint32_t count = std::min(fill.left(), perLayer);
     const float y = bottom + static_cast<float>(i) * kShiftedLayerHeight * d();
     // Layers alternate a quarter spacing either side of the centre along x and z: half a spacing
     // apart, each clear of the walls by the same room.
     const float shift = (i % 2 == 1 ? 0.25f : -0.25f) * spacing;
-    // Whole rows along x, then the rest of a row.
     const std::uint32_t fullRows = count / rowLen;
     const std::uint32_t rest = count % rowLen;
     if (fullRows > 0) {
-      blocks.push_back(GranuleBlock{
-          .center = {centreX + shift, y,
-                     firstZ + 0.5f * static_cast<float>(fullRows - 1) * spacing + shift},
-          .countX = rowLen,
-          .countY = 1,
-          .countZ = fullRows,
-          .spacing = spacing,
-          .seed = seed++});
+      fill.add({.center = {centreX + shift, y,
+                           firstZ + 0.5f * static_cast<float>(fullRows - 1) * spacing + shift},
+                .countX = rowLen,
+                .countY = 1,
+                .countZ = fullRows,
+                .spacing = spacing});
     }
     if (rest > 0) {
-      blocks.push_back(
-          GranuleBlock{.center = {firstX + 0.5f * static_cast<float>(rest - 1) * spacing + shift, y,
-                                  firstZ + static_cast<float>(fullRows) * spacing + shift},
-                       .countX = rest,
-                       .countY = 1,
-                       .countZ = 1,
-                       .spacing = spacing,
-                       .seed = seed++});
+      fill.add({.center = {firstX + 0.5f * static_cast<float>(rest - 1) * spacing + shift, y,
+                           firstZ + static_cast<float>(fullRows) * spacing + shift},
+                .countX = rest,
+                .countY = 1,
+                .countZ = 1,
+                .spacing = spacing});
     }
   }
-  return blocks;
+  return fill.blocks();
 }
 
 float ReposeScupper::wallTop() const {
@@ -131,7 +122,7 @@ Box ReposeScupper::gate(bool open) const {
              .halfExtents = {0.5f * kWall * d(), 0.5f * (top - bottom),
                              (0.5f * m_config.depth + kWall) * d()},
              .inside = false,
-             .material = {.friction = m_config.wallFriction, .restitution = m_config.restitution}};
+             .material = kit::wallMaterial(m_config)};
 }
 
 RoughFloor ReposeScupper::sumpFloor() const {
@@ -143,55 +134,32 @@ RoughFloor ReposeScupper::sumpFloor() const {
 }
 
 WorldSettings ReposeScupper::worldSettings() const {
-  const std::string scene = "repose-scupper: ";
-  if (latticeSlots(m_config.reservoirWidth) == 0 || latticeSlots(m_config.depth) == 0) {
-    throw InvalidArgument(
-        scene + "reservoir-width " + numberText(m_config.reservoirWidth) + " d and depth " +
-        numberText(m_config.depth) +
-        " d leave no room for a granule in the reservoir (each at least " +
-        numberText(2.0f * (kReach + kJitter + kClearance) + 0.5f * kDefaultGranuleSpacing) + " d)");
-  }
-  if (m_config.outlet < 2.0f * kReach) {
-    throw InvalidArgument(scene + "outlet " + numberText(m_config.outlet) +
-                          " d is lower than a granule (at least " + numberText(2.0f * kReach) +
-                          " d): no sand can pass the scupper");
-  }
-  if (m_config.wallMargin * 2.0f >= m_config.depth) {
-    throw InvalidArgument(scene + "wall-margin " + numberText(m_config.wallMargin) +
-                          " d leaves nothing of the depth " + numberText(m_config.depth) +
-                          " d to read the flank from");
-  }
-  if (!(m_config.minDrainSeconds <= m_config.maxDrainSeconds)) {
-    throw InvalidArgument(scene + "min-drain-seconds " + numberText(m_config.minDrainSeconds) +
-                          " is more than max-drain-seconds " +
-                          numberText(m_config.maxDrainSeconds));
-  }
-  WorldSettings settings;
-  settings.particleDiameter = d();
-  settings.material.friction = m_config.friction;
-  settings.material.restitution = m_config.restitution;
-  kit::reserveExactly(settings, name(), m_config.granules, 1,
-                      roughFloorParticles(sumpFloor(), d()));
-  settings.statsEachFrame = true;  // the settle tests
-  const float fillHeight = wallTop() / d() - kHeadroom - m_config.ledge;
-  const float fall = std::max(m_config.ledge + m_config.outlet, kCollapse * fillHeight) * d();
-  settings.maxSpeed = pourGuardSpeed(0.0f, fall, gravityMagnitude(settings));
-  settings.stepsPerContact = m_config.stepsPerContact;
-  settings.material.youngsModulus = sceneYoungsModulus(settings, m_config.youngsModulus);
-  return settings;
+  const Config& c = m_config;
+  kit::require(latticeSlots(c.reservoirWidth) > 0 && latticeSlots(c.depth) > 0, name(),
+               "reservoir-width ", c.reservoirWidth, " d and depth ", c.depth,
+               " d leave no room for a granule in the reservoir (each at least ",
+               2.0f * (kReach + kJitter + kit::kFillClearance) + 0.5f * kDefaultGranuleSpacing,
+               " d)");
+  kit::require(c.outlet >= 2.0f * kReach, name(), "outlet ", c.outlet,
+               " d is lower than a granule (at least ", 2.0f * kReach,
+               " d): no sand can pass the scupper");
+  kit::require(c.wallMargin * 2.0f < c.depth, name(), "wall-margin ", c.wallMargin,
+               " d leaves nothing of the depth ", c.depth, " d to read the flank from");
+  kit::require(c.minDrainSeconds <= c.maxDrainSeconds, name(), "min-drain-seconds ",
+               c.minDrainSeconds, " is more than max-drain-seconds ", c.maxDrainSeconds);
+  const float fillHeight = wallTop() / d() - kHeadroom - c.ledge;
+  const float fall = std::max(c.ledge + c.outlet, kCollapse * fillHeight) * d();
+  kit::SettingsRule rule = kit::gatedFillRule(c, c.granules, fall);
+  rule.bodies = 1;
+  rule.particles = roughFloorParticles(sumpFloor(), d());
+  return kit::worldSettings(name(), d(), rule);
 }
 
 void ReposeScupper::build(World& world) {
-  m_course = kit::Course({.settleSpeed = m_config.settleSpeed,
-                          .maxSettleSeconds = m_config.maxSettleSeconds,
-                          .actAfter = m_config.releaseTime,
-                          .minRestSeconds = m_config.minDrainSeconds,
-                          .maxRestSeconds = m_config.maxDrainSeconds},
-                         kit::granuleMass(world.settings()));
+  m_course = kit::gateCourse(m_config, world.settings(), m_config.minDrainSeconds,
+                             m_config.maxDrainSeconds);
   m_endTime = -1.0;
-
-  const SurfaceMaterial wall{.friction = m_config.wallFriction,
-                             .restitution = m_config.restitution};
+  const SurfaceMaterial wall = kit::wallMaterial(m_config);
   const float top = wallTop();
   const float w = kWall * d();
   const float halfDepth = 0.5f * m_config.depth * d();
@@ -252,8 +220,8 @@ bool ReposeScupper::contains(const Vec3& centre) const {
 analysis::HeapAngle ReposeScupper::heapAngle(std::span<const BodyState> bodies) const {
   const float zMax = (0.5f * m_config.depth - m_config.wallMargin) * d();
   std::vector<Vec3> centres;
-  for (const BodyState& body : bodies) {
-    if (body.alive && body.granule && inSump(body.position) && std::abs(body.position.z) <= zMax) {
+  for (const BodyState& body : kit::granulesIn(bodies)) {
+    if (inSump(body.position) && std::abs(body.position.z) <= zMax) {
       centres.push_back(body.position);
     }
   }
@@ -268,8 +236,7 @@ analysis::HeapAngle ReposeScupper::heapAngle(std::span<const BodyState> bodies) 
 
 ReposeScupper::GranuleCounts ReposeScupper::countGranules(std::span<const BodyState> bodies) const {
   GranuleCounts counts;
-  for (const BodyState& body : bodies) {
-    if (!body.granule || !body.alive) continue;
+  for (const BodyState& body : kit::granulesIn(bodies)) {
     ++counts.alive;
     counts.sump += inSump(body.position) ? 1 : 0;
     counts.reservoir += inReservoir(body.position) ? 1 : 0;
@@ -286,7 +253,6 @@ std::vector<SceneMetric> ReposeScupper::metrics(std::span<const BodyState> bodie
        static_cast<double>(m_config.granules - std::min(m_config.granules, counts.alive))},
       {"release_time_s", releasedAt()},
       {"end_time_s", m_endTime},
-      {"friction", m_config.friction},
       {"settled", m_course.done() && m_course.calm() ? 1.0 : 0.0},
   };
   appendHeapAngleMetrics(

@@ -71,10 +71,6 @@ class ReposeScupper final : public kit::SceneWith<ReposeScupperConfig> {
   /// The sump's pile and its angle (flank read wallMargin clear of the side walls); throws
   /// InvalidArgument when the pile is too small to have a flank.
   analysis::HeapAngle heapAngle(std::span<const BodyState> bodies) const;
-  /// Whether a granule centre (m) is over the sump's floor.
-  bool inSump(const Vec3& centre) const;
-  /// Whether a granule centre (m) is in the reservoir or the scupper.
-  bool inReservoir(const Vec3& centre) const;
   /// The alive granules of `bodies`: in the reservoir, in the sump, and in all.
   struct GranuleCounts {
     std::uint32_t reservoir = 0, sump = 0, alive = 0;
@@ -87,6 +83,8 @@ class ReposeScupper final : public kit::SceneWith<ReposeScupperConfig> {
 
  private:
   std::span<const kit::Param<Config>> table() const override;
+  bool inSump(const Vec3& centre) const;       // over the sump's floor
+  bool inReservoir(const Vec3& centre) const;  // in the reservoir or the scupper
   /// Height of the walls' top above the sump's floor, m.
   float wallTop() const;
   Box gate(bool open) const;  // open: raised by the outlet

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
+#include <string_view>
 #include <vector>
 
 #include "scenes/cylinder_pile.h"
@@ -33,6 +35,15 @@ class CylinderPileOnGpu : public ::testing::Test {
     return result;
   }
 
+  // The scene's metric `name` (those that count batches need no bodies).
+  double metric(std::string_view name) const {
+    for (const SceneMetric& m : m_pile.metrics({})) {
+      if (m.name == name) return m.value;
+    }
+    ADD_FAILURE() << "no metric " << name;
+    return -1.0;
+  }
+
   static StepReport reportWithEnergy(double kineticEnergy) {
     StepReport report;
     report.hasStats = true;
@@ -50,7 +61,7 @@ TEST_F(CylinderPileOnGpu, BuildAddsTheFloorAndTheFirstBatch50DiametersUp) {
   // The capacity formula (roughFloorParticles) has to match what the world really placed.
   EXPECT_EQ(m_world->particleCount(),
             4u * 32u + roughFloorParticles(RoughFloor{.radius = 1.0f}, kD));
-  EXPECT_EQ(m_pile.batchesDropped(), 1u);
+  EXPECT_EQ(metric("batches_dropped"), 1.0);
 
   const std::vector<BodyState> batch = granules();
   ASSERT_EQ(batch.size(), 32u);
@@ -74,30 +85,30 @@ TEST_F(CylinderPileOnGpu, BuildAddsTheFloorAndTheFirstBatch50DiametersUp) {
 TEST_F(CylinderPileOnGpu, NothingDropsWhileTheBatchIsStillFalling) {
   // A batch released at rest has no kinetic energy yet; it must not count as settled.
   m_pile.update(*m_world, reportWithEnergy(0.0), 0.1);
-  EXPECT_EQ(m_pile.batchesDropped(), 1u);
+  EXPECT_EQ(metric("batches_dropped"), 1.0);
   EXPECT_EQ(m_world->bodyCount(), 33u);
 }
 
 TEST_F(CylinderPileOnGpu, MovingGrainsHoldTheNextBatchUntilTheTimeLimit) {
   m_pile.update(*m_world, reportWithEnergy(1.0), 2.0);  // 1 J: clearly still moving
-  EXPECT_EQ(m_pile.batchesDropped(), 1u);
+  EXPECT_EQ(metric("batches_dropped"), 1.0);
   m_pile.update(*m_world, reportWithEnergy(1.0), m_pile.config().maxSecondsPerBatch + 0.01);
-  EXPECT_EQ(m_pile.batchesDropped(), 2u);
+  EXPECT_EQ(metric("batches_dropped"), 2.0);
 }
 
 TEST_F(CylinderPileOnGpu, SettledBatchIsFollowedByOne15DiametersAboveThePile) {
   m_pile.update(*m_world, reportWithEnergy(0.0), 2.0);
-  EXPECT_EQ(m_pile.batchesDropped(), 2u);
+  EXPECT_EQ(metric("batches_dropped"), 2.0);
   EXPECT_EQ(m_world->bodyCount(), 1u + 64u);
-  ASSERT_EQ(m_pile.settleTimes().size(), 1u);
-  EXPECT_DOUBLE_EQ(m_pile.settleTimes()[0], 2.0);
+  ASSERT_EQ(metric("batches_settled"), 1.0);
+  EXPECT_DOUBLE_EQ(metric("mean_settle_seconds"), 2.0);
 
-  // The first batch never moved: the pile top is its top layer plus the granule's outer radius
-  // (1.11 d).
-  const float top = m_pile.lastPileTop();
-  EXPECT_NEAR(top, 50.0f * kD + kSpacing + 1.1124f * kD, kJitter);
+  // The first batch never moved: the pile top it was measured from is its top layer plus the
+  // granule's outer radius (1.11 d).
   std::vector<BodyState> all = granules();
   ASSERT_EQ(all.size(), 64u);
+  const float top = m_pile.pileTop(std::span(all).first(32));
+  EXPECT_NEAR(top, 50.0f * kD + kSpacing + 1.1124f * kD, kJitter);
   float lowestNew = 1e9f;
   for (std::size_t i = 32; i < all.size(); ++i) lowestNew = std::min(lowestNew, all[i].position.y);
   EXPECT_NEAR(lowestNew, top + 15.0f * kD, kJitter);
@@ -112,11 +123,11 @@ TEST_F(CylinderPileOnGpu, SettledBatchIsFollowedByOne15DiametersAboveThePile) {
 
 TEST_F(CylinderPileOnGpu, RebuildStartsOver) {
   m_pile.update(*m_world, reportWithEnergy(0.0), 2.0);
-  ASSERT_EQ(m_pile.batchesDropped(), 2u);
+  ASSERT_EQ(metric("batches_dropped"), 2.0);
   World fresh(m_gpu, m_pile.settings());
   m_pile.build(fresh);
-  EXPECT_EQ(m_pile.batchesDropped(), 1u);
-  EXPECT_TRUE(m_pile.settleTimes().empty());
+  EXPECT_EQ(metric("batches_dropped"), 1.0);
+  EXPECT_EQ(metric("batches_settled"), 0.0);
   EXPECT_EQ(fresh.bodyCount(), 33u);
 }
 

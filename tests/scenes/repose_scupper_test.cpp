@@ -26,9 +26,7 @@ constexpr double kLongestRun = 10.0;
 struct Sump {
   analysis::HeapAngle angle;
   bool settled = false;
-  std::uint32_t inSump = 0;
-  std::uint32_t inReservoir = 0;
-  std::uint32_t alive = 0;
+  ReposeScupper::GranuleCounts granules;
 };
 
 Sump drain(float friction) {
@@ -48,19 +46,15 @@ Sump drain(float friction) {
   Sump sump;
   sump.settled = scene.finished() && scene.status() == "settled";
   const std::vector<BodyState> bodies = world.readBodies();
-  for (const BodyState& b : bodies) {
-    if (!b.granule || !b.alive) continue;
-    ++sump.alive;
-    sump.inSump += scene.inSump(b.position) ? 1 : 0;
-    sump.inReservoir += scene.inReservoir(b.position) ? 1 : 0;
-  }
+  sump.granules = scene.countGranules(bodies);
   sump.angle = scene.heapAngle(bodies);
   std::printf(
       "mu %.1f: %s at %.2f s (released at %.2f s), %u granules in the reservoir, %u in the sump, "
       "%u alive; angle %.2f deg (R2 %.3f over %zu surface cells), height %.2f d\n",
-      friction, scene.status().c_str(), world.simulatedTime(), scene.releasedAt(), sump.inReservoir,
-      sump.inSump, sump.alive, sump.angle.degrees, sump.angle.fit.line.rSquared,
-      sump.angle.radius.size(), sump.angle.peakHeight / config.particleDiameter);
+      friction, scene.status().c_str(), world.simulatedTime(), scene.releasedAt(),
+      sump.granules.reservoir, sump.granules.sump, sump.granules.alive, sump.angle.degrees,
+      sump.angle.fit.line.rSquared, sump.angle.radius.size(),
+      sump.angle.peakHeight / config.particleDiameter);
   return sump;
 }
 
@@ -110,9 +104,9 @@ TEST(ReposeScupper, TheSumpPileBuriesTheSlotAndStandsSteeperWithMoreFriction) {
     EXPECT_TRUE(sump->settled);
     // Every granule left is in the reservoir or the sump: none went through a wall or stuck in
     // the slot. A few roll off the sump's end into the sink (13 at mu = 0.1), not many.
-    EXPECT_EQ(sump->inReservoir + sump->inSump, sump->alive);
-    EXPECT_GT(sump->alive, kGranules - kGranules / 20);
-    EXPECT_GT(sump->inSump, 150u) << "a pile formed in the sump";
+    EXPECT_EQ(sump->granules.reservoir + sump->granules.sump, sump->granules.alive);
+    EXPECT_GT(sump->granules.alive, kGranules - kGranules / 20);
+    EXPECT_GT(sump->granules.sump, 150u) << "a pile formed in the sump";
     // The flow stops because the pile buries the slot, whose foot is the ledge's top: the pile
     // reaches that high (its top centres lie half a granule below the surface).
     EXPECT_GT(sump->angle.peakHeight, (kLedge - 1.0f) * 0.02f);
