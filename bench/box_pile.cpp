@@ -6,7 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "scenes/pour.h"
+#include "scenes/kit/pour.h"
+#include "scenes/kit/settings.h"
 
 namespace sandphys::bench {
 
@@ -101,7 +102,7 @@ std::uint32_t boxPileSettleSteps(const BoxPileConfig& config) {
   std::uint32_t columnsPerSide = 0;
   const PileLayout layout = layoutOf(config, columnsPerSide);
   // BoxPile keeps WorldSettings' default gravity.
-  const double g = scenes::gravityMagnitude(WorldSettings{});
+  const double g = scenes::kit::kGravity;
   const double seconds = kSettleFalls * scenes::fallTime(layout.columnTop, 0.0, g);
   return static_cast<std::uint32_t>(std::ceil(seconds / config.timeStep));
 }
@@ -135,7 +136,7 @@ WorldSettings BoxPile::settings() const {
   s.timeStep = m_config.timeStep;
   // The fastest a granule gets is the fall of the column's top onto the floor (with the margin of
   // the pouring scenes); t_n, and so the stiffness check of the fixed time step, is taken there.
-  s.maxSpeed = scenes::pourGuardSpeed(0.0f, m_layout.columnTop, scenes::gravityMagnitude(s));
+  s.maxSpeed = scenes::kit::pourGuardSpeed(0.0f, m_layout.columnTop, length(s.gravity));
   s.maxBodies = m_config.granules;
   s.maxParticles = 4u * m_config.granules;
   return s;

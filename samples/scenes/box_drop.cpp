@@ -3,9 +3,10 @@
 #include <algorithm>
 #include <array>
 
+#include "scenes/kit/geometry.h"
+#include "scenes/kit/pour.h"
+#include "scenes/kit/readback.h"
 #include "scenes/kit/settings.h"
-#include "scenes/kit/slopes.h"
-#include "scenes/pour.h"
 
 namespace sandphys::scenes {
 
@@ -29,7 +30,7 @@ WorldSettings BoxDrop::worldSettings() const {
   const float drop = (m_config.dropHeight + blockHeight) * d();
   return kit::worldSettings(name(), d(),
                             {.granules = kit::granuleCount(m_config.block),
-                             .maxSpeed = pourGuardSpeed(0.0f, drop, kit::kGravity),
+                             .maxSpeed = kit::pourGuardSpeed(0.0f, drop, kit::kGravity),
                              .statsEachFrame = true});
 }
 

@@ -8,7 +8,8 @@
 #include <optional>
 #include <string>
 
-#include "scenes/kit/bodies.h"
+#include "scenes/kit/geometry.h"
+#include "scenes/kit/readback.h"
 #include "scenes/kit/settings.h"
 
 namespace sandphys::scenes {

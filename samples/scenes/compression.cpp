@@ -6,10 +6,10 @@
 #include <optional>
 #include <string>
 
-#include "scenes/kit/bodies.h"
 #include "scenes/kit/geometry.h"
+#include "scenes/kit/pour.h"
+#include "scenes/kit/readback.h"
 #include "scenes/kit/settings.h"
-#include "scenes/pour.h"
 
 namespace sandphys::scenes {
 
@@ -110,7 +110,7 @@ WorldSettings Compression::worldSettings() const {
        .bodies = 2,
        .particles = roughFloorParticles(RoughFloor{.radius = m_config.radius * d()}, d()) +
                     plungerFace().size(),
-       .maxSpeed = pourGuardSpeed(0.0f, blockHeight, kit::kGravity),
+       .maxSpeed = kit::pourGuardSpeed(0.0f, blockHeight, kit::kGravity),
        .stepsPerContact = m_config.stepsPerContact,
        .youngsModulus = m_config.youngsModulus,
        .friction = m_config.friction,

@@ -7,10 +7,9 @@
 #include <string>
 
 #include "scenes/kit/checks.h"
-#include "scenes/kit/flow.h"
 #include "scenes/kit/geometry.h"
+#include "scenes/kit/pour.h"
 #include "scenes/kit/settings.h"
-#include "scenes/pour.h"
 
 namespace sandphys::scenes {
 
@@ -55,7 +54,7 @@ WorldSettings CylinderPile::worldSettings() const {
       {.granules = static_cast<std::uint64_t>(batchGranules()) * c.batches,
        .bodies = 1,
        .particles = roughFloorParticles(RoughFloor{.radius = c.cylinderRadius * d()}, d()),
-       .maxSpeed = pourGuardSpeed(0.0f, fall, kit::kGravity),
+       .maxSpeed = kit::pourGuardSpeed(0.0f, fall, kit::kGravity),
        .statsEachFrame = true});
   kit::require(batchReach() <= c.cylinderRadius * d(), name(), "a batch reaches ",
                batchReach() / d(), " d from the axis, outside the cylinder (radius ",
@@ -93,7 +92,7 @@ void CylinderPile::dropBatch(World& world, float bottomLayerY, double simTime) {
   // Calm means nothing until the top layer has fallen onto the pile (the gap and the batch's
   // height) and slid and bounced a while.
   const double fall = bottomLayerY - m_pileTop + blockHeight;
-  const double g = gravityMagnitude(world.settings());
+  const double g = length(world.settings().gravity);
   m_wait = {simTime, 1.5 * std::sqrt(2.0 * std::max(fall, 0.0) / g), m_config.maxSecondsPerBatch};
 }
 

@@ -9,7 +9,10 @@
 #include <string>
 
 #include "scenes/kit/checks.h"
-#include "scenes/kit/flow.h"
+#include "scenes/kit/gated_fill.h"
+#include "scenes/kit/geometry.h"
+#include "scenes/kit/readback.h"
+#include "scenes/kit/settings.h"
 
 namespace sandphys::scenes {
 

@@ -10,6 +10,8 @@
 #include "scenes/heap_metrics.h"
 #include "scenes/kit/checks.h"
 #include "scenes/kit/geometry.h"
+#include "scenes/kit/pour.h"
+#include "scenes/kit/readback.h"
 #include "scenes/kit/settings.h"
 
 namespace sandphys::scenes {

@@ -6,7 +6,10 @@
 
 #include "scenes/heap_metrics.h"
 #include "scenes/kit/checks.h"
-#include "scenes/kit/flow.h"
+#include "scenes/kit/gated_fill.h"
+#include "scenes/kit/geometry.h"
+#include "scenes/kit/readback.h"
+#include "scenes/kit/settings.h"
 
 namespace sandphys::scenes {
 

@@ -10,9 +10,9 @@
 #include <utility>
 
 #include "scenes/eigen_conversions.h"
-#include "scenes/kit/bodies.h"
 #include "scenes/kit/checks.h"
 #include "scenes/kit/geometry.h"
+#include "scenes/kit/readback.h"
 #include "scenes/kit/settings.h"
 
 namespace sandphys::scenes {

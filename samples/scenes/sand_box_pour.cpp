@@ -5,6 +5,8 @@
 
 #include "scenes/kit/checks.h"
 #include "scenes/kit/geometry.h"
+#include "scenes/kit/pour.h"
+#include "scenes/kit/readback.h"
 #include "scenes/kit/settings.h"
 
 namespace sandphys::scenes {

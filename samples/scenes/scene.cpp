@@ -216,11 +216,6 @@ std::string numberText(double value) {
   return out.str();
 }
 
-float gravityMagnitude(const WorldSettings& settings) {
-  const Vec3 g = settings.gravity;
-  return std::sqrt(g.x * g.x + g.y * g.y + g.z * g.z);
-}
-
 float percentile(std::vector<float>& values, double fraction) {
   const auto rank = static_cast<std::size_t>(fraction * static_cast<double>(values.size() - 1));
   std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(rank),

@@ -249,8 +249,6 @@ std::optional<ContactLaw> contactLawFromName(std::string_view name);
 
 /// Short text of a number for messages ("2.5", "0.1", "1e+06").
 std::string numberText(double value);
-/// Length of the world's gravity vector, m/s².
-float gravityMagnitude(const WorldSettings& settings);
 
 /// Height between two layers of a loose starting lattice of granules (hourglass, repose-scupper),
 /// d. Odd layers are shifted by half the lattice spacing along x and z, so a granule sits over the

@@ -7,8 +7,9 @@
 #include <numbers>
 #include <string>
 
+#include "scenes/kit/geometry.h"
+#include "scenes/kit/readback.h"
 #include "scenes/kit/settings.h"
-#include "scenes/kit/slopes.h"
 
 namespace sandphys::scenes {
 

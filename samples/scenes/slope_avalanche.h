@@ -6,6 +6,7 @@
 
 #include "scenes/kit/course.h"
 #include "scenes/kit/geometry.h"
+#include "scenes/kit/readback.h"
 #include "scenes/kit/scene_with.h"
 
 namespace sandphys::scenes {

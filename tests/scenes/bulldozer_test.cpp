@@ -21,6 +21,8 @@
 #include <vector>
 
 #include "scenes/bulldozer.h"
+#include "scenes/kit/geometry.h"
+#include "scenes/kit/settings.h"
 #include "support/test_world.h"
 
 namespace sandphys::scenes {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "scenes/kit/slopes.h"
+#include "scenes/kit/readback.h"
 #include "scenes/slope_avalanche.h"
 #include "support/test_world.h"
 

@@ -1,48 +1,72 @@
 #include "scenes/kit/geometry.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <limits>
 #include <numbers>
-#include <string>
+#include <tuple>
 
 namespace sandphys::scenes::kit {
-
-void reserveExactly(WorldSettings& settings, std::string_view scene, std::uint64_t granules,
-                    std::uint64_t bodies, std::uint64_t particles) {
-  constexpr std::uint64_t kLimit = std::numeric_limits<std::uint32_t>::max();
-  const std::uint64_t allParticles = 4 * granules + particles;
-  if (granules > kLimit || allParticles > kLimit) {
-    throw InvalidArgument(std::string(scene) + ": " + std::to_string(granules) + " granules and " +
-                          std::to_string(particles) +
-                          " particles of other bodies are more than a World can index (" +
-                          std::to_string(kLimit) + " particles)");
-  }
-  settings.maxBodies = static_cast<std::uint32_t>(granules + bodies);
-  settings.maxParticles = static_cast<std::uint32_t>(allParticles);
-}
-
-float granuleMass(const WorldSettings& settings) {
-  return tetrahedronTemplate(settings.particleDiameter, settings.material.density).mass;
-}
 
 float tiltDegrees(const Quat& q) {
   const float up = std::clamp(1.0f - 2.0f * (q.x * q.x + q.z * q.z), -1.0f, 1.0f);
   return std::acos(up) * 180.0f / std::numbers::pi_v<float>;
 }
 
-Reference::Reference(std::vector<BodyState> bodies) : m_bodies(std::move(bodies)) {
-  for (std::size_t i = 0; i < m_bodies.size(); ++i) {
-    const BodyState& body = m_bodies[i];
-    if (!body.granule) continue;
-    if (body.id.index >= m_bySlot.size()) m_bySlot.resize(body.id.index + 1, kNone);
-    m_bySlot[body.id.index] = static_cast<std::uint32_t>(i);
-  }
+GranuleBlock blockAbove(float lift, const Count3& counts, float spacing, std::uint64_t seed) {
+  return {.center = {0.0f, lift + 0.5f * blockSpan(counts[1], spacing), 0.0f},
+          .countX = counts[0],
+          .countY = counts[1],
+          .countZ = counts[2],
+          .spacing = spacing,
+          .seed = seed};
 }
 
-const BodyState* Reference::before(const BodyState& now) const {
-  if (now.id.index >= m_bySlot.size() || m_bySlot[now.id.index] == kNone) return nullptr;
-  return &m_bodies[m_bySlot[now.id.index]];
+std::vector<LatticeRun> discRuns(std::uint32_t columns) {
+  const auto half = static_cast<std::int32_t>(std::ceil(std::sqrt(columns / 3.14159265))) + 2;
+  std::vector<std::array<std::int32_t, 3>> sites;  // (x² + z², z, x)
+  for (std::int32_t j = -half; j <= half; ++j) {
+    for (std::int32_t i = -half; i <= half; ++i) sites.push_back({i * i + j * j, j, i});
+  }
+  std::sort(sites.begin(), sites.end());
+  sites.resize(columns);
+  std::sort(sites.begin(), sites.end(), [](const auto& a, const auto& b) {
+    return std::tie(a[1], a[2]) < std::tie(b[1], b[2]);
+  });
+  std::vector<LatticeRun> runs;
+  for (const auto& [r2, j, i] : sites) {
+    if (runs.empty() || runs.back().row != j) runs.push_back({j, i, 0});
+    ++runs.back().count;
+  }
+  return runs;
+}
+
+double discRadius(std::span<const LatticeRun> runs) {
+  double farthest = 0.0;
+  for (const LatticeRun& run : runs) {
+    for (std::int32_t i : {run.first, run.first + std::int32_t(run.count) - 1}) {
+      farthest = std::max(farthest, std::hypot(double(i), double(run.row)));
+    }
+  }
+  return farthest;
+}
+
+bool inBounds(const SceneBounds& bounds, const Vec3& point) {
+  return point.x >= bounds.min.x && point.x <= bounds.max.x && point.y >= bounds.min.y &&
+         point.y <= bounds.max.y && point.z >= bounds.min.z && point.z <= bounds.max.z;
+}
+
+Box containerBox(const SceneBounds& bounds, const SurfaceMaterial& material) {
+  return Box{.center = 0.5f * (bounds.min + bounds.max),
+             .halfExtents = 0.5f * (bounds.max - bounds.min),
+             .inside = true,
+             .material = material};
+}
+
+void addCylinderContainer(World& world, float radius, float height, float d) {
+  world.addCollider(Cylinder{.base = {0.0f, 0.0f, 0.0f}, .radius = radius, .height = height});
+  world.addRoughFloor(RoughFloor{.center = {0.0f, 0.0f, 0.0f}, .radius = radius, .spacing = d});
+  world.addCollider(Plane{.normal = {0.0f, 1.0f, 0.0f}, .offset = -d});
 }
 
 }  // namespace sandphys::scenes::kit

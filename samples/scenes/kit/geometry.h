@@ -1,9 +1,7 @@
 #pragma once
 
 #include <cstdint>
-#include <ranges>
 #include <span>
-#include <string_view>
 #include <vector>
 
 #include <sandphys/sandphys.h>
@@ -30,40 +28,37 @@ inline float blockSpan(std::uint32_t layers, float spacing) {
   return static_cast<float>(layers - 1) * spacing;
 }
 
-/// Sets `settings`' capacities to exactly `granules` granules plus `bodies` other bodies of
-/// `particles` particles in all. Throws InvalidArgument naming `scene` and the counts when that
-/// is more than a World can index.
-void reserveExactly(WorldSettings& settings, std::string_view scene, std::uint64_t granules,
-                    std::uint64_t bodies = 0, std::uint64_t particles = 0);
-
-/// The granules of a read-back that are alive.
-inline auto granulesIn(std::span<const BodyState> bodies) {
-  return bodies | std::views::filter([](const BodyState& b) { return b.alive && b.granule; });
-}
-
-/// Mass of one granule of the World made from `settings`, kg.
-float granuleMass(const WorldSettings& settings);
-
 /// Angle between a body's up axis at the start (the template's y) and now, degrees, for an
 /// orientation `q` (w, x, y, z): the world y component of the rotated y axis is 1 - 2 (x² + z²).
 float tiltDegrees(const Quat& q);
 
-/// A read-back kept as the reference of later measurements (the berm before the push, the block
-/// at release), looked up by body slot.
-class Reference {
- public:
-  Reference() = default;
-  // Implicit: any read-back can serve as a reference.
-  Reference(std::vector<BodyState> bodies);  // NOLINT(google-explicit-constructor)
+/// A block of `counts` granules at `spacing` (m) centred on the y axis, its lowest lattice
+/// centres `lift` (m) above y = 0: the bed or berm a scene's body acts on once it has settled.
+GranuleBlock blockAbove(float lift, const Count3& counts, float spacing, std::uint64_t seed);
 
-  /// The granule `now` was in the reference, or nullptr when it was not there.
-  const BodyState* before(const BodyState& now) const;
-  static constexpr std::uint32_t kNone = 0xffffffffu;
-  std::span<const BodyState> bodies() const { return m_bodies; }
-
- private:
-  std::vector<BodyState> m_bodies;
-  std::vector<std::uint32_t> m_bySlot;  // slot -> position in m_bodies, kNone if absent
+/// A run of `count` lattice columns along x, from x = first at z = row, in lattice spacings.
+struct LatticeRun {
+  std::int32_t row, first;
+  std::uint32_t count;
 };
+
+/// The `columns` columns of a square lattice nearest its axis (x = z = 0), as one run per row in
+/// z order: ties in distance go to the lower row, then the lower column, so that each row's share
+/// is one run.
+std::vector<LatticeRun> discRuns(std::uint32_t columns);
+
+/// Largest distance of a column of `runs` from the axis, in lattice spacings.
+double discRadius(std::span<const LatticeRun> runs);
+
+/// Whether `point` is inside `bounds`, faces included.
+bool inBounds(const SceneBounds& bounds, const Vec3& point);
+
+/// A box collider of `material` that holds the sand inside `bounds`.
+Box containerBox(const SceneBounds& bounds, const SurfaceMaterial& material = {});
+
+/// A smooth cylinder wall `radius` wide and `height` high (m) on a rough floor of particles `d`
+/// wide (centres at y = 0), and a net one d under the floor: a grain that slips through the
+/// floor's lattice (it should not) rests on the net instead of falling forever at maxSpeed.
+void addCylinderContainer(World& world, float radius, float height, float d);
 
 }  // namespace sandphys::scenes::kit

@@ -1,9 +1,29 @@
 #include "scenes/kit/settings.h"
 
-#include "scenes/kit/geometry.h"
+#include <limits>
+#include <string>
+
 #include "scenes/scene.h"
 
 namespace sandphys::scenes::kit {
+
+void reserveExactly(WorldSettings& settings, std::string_view scene, std::uint64_t granules,
+                    std::uint64_t bodies, std::uint64_t particles) {
+  constexpr std::uint64_t kLimit = std::numeric_limits<std::uint32_t>::max();
+  const std::uint64_t allParticles = 4 * granules + particles;
+  if (granules > kLimit || allParticles > kLimit) {
+    throw InvalidArgument(std::string(scene) + ": " + std::to_string(granules) + " granules and " +
+                          std::to_string(particles) +
+                          " particles of other bodies are more than a World can index (" +
+                          std::to_string(kLimit) + " particles)");
+  }
+  settings.maxBodies = static_cast<std::uint32_t>(granules + bodies);
+  settings.maxParticles = static_cast<std::uint32_t>(allParticles);
+}
+
+float granuleMass(const WorldSettings& settings) {
+  return tetrahedronTemplate(settings.particleDiameter, settings.material.density).mass;
+}
 
 WorldSettings worldSettings(std::string_view scene, float d, const SettingsRule& rule) {
   WorldSettings settings;

@@ -26,6 +26,15 @@ struct SettingsRule {
   bool statsEachFrame = WorldSettings{}.statsEachFrame;
 };
 
+/// Sets `settings`' capacities to exactly `granules` granules plus `bodies` other bodies of
+/// `particles` particles in all. Throws InvalidArgument naming `scene` and the counts when that
+/// is more than a World can index.
+void reserveExactly(WorldSettings& settings, std::string_view scene, std::uint64_t granules,
+                    std::uint64_t bodies = 0, std::uint64_t particles = 0);
+
+/// Mass of one granule of the World made from `settings`, kg.
+float granuleMass(const WorldSettings& settings);
+
 /// The settings of a World with particles of diameter `d` (m) under `rule`; the Young's modulus
 /// is set last, as it follows from the diameter, the guard and the substeps. Throws
 /// InvalidArgument naming `scene` when the capacities are more than a World can index.
