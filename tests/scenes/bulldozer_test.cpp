@@ -23,6 +23,7 @@
 #include "scenes/bulldozer.h"
 #include "scenes/kit/geometry.h"
 #include "scenes/kit/settings.h"
+#include "support/scene_metric.h"
 #include "support/test_world.h"
 
 namespace sandphys::scenes {
@@ -281,13 +282,7 @@ TEST_F(BulldozerRun, DragResistsThePushAsTheFloorFrictionOfTheSandItMoves) {
   EXPECT_GT(std::abs(push.floorX), 0.75 * mu * push.normal);
 
   const std::vector<SceneMetric> metrics = scene().metrics(s_end);
-  auto metric = [&](const std::string& name) {
-    for (const SceneMetric& m : metrics) {
-      if (m.name == name) return m.value;
-    }
-    ADD_FAILURE() << "no metric " << name;
-    return 0.0;
-  };
+  auto metric = [&](std::string_view name) { return testing::metricNamed(metrics, name); };
   EXPECT_NEAR(metric("drag_mean_n"), mean, 1e-9 * mean);
   EXPECT_NEAR(metric("drag_peak_n"), peak, 1e-6 * peak);
   EXPECT_NEAR(metric("blade_travel_d"), kPushDistance, 1e-4);

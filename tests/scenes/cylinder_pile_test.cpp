@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "scenes/cylinder_pile.h"
+#include "support/scene_metric.h"
 
 namespace sandphys::scenes {
 namespace {
@@ -37,11 +38,7 @@ class CylinderPileOnGpu : public ::testing::Test {
 
   // The scene's metric `name` (those that count batches need no bodies).
   double metric(std::string_view name) const {
-    for (const SceneMetric& m : m_pile.metrics({})) {
-      if (m.name == name) return m.value;
-    }
-    ADD_FAILURE() << "no metric " << name;
-    return -1.0;
+    return testing::metricNamed(m_pile.metrics({}), name);
   }
 
   static StepReport reportWithEnergy(double kineticEnergy) {

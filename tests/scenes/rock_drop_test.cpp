@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "scenes/rock_drop.h"
+#include "support/scene_metric.h"
 #include "support/test_world.h"
 
 namespace sandphys::scenes {
@@ -50,12 +51,8 @@ double windingNumber(const TriangleMesh& mesh, const Vec3& p) {
 }
 
 // The metric called `name` of `scene` for `bodies`; one the scene does not report fails the test.
-double metric(const RockDrop& scene, std::span<const BodyState> bodies, const std::string& name) {
-  for (const SceneMetric& m : scene.metrics(bodies)) {
-    if (m.name == name) return m.value;
-  }
-  ADD_FAILURE() << "no metric " << name;
-  return 0.0;
+double metric(const RockDrop& scene, std::span<const BodyState> bodies, std::string_view name) {
+  return testing::metricNamed(scene.metrics(bodies), name);
 }
 
 // fit scales the mesh to a largest extent of that many metres, and a rock wider than the bed

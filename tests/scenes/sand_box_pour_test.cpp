@@ -12,22 +12,15 @@
 #include <vector>
 
 #include "scenes/sand_box_pour.h"
+#include "support/scene_metric.h"
 #include "support/test_world.h"
 
 namespace sandphys::scenes {
 namespace {
 
-constexpr float kFrame = 1.0f / 60.0f;
+using testing::metricNamed;
 
-// The value of the metric called `name`; a metric the scene does not report fails the test (and
-// is NaN, which no comparison accepts).
-double metricNamed(const std::vector<SceneMetric>& metrics, const std::string& name) {
-  for (const SceneMetric& metric : metrics) {
-    if (metric.name == name) return metric.value;
-  }
-  ADD_FAILURE() << "no metric " << name;
-  return std::numeric_limits<double>::quiet_NaN();
-}
+constexpr float kFrame = 1.0f / 60.0f;
 
 SandBoxPour::Config smallPour() {
   return {.rate = 600.0f,

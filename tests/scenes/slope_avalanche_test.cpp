@@ -11,10 +11,13 @@
 
 #include "scenes/kit/readback.h"
 #include "scenes/slope_avalanche.h"
+#include "support/scene_metric.h"
 #include "support/test_world.h"
 
 namespace sandphys::scenes {
 namespace {
+
+using testing::metricNamed;
 
 constexpr float kFrame = 1.0f / 60.0f;
 
@@ -66,16 +69,6 @@ AvalancheRun run(SlopeAvalanche& scene, double settledAt, double afterRelease, d
         << "granule " << body.id.index << " left the channel";
   }
   return result;
-}
-
-// The value of the metric called `name`; a metric the scene does not report fails the test (and
-// is NaN, which no comparison accepts).
-double metricNamed(const std::vector<SceneMetric>& metrics, const std::string& name) {
-  for (const SceneMetric& metric : metrics) {
-    if (metric.name == name) return metric.value;
-  }
-  ADD_FAILURE() << "no metric " << name;
-  return std::numeric_limits<double>::quiet_NaN();
 }
 
 TEST(SlopeAvalanche, HeldBlockStaysThenRunsDownTheSlopeOnRelease) {
