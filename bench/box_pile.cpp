@@ -6,7 +6,6 @@
 #include <string>
 #include <vector>
 
-#include "scenes/kit/pour.h"
 #include "scenes/kit/settings.h"
 
 namespace sandphys::bench {

@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "scenes/kit/geometry.h"
+
 namespace sandphys::bench {
 
 namespace {
@@ -260,13 +262,8 @@ scenes::SceneBounds DensePile::bounds() const {
 
 void DensePile::build(World& world) const {
   const float d = m_config.particleDiameter;
-  const float radius = m_config.cylinderRadius * d;
-  // The container of CylinderPile::build: smooth wall, rough particle floor, and a safety plane
-  // one diameter under the floor.
-  world.addCollider(
-      Cylinder{.base = {0.0f, 0.0f, 0.0f}, .radius = radius, .height = m_layout.wallHeight * d});
-  world.addRoughFloor(RoughFloor{.center = {0.0f, 0.0f, 0.0f}, .radius = radius, .spacing = d});
-  world.addCollider(Plane{.normal = {0.0f, 1.0f, 0.0f}, .offset = -d});
+  // The container of CylinderPile::build.
+  scenes::kit::addCylinderContainer(world, m_config.cylinderRadius * d, m_layout.wallHeight * d, d);
   if (m_config.packing == Packing::Crystal) {
     addCrystal(world);
   } else {

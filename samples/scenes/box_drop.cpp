@@ -4,7 +4,6 @@
 #include <array>
 
 #include "scenes/kit/geometry.h"
-#include "scenes/kit/pour.h"
 #include "scenes/kit/readback.h"
 #include "scenes/kit/settings.h"
 
@@ -30,21 +29,14 @@ WorldSettings BoxDrop::worldSettings() const {
   const float drop = (m_config.dropHeight + blockHeight) * d();
   return kit::worldSettings(name(), d(),
                             {.granules = kit::granuleCount(m_config.block),
-                             .maxSpeed = kit::pourGuardSpeed(0.0f, drop, kit::kGravity),
-                             .statsEachFrame = true});
+                             .maxSpeed = kit::pourGuardSpeed(0.0f, drop, kit::kGravity)});
 }
 
 void BoxDrop::build(World& world) {
   world.addCollider(kit::containerBox(bounds()));
   const float spacing = m_config.spacing * d();
-  const float lowest = m_config.dropHeight * d();
-  world.addGranules(GranuleBlock{
-      .center = {0.0f, lowest + 0.5f * kit::blockSpan(m_config.block[1], spacing), 0.0f},
-      .countX = m_config.block[0],
-      .countY = m_config.block[1],
-      .countZ = m_config.block[2],
-      .spacing = spacing,
-      .seed = m_config.seed});
+  world.addGranules(
+      kit::blockAbove(m_config.dropHeight * d(), m_config.block, spacing, m_config.seed));
 }
 
 bool BoxDrop::contains(const Vec3& centre) const {

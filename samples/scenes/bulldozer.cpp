@@ -105,8 +105,7 @@ WorldSettings Bulldozer::worldSettings() const {
        .bodies = 1,
        .particles = bladeShape().centres.size(),
        .maxSpeed = std::max(kMinGuardSpeed, kGuardPerBladeSpeed * m_config.bladeSpeed),
-       .stepsPerContact = kStepsPerContact,
-       .statsEachFrame = true});
+       .stepsPerContact = kStepsPerContact});
 }
 
 void Bulldozer::build(World& world) {
@@ -170,11 +169,12 @@ void Bulldozer::endPhases(World& world) {
     if (m_phase == Phase::Waiting) {
       m_atPushStart = world.readBodies();
       m_reference = kit::Reference(m_atPushStart);
+      m_phase = Phase::Pushing;
     } else {
       m_atPushEnd = world.readBodies();
       m_course.endAct(world.simulatedTime());
+      m_phase = Phase::Stopped;
     }
-    m_phase = static_cast<Phase>(static_cast<int>(m_phase) + 1);
   }
 }
 
@@ -241,7 +241,7 @@ std::vector<SceneMetric> Bulldozer::metrics(std::span<const BodyState> bodies) c
   for (const DragSample& sample : m_drag) {
     if (sample.phase == Phase::Pushing) peak = std::max(peak, sample.drag);
   }
-  const BodyState* blade = kit::find(bodies, m_blade);
+  const BodyState* blade = kit::findBody(bodies, m_blade);
   const double travel = (blade ? blade->position.x : bladeStart().x) - bladeStart().x;
   return {
       {"granules", static_cast<double>(granules)},

@@ -7,7 +7,6 @@
 #include <string>
 
 #include "scenes/kit/geometry.h"
-#include "scenes/kit/pour.h"
 #include "scenes/kit/readback.h"
 #include "scenes/kit/settings.h"
 
@@ -113,8 +112,7 @@ WorldSettings Compression::worldSettings() const {
        .maxSpeed = kit::pourGuardSpeed(0.0f, blockHeight, kit::kGravity),
        .stepsPerContact = m_config.stepsPerContact,
        .youngsModulus = m_config.youngsModulus,
-       .friction = m_config.friction,
-       .statsEachFrame = true});
+       .friction = m_config.friction});
 }
 
 void Compression::build(World& world) {
@@ -123,6 +121,7 @@ void Compression::build(World& world) {
   m_curve.clear();
   m_atRest = m_atPeak = {};
   m_maxStrain = m_residualStrain = m_peakStress = m_velocity = 0.0;
+  m_granuleMass = kit::granuleMass(world.settings());
 
   const float radius = m_config.radius * d();
   const float spacing = kDefaultGranuleSpacing * d();
@@ -142,7 +141,8 @@ void Compression::build(World& world) {
       plunger, BodyDesc{.position = {0.0f, float(m_bottomY), 0.0f}, .motion = Motion::Kinematic});
   m_surfaces = {plungerSurface(m_plunger, plunger, face)};
   // Calm means nothing until the lattice has fallen onto the floor and slid a while.
-  const double landing = 1.5 * fallTime(blockHeight + kClearance * d(), 0.0, kit::kGravity);
+  const double landing =
+      1.5 * fallTime(blockHeight + kClearance * d(), 0.0, length(world.settings().gravity));
   m_settle = {0.0, landing, landing + m_config.maxSettleSeconds};
 }
 
@@ -158,8 +158,8 @@ void Compression::enter(Phase phase, double simTime) {
 void Compression::update(World& world, const StepReport& report, double simTime) {
   if (m_phase == Phase::Done) return;
   if (m_phase == Phase::Settling) {
-    const bool calm = granulesCalm(report, static_cast<std::uint32_t>(granules()),
-                                   kit::granuleMass(world.settings()), m_config.settleSpeed);
+    const bool calm = granulesCalm(report, static_cast<std::uint32_t>(granules()), m_granuleMass,
+                                   m_config.settleSpeed);
     if (!m_settle.over(calm, simTime)) return;
     m_atRest = {simTime, world.readContacts(), world.readBodies()};
     float top = 0.0f;

@@ -86,6 +86,7 @@ class Compression final : public kit::SceneWith<CompressionConfig> {
 
   Phase m_phase = Phase::Settling;
   kit::SettleWait m_settle;
+  float m_granuleMass = 0.0f;  // kg
   BodyId m_plunger;
   double m_bottomY = 0.0;  // the plunger's bottom face now, m
   double m_moveFromY = 0.0, m_moveStart = 0.0, m_velocity = 0.0;  // its motion: m, s, m/s

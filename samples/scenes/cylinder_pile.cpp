@@ -4,11 +4,13 @@
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <span>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include "scenes/kit/checks.h"
 #include "scenes/kit/geometry.h"
-#include "scenes/kit/pour.h"
 #include "scenes/kit/settings.h"
 
 namespace sandphys::scenes {
@@ -31,6 +33,45 @@ const auto kTable = std::to_array<kit::Param<C>>({
     {"max-batch-seconds", &C::maxSecondsPerBatch, "s", 0.0, 1e6, "longest wait for a batch"},
 });
 
+// A run of `count` lattice columns along x, from x = first at z = row, in lattice spacings.
+struct LatticeRun {
+  std::int32_t row, first;
+  std::uint32_t count;
+};
+
+// The `columns` columns of a square lattice nearest its axis (x = z = 0), as one run per row in
+// z order: ties in distance go to the lower row, then the lower column, so that each row's share
+// is one run.
+std::vector<LatticeRun> discRuns(std::uint32_t columns) {
+  const auto half = static_cast<std::int32_t>(std::ceil(std::sqrt(columns / 3.14159265))) + 2;
+  std::vector<std::array<std::int32_t, 3>> sites;  // (x² + z², z, x)
+  for (std::int32_t j = -half; j <= half; ++j) {
+    for (std::int32_t i = -half; i <= half; ++i) sites.push_back({i * i + j * j, j, i});
+  }
+  std::sort(sites.begin(), sites.end());
+  sites.resize(columns);
+  std::sort(sites.begin(), sites.end(), [](const auto& a, const auto& b) {
+    return std::tie(a[1], a[2]) < std::tie(b[1], b[2]);
+  });
+  std::vector<LatticeRun> runs;
+  for (const auto& [r2, j, i] : sites) {
+    if (runs.empty() || runs.back().row != j) runs.push_back({j, i, 0});
+    ++runs.back().count;
+  }
+  return runs;
+}
+
+// Largest distance of a column of `runs` from the axis, in lattice spacings.
+double discRadius(std::span<const LatticeRun> runs) {
+  double farthest = 0.0;
+  for (const LatticeRun& run : runs) {
+    for (std::int32_t i : {run.first, run.first + std::int32_t(run.count) - 1}) {
+      farthest = std::max(farthest, std::hypot(double(i), double(run.row)));
+    }
+  }
+  return farthest;
+}
+
 }  // namespace
 
 std::span<const kit::Param<C>> CylinderPile::table() const {
@@ -38,7 +79,7 @@ std::span<const kit::Param<C>> CylinderPile::table() const {
 }
 
 float CylinderPile::batchReach() const {
-  const double farthest = kit::discRadius(kit::discRuns(m_config.batch[0] * m_config.batch[2]));
+  const double farthest = discRadius(discRuns(m_config.batch[0] * m_config.batch[2]));
   const double jitter = GranuleBlock{}.jitter * std::sqrt(2.0);
   return static_cast<float>(((farthest + jitter) * m_config.spacing + kGranuleReach) * d());
 }
@@ -54,11 +95,10 @@ WorldSettings CylinderPile::worldSettings() const {
       {.granules = static_cast<std::uint64_t>(batchGranules()) * c.batches,
        .bodies = 1,
        .particles = roughFloorParticles(RoughFloor{.radius = c.cylinderRadius * d()}, d()),
-       .maxSpeed = kit::pourGuardSpeed(0.0f, fall, kit::kGravity),
-       .statsEachFrame = true});
-  kit::require(batchReach() <= c.cylinderRadius * d(), name(), "a batch reaches ",
-               batchReach() / d(), " d from the axis, outside the cylinder (radius ",
-               c.cylinderRadius, " d)");
+       .maxSpeed = kit::pourGuardSpeed(0.0f, fall, kit::kGravity)});
+  const float reach = batchReach();
+  kit::require(reach <= c.cylinderRadius * d(), name(), "a batch reaches ", reach / d(),
+               " d from the axis, outside the cylinder (radius ", c.cylinderRadius, " d)");
   return settings;
 }
 
@@ -78,7 +118,7 @@ void CylinderPile::dropBatch(World& world, float bottomLayerY, double simTime) {
   const float spacing = m_config.spacing * d();
   const float blockHeight = kit::blockSpan(m_config.batch[1], spacing);
   std::uint64_t seed = m_config.seed * 1000003u + m_batchesDropped * 4099u;
-  for (const kit::LatticeRun& run : kit::discRuns(m_config.batch[0] * m_config.batch[2])) {
+  for (const LatticeRun& run : discRuns(m_config.batch[0] * m_config.batch[2])) {
     const float middle = static_cast<float>(run.first) + 0.5f * static_cast<float>(run.count - 1);
     world.addGranules(GranuleBlock{
         .center = {middle * spacing, bottomLayerY + 0.5f * blockHeight, run.row * spacing},

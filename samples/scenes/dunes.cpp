@@ -57,13 +57,13 @@ WorldSettings Dunes::worldSettings() const {
                              .maxSpeed = pour().guardSpeed(),
                              .stepsPerContact = c.stepsPerContact,
                              .youngsModulus = c.youngsModulus,
-                             .friction = c.friction,
-                             .statsEachFrame = true});  // settling is judged every frame
+                             .friction = c.friction});
 }
 
 void Dunes::build(World& world) {
   m_profile = {};
-  m_course = kit::PourCourse(pour().course(m_config.settleSpeed, m_config.maxSettleSeconds),
+  m_course = kit::PourCourse(pour().course(m_config.settleSpeed, m_config.maxSettleSeconds,
+                                           length(world.settings().gravity)),
                              kit::granuleMass(world.settings()), 2 * m_config.granules);
   const float halfX = m_config.floorHalfLength * d();
   const float halfZ = m_config.floorHalfWidth * d();

@@ -69,12 +69,12 @@ WorldSettings ReposeHeap::worldSettings() const {
        .stepsPerContact = c.stepsPerContact,
        .youngsModulus = c.youngsModulus,
        .friction = c.friction,
-       .restitution = c.restitution,
-       .statsEachFrame = true});  // settling is judged every frame
+       .restitution = c.restitution});
 }
 
 void ReposeHeap::build(World& world) {
-  m_course = kit::PourCourse(pour().course(m_config.settleSpeed, m_config.maxSettleSeconds),
+  m_course = kit::PourCourse(pour().course(m_config.settleSpeed, m_config.maxSettleSeconds,
+                                           length(world.settings().gravity)),
                              kit::granuleMass(world.settings()), m_config.granules);
   const float radius = m_config.floorRadius * d();
   world.addRoughFloor(RoughFloor{.radius = radius, .spacing = d()});

@@ -195,8 +195,7 @@ WorldSettings RockDrop::worldSettings() const {
        .particles = rock.sampled.centres.size(),
        .maxSpeed =
            std::max(kMinGuardSpeed, kGuardMargin * std::sqrt(2.0f * kit::kGravity * lowestAtDrop)),
-       .stepsPerContact = kStepsPerContact,
-       .statsEachFrame = true});
+       .stepsPerContact = kStepsPerContact});
 }
 
 void RockDrop::build(World& world) {
@@ -247,8 +246,9 @@ void RockDrop::drop(World& world, double simTime) {
   m_course.endAct(simTime);
   // The first check after the fall onto the bed: before it the rock is in the air (and calm at
   // the very start).
-  m_run.nextCheck =
-      simTime + fallTime(m_config.dropHeight * d(), 0.0, kit::kGravity) + kCheckSeconds;
+  m_run.nextCheck = simTime +
+                    fallTime(m_config.dropHeight * d(), 0.0, length(world.settings().gravity)) +
+                    kCheckSeconds;
 }
 
 void RockDrop::update(World& world, const StepReport& report, double simTime) {
@@ -263,8 +263,10 @@ void RockDrop::update(World& world, const StepReport& report, double simTime) {
   m_run.nextCheck = simTime + kCheckSeconds;
   const BodyState state = world.readBody(m_run.rock);
   // No point of the rock moves faster than |v| + |ω| · (its farthest particle).
-  const float fastest = length(state.velocity) +
-                        length(state.angularVelocity) * loadedRock().sampled.shape.boundingRadius;
+  // Eigen's norms (sums ordered x² + (y² + z²)), as the rest has always been judged.
+  const float fastest =
+      toEigen(state.velocity).norm() +
+      toEigen(state.angularVelocity).norm() * loadedRock().sampled.shape.boundingRadius;
   m_run.calmChecks = fastest < m_config.restSpeed ? m_run.calmChecks + 1 : 0;
   if (m_run.calmChecks == 1) m_run.restedAt = simTime;
   m_run.finished = atRest();
@@ -293,7 +295,7 @@ std::vector<SceneBody> RockDrop::bodies(const World& world) const {
 }
 
 std::vector<SceneMetric> RockDrop::metrics(std::span<const BodyState> bodies) const {
-  const BodyState* rock = kit::find(bodies, m_run.rock);
+  const BodyState* rock = kit::findBody(bodies, m_run.rock);
   const LoadedRock& loaded = loadedRock();
   const float extent = largestExtent(loaded.mesh);
   std::vector<SceneMetric> out{

@@ -69,8 +69,7 @@ WorldSettings SandBoxPour::worldSettings() const {
                             {.granules = std::uint64_t(c.granules) + bedGranules(),
                              .maxSpeed = pour().guardSpeed(),
                              .stepsPerContact = kStepsPerContact,
-                             .youngsModulus = c.youngsModulus,
-                             .statsEachFrame = true});
+                             .youngsModulus = c.youngsModulus});
 }
 
 void SandBoxPour::build(World& world) {
@@ -82,22 +81,19 @@ void SandBoxPour::build(World& world) {
   const float spacing = kDefaultGranuleSpacing * d();
   const float bedHeight = bed ? kit::blockSpan(m_config.block[1], spacing) : 0.0f;
   if (bed) {
-    world.addGranules(GranuleBlock{.center = {0.0f, kBedClearance * d() + 0.5f * bedHeight, 0.0f},
-                                   .countX = m_config.block[0],
-                                   .countY = m_config.block[1],
-                                   .countZ = m_config.block[2],
-                                   .spacing = spacing,
-                                   .seed = m_config.seed * 1000003u + 1u});  // not the emitter's
+    // The seed is not the emitter's.
+    world.addGranules(kit::blockAbove(kBedClearance * d(), m_config.block, spacing,
+                                      m_config.seed * 1000003u + 1u));
   }
   // Calm means nothing while the bed collapses onto the floor (its top layer falls about its own
   // height) or the last granule falls from the emitter. The bed's wait is limited from its drop,
   // the pile's from the pour's end.
-  const double bedLanding =
-      bed ? 1.5 * fallTime(bedHeight + kBedClearance * d(), 0.0, kit::kGravity) : 0.0;
+  const double g = length(world.settings().gravity);
+  const double bedLanding = bed ? 1.5 * fallTime(bedHeight + kBedClearance * d(), 0.0, g) : 0.0;
   m_course = kit::PourCourse({.settleSpeed = m_config.settleSpeed,
                               .maxSettleSeconds = m_config.maxSettleSeconds - bedLanding,
                               .actAfter = bedLanding,
-                              .minRestSeconds = pour().landingSeconds(),
+                              .minRestSeconds = pour().landingSeconds(g),
                               .maxRestSeconds = m_config.maxSettleSeconds,
                               .actFirst = !bed},
                              kit::granuleMass(world.settings()), m_config.granules, bedGranules());

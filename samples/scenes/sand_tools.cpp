@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include "scenes/eigen_conversions.h"
+
 namespace sandphys::scenes {
 
 namespace {
@@ -152,7 +154,9 @@ void SandTools::updatePush(World& world, const std::optional<Vec3>& floorPoint, 
   // speed guard.
   const float maxSpeed = 0.3f * m_maxSpeed;
   Vec3 velocity = (goal - m_spherePosition) / std::max(frameDt, 1e-4f);
-  if (length(velocity) > maxSpeed) velocity = velocity * (maxSpeed / length(velocity));
+  // Eigen's norm, whose sum is ordered x² + (y² + z²): the speed the sphere got before.
+  const float speed = toEigen(velocity).norm();
+  if (speed > maxSpeed) velocity = velocity * (maxSpeed / speed);
   world.setBodyState(
       m_sphere,
       BodyDesc{.position = m_spherePosition, .velocity = velocity, .motion = Motion::Kinematic});

@@ -97,8 +97,7 @@ WorldSettings SlopeAvalanche::worldSettings() const {
   return kit::worldSettings(name(), d(),
                             {.granules = kit::granuleCount(m_config.block),
                              .maxSpeed = std::max(kMinGuardSpeed, guard),
-                             .stepsPerContact = kStepsPerContact,
-                             .statsEachFrame = true});
+                             .stepsPerContact = kStepsPerContact});
 }
 
 void SlopeAvalanche::build(World& world) {

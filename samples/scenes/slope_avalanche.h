@@ -5,7 +5,6 @@
 #include <vector>
 
 #include "scenes/kit/course.h"
-#include "scenes/kit/geometry.h"
 #include "scenes/kit/readback.h"
 #include "scenes/kit/scene_with.h"
 

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "scenes/compression.h"
+#include "support/scene_metric.h"
 #include "support/test_world.h"
 
 namespace sandphys::scenes {
@@ -30,15 +31,8 @@ TEST(Compression, UnloadingFollowsAnotherPathAndLeavesAResidualStrain) {
   runUntilFinished(scene, world, kFrame, kLongestRun);
   ASSERT_TRUE(scene.finished()) << scene.status();
   const SceneSeries stressStrain = scene.series().at(0);
-  const auto derived = [&](const std::string& name) {
-    for (const SceneMetric& m : stressStrain.derived) {
-      if (m.name == name) return m.value;
-    }
-    ADD_FAILURE() << "no " << name << " in " << stressStrain.name;
-    return 0.0;
-  };
-  const double maxStrain = derived("max_strain");
-  const double residualStrain = derived("residual_strain");
+  const double maxStrain = testing::metricNamed(stressStrain.derived, "max_strain");
+  const double residualStrain = testing::metricNamed(stressStrain.derived, "residual_strain");
   const auto& curve = stressStrain.points;
   const std::size_t turn = scene.turnIndex();
   ASSERT_GT(turn, 5u) << "a loading curve of a few frames at least";
@@ -47,8 +41,8 @@ TEST(Compression, UnloadingFollowsAnotherPathAndLeavesAResidualStrain) {
       "granules %llu: peak %.0f Pa at strain %.4f; residual strain %.4f, recovered %.2f; "
       "%zu contacts at rest, %zu at the peak\n",
       static_cast<unsigned long long>(scene.granules()), curve[turn - 1][1], maxStrain,
-      residualStrain, derived("recovered_fraction"), scene.atRest().contacts.size(),
-      scene.atPeak().contacts.size());
+      residualStrain, testing::metricNamed(stressStrain.derived, "recovered_fraction"),
+      scene.atRest().contacts.size(), scene.atPeak().contacts.size());
   EXPECT_GE(curve[turn - 1][1], config.maxStress);
   // Loading raises the stress with the strain (allowing for the noise of single frames).
   EXPECT_GT(curve[turn - 1][1], 1.5 * curve[turn / 2][1]);

@@ -1,13 +1,11 @@
 #pragma once
 
 #include <cstdint>
-#include <span>
 #include <vector>
 
 #include <sandphys/sandphys.h>
 
 #include "scenes/kit/course.h"
-#include "scenes/kit/pour.h"
 #include "scenes/kit/settings.h"
 
 namespace sandphys::scenes::kit {
@@ -60,8 +58,7 @@ SettingsRule gatedFillRule(const Config& c, std::uint64_t granules, float fall) 
           .stepsPerContact = c.stepsPerContact,
           .youngsModulus = c.youngsModulus,
           .friction = c.friction,
-          .restitution = c.restitution,
-          .statsEachFrame = true};
+          .restitution = c.restitution};
 }
 
 /// The course of a gated fill in a World made from `settings`: the gate opens once the fill has

@@ -28,27 +28,9 @@ inline float blockSpan(std::uint32_t layers, float spacing) {
   return static_cast<float>(layers - 1) * spacing;
 }
 
-/// Angle between a body's up axis at the start (the template's y) and now, degrees, for an
-/// orientation `q` (w, x, y, z): the world y component of the rotated y axis is 1 - 2 (x² + z²).
-float tiltDegrees(const Quat& q);
-
 /// A block of `counts` granules at `spacing` (m) centred on the y axis, its lowest lattice
 /// centres `lift` (m) above y = 0: the bed or berm a scene's body acts on once it has settled.
 GranuleBlock blockAbove(float lift, const Count3& counts, float spacing, std::uint64_t seed);
-
-/// A run of `count` lattice columns along x, from x = first at z = row, in lattice spacings.
-struct LatticeRun {
-  std::int32_t row, first;
-  std::uint32_t count;
-};
-
-/// The `columns` columns of a square lattice nearest its axis (x = z = 0), as one run per row in
-/// z order: ties in distance go to the lower row, then the lower column, so that each row's share
-/// is one run.
-std::vector<LatticeRun> discRuns(std::uint32_t columns);
-
-/// Largest distance of a column of `runs` from the axis, in lattice spacings.
-double discRadius(std::span<const LatticeRun> runs);
 
 /// Whether `point` is inside `bounds`, faces included.
 bool inBounds(const SceneBounds& bounds, const Vec3& point);

@@ -12,8 +12,6 @@ namespace sandphys::scenes::kit {
 namespace {
 
 constexpr float kPourSpeedMargin = 1.1f;
-constexpr float kGuardMargin = 1.25f;
-constexpr float kMinGuardSpeed = 2.0f;
 // Fraction of the last granule's fall added before the sand may count as settled: after landing
 // the grains still slide and bounce for a while.
 constexpr double kLandingMargin = 0.5;
@@ -22,11 +20,6 @@ constexpr double kLandingMargin = 0.5;
 constexpr float kSinkDepth = 3.0f;
 
 }  // namespace
-
-float pourGuardSpeed(float speed, float height, float g) {
-  const float impact = std::sqrt(speed * speed + 2.0f * g * height);
-  return std::max(kMinGuardSpeed, kGuardMargin * impact);
-}
 
 float Pour::speed() const {
   const float needed =
@@ -38,8 +31,8 @@ float Pour::guardSpeed() const {
   return pourGuardSpeed(speed(), height * d, kGravity);
 }
 
-double Pour::landingSeconds() const {
-  return (1.0 + kLandingMargin) * fallTime(height * d, speed(), kGravity);
+double Pour::landingSeconds(double g) const {
+  return (1.0 + kLandingMargin) * fallTime(height * d, speed(), g);
 }
 
 void Pour::checkSpeed(std::string_view scene, std::string_view widthName) const {
@@ -69,10 +62,10 @@ Sink Pour::sink(float floorHalfExtent) const {
   return {.min = {-wide, -(kSinkDepth + 10.0f) * d, -wide}, .max = {wide, -kSinkDepth * d, wide}};
 }
 
-Course::Rule Pour::course(float settleSpeed, float maxSettleSeconds) const {
+Course::Rule Pour::course(float settleSpeed, float maxSettleSeconds, double g) const {
   return {.settleSpeed = settleSpeed,
-          .minRestSeconds = landingSeconds(),
-          .maxRestSeconds = landingSeconds() + maxSettleSeconds,
+          .minRestSeconds = landingSeconds(g),
+          .maxRestSeconds = landingSeconds(g) + maxSettleSeconds,
           .actFirst = true};
 }
 

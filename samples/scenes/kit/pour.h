@@ -18,11 +18,6 @@ inline constexpr float kMinPourSpeed = 0.5f;
 /// the d/10 that the penetration guard allows; a wider emitter takes the rate more gently.
 inline constexpr float kMaxPourSpeed = 3.0f;
 
-/// Speed guard (WorldSettings::maxSpeed) for grains that leave an emitter at `speed` (m/s) and
-/// fall `height` (m) under gravity `g` (m/s²): the impact with a margin for rebounds and the rim
-/// speed of spinning grains, and at least 2 m/s.
-float pourGuardSpeed(float speed, float height, float g);
-
 /// A steady pour from square emitters at a height above a floor, as the pouring scenes
 /// (sand-box-pour, repose-heap, dunes) set it up. The floor's top is at y = 0 for a box; a rough
 /// floor has its particle centres there. Each emitter moves as slowly as its lattice can take the
@@ -47,8 +42,9 @@ struct Pour {
   float speed() const;
   /// pourGuardSpeed of the pour's fall under the default gravity, m/s.
   float guardSpeed() const;
-  /// Time for the last granule to land, with a margin for the grains to slide and bounce, s.
-  double landingSeconds() const;
+  /// Time for the last granule to land under gravity `g` (m/s²), with a margin for the grains to
+  /// slide and bounce, s.
+  double landingSeconds(double g) const;
   /// Throws InvalidArgument "`scene`: rate R granules/s needs the emitter's n slots to move at
   /// v m/s, more than 3 m/s; lower the rate or widen `widthName`" when speed() is over
   /// kMaxPourSpeed.
@@ -64,9 +60,9 @@ struct Pour {
   /// its edge (or, by a fault, through it) ends there.
   Sink sink(float floorHalfExtent) const;
   /// The course of a pour onto a floor: the pour is the act, from the first frame until the
-  /// scene ends it; then the last granule lands and the sand is calm (below `settleSpeed`, m/s),
-  /// or `maxSettleSeconds` more have passed.
-  Course::Rule course(float settleSpeed, float maxSettleSeconds) const;
+  /// scene ends it; then the last granule lands (under gravity `g`, m/s²) and the sand is calm
+  /// (below `settleSpeed`, m/s), or `maxSettleSeconds` more have passed.
+  Course::Rule course(float settleSpeed, float maxSettleSeconds, double g) const;
   /// From the sink's top to a diameter above the emitters, over a floor of half extents
   /// `halfX`, `halfZ` (m).
   SceneBounds bounds(float halfX, float halfZ) const;

@@ -20,7 +20,7 @@ const BodyState* Reference::before(const BodyState& now) const {
   return &m_bodies[m_bySlot[now.id.index]];
 }
 
-const BodyState* find(std::span<const BodyState> bodies, BodyId id) {
+const BodyState* findBody(std::span<const BodyState> bodies, BodyId id) {
   const auto body = std::ranges::find_if(
       bodies, [&](const BodyState& b) { return id.isValid() && b.id.index == id.index; });
   return body == bodies.end() ? nullptr : &*body;

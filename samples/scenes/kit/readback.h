@@ -36,8 +36,8 @@ class Reference {
   std::vector<std::uint32_t> m_bySlot;  // slot -> position in m_bodies, kNone if absent
 };
 
-/// The body `id` in a read-back, or nullptr when it is not there (or `id` is invalid).
-const BodyState* find(std::span<const BodyState> bodies, BodyId id);
+/// The body in `id`'s slot in a read-back, or nullptr when it is not there (or `id` is invalid).
+const BodyState* findBody(std::span<const BodyState> bodies, BodyId id);
 
 /// The sand's force on the body `id` since the last call (World::takeBodyForces, a sync point,
 /// which restarts every body's sums), or nothing when the World reports none for it.

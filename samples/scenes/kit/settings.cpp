@@ -1,11 +1,25 @@
 #include "scenes/kit/settings.h"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <string>
 
 #include "scenes/scene.h"
 
 namespace sandphys::scenes::kit {
+
+namespace {
+
+constexpr float kGuardMargin = 1.25f;
+constexpr float kMinGuardSpeed = 2.0f;
+
+}  // namespace
+
+float pourGuardSpeed(float speed, float height, float g) {
+  const float impact = std::sqrt(speed * speed + 2.0f * g * height);
+  return std::max(kMinGuardSpeed, kGuardMargin * impact);
+}
 
 void reserveExactly(WorldSettings& settings, std::string_view scene, std::uint64_t granules,
                     std::uint64_t bodies, std::uint64_t particles) {

@@ -15,7 +15,8 @@ struct SettingsRule {
   std::uint64_t bodies = 0;
   std::uint64_t particles = 0;
   /// Speed guard, m/s.
-  float maxSpeed = 0.0f;
+  float maxSpeed = WorldSettings{}.maxSpeed;
+  /// Substeps per Hertz contact time at the guard.
   float stepsPerContact = WorldSettings{}.stepsPerContact;
   /// Pa; 0 for sceneYoungsModulus's auto value.
   float youngsModulus = 0.0f;
@@ -39,6 +40,11 @@ float granuleMass(const WorldSettings& settings);
 /// is set last, as it follows from the diameter, the guard and the substeps. Throws
 /// InvalidArgument naming `scene` when the capacities are more than a World can index.
 WorldSettings worldSettings(std::string_view scene, float d, const SettingsRule& rule);
+
+/// Speed guard (WorldSettings::maxSpeed) for grains that leave an emitter at `speed` (m/s) and
+/// fall `height` (m) under gravity `g` (m/s²): the impact with a margin for rebounds and the rim
+/// speed of spinning grains, and at least 2 m/s.
+float pourGuardSpeed(float speed, float height, float g);
 
 /// Gravity of a World with default settings, m/s², for the scenes' speed guards.
 inline const float kGravity = length(WorldSettings{}.gravity);
