@@ -65,9 +65,9 @@ struct BlockAvalanche::Blocks {
   std::unique_ptr<btRigidBody> floor;
   std::vector<Block> blocks;
   std::unique_ptr<bullet::Bridge> bridge;
-  Config config;  // as at build()
+  BlockAvalancheConfig config;  // as at build()
 
-  Blocks(float floorY, const Config& blockConfig, const Vec3& gravity)
+  Blocks(float floorY, const BlockAvalancheConfig& blockConfig, const Vec3& gravity)
       : floorShape(btVector3(0, 1, 0), floorY), config(blockConfig) {
     dynamics.setGravity(bullet::toBullet(gravity));
     btRigidBody::btRigidBodyConstructionInfo info(0.0f, nullptr, &floorShape);
@@ -100,29 +100,29 @@ BlockAvalanche::BlockAvalanche() = default;
 BlockAvalanche::~BlockAvalanche() = default;
 
 std::vector<SceneParameter> BlockAvalanche::parameters() {
-  std::vector<SceneParameter> out = m_slope.parameters();
-  for (SceneParameter& own : kit::bind<C>(kTable, m_config)) out.push_back(std::move(own));
+  std::vector<SceneParameter> out = SlopeAvalanche::parameters();
+  for (SceneParameter& own : kit::bind<C>(kTable, m_blocksConfig)) out.push_back(std::move(own));
   return out;
 }
 
 WorldSettings BlockAvalanche::worldSettings() const {
-  WorldSettings settings = m_slope.settings();
+  WorldSettings settings = SlopeAvalanche::worldSettings();
   settings.maxBodies += 2;
   settings.maxParticles +=
-      sampledParticles(m_config.lowBlock, d()) + sampledParticles(m_config.plank, d());
+      sampledParticles(m_blocksConfig.lowBlock, d()) + sampledParticles(m_blocksConfig.plank, d());
   return settings;
 }
 
 void BlockAvalanche::build(World& world) {
-  m_slope.build(world);
+  SlopeAvalanche::build(world);
   const float d = this->d();
-  const float floorY = m_slope.bounds().min.y;
+  const float floorY = bounds().min.y;
   m_blocks.reset();  // the old bridge refers to the old World
-  m_blocks = std::make_unique<Blocks>(floorY, m_config, world.settings().gravity);
-  const btVector3 low = halfExtents(m_config.lowBlock, d);
-  const btVector3 plank = halfExtents(m_config.plank, d);
-  const float foot = m_slope.config().slopeLength * d;
-  const float lowX = foot + m_config.blockDistance * d + low.x();
+  m_blocks = std::make_unique<Blocks>(floorY, m_blocksConfig, world.settings().gravity);
+  const btVector3 low = halfExtents(m_blocksConfig.lowBlock, d);
+  const btVector3 plank = halfExtents(m_blocksConfig.plank, d);
+  const float foot = m_config.slopeLength * d;
+  const float lowX = foot + m_blocksConfig.blockDistance * d + low.x();
   m_blocks->addBlock("low-block", low, btVector3(lowX, floorY + low.y(), 0.0f));
   m_blocks->addBlock("plank", plank, btVector3(lowX, floorY + 2.0f * low.y() + plank.y(), 0.0f));
   m_blocks->bridge = std::make_unique<bullet::Bridge>(world, m_blocks->dynamics);
@@ -159,9 +159,9 @@ std::vector<SceneBody> BlockAvalanche::blockBodies() const {
 
 std::string BlockAvalanche::status() const {
   const std::vector<SceneBody> blocks = blockBodies();
-  if (blocks.empty()) return m_slope.status();
+  if (blocks.empty()) return SlopeAvalanche::status();
   const std::string degrees = std::to_string(int(blocks[1].tiltDegrees)) + " deg";
-  if (!m_slope.finished()) return m_slope.status() + ", plank tilt " + degrees;
+  if (!finished()) return SlopeAvalanche::status() + ", plank tilt " + degrees;
   // A plank leaning past 45 degrees has fallen: it cannot stand on its end again.
   return "came to rest; the plank " +
          std::string(blocks[1].tiltDegrees > 45.0f ? "toppled" : "still stands") + " (tilt " +
@@ -169,7 +169,7 @@ std::string BlockAvalanche::status() const {
 }
 
 std::vector<SceneMetric> BlockAvalanche::metrics(std::span<const BodyState> bodies) const {
-  std::vector<SceneMetric> out = m_slope.metrics(bodies);
+  std::vector<SceneMetric> out = SlopeAvalanche::metrics(bodies);
   const std::vector<SceneBody> now = blockBodies();
   for (std::size_t i = 0; i < now.size(); ++i) {
     const Vec3 moved = now[i].position - m_blocks->blocks[i].start;

@@ -23,36 +23,25 @@ struct BlockAvalancheConfig {
 /// standing on it broadside to the slope. The blocks meet the sand through a
 /// sandphys::bullet::Bridge (their shapes sampled into particles), and each other and the floor
 /// in Bullet. The avalanche runs over the low block and topples the plank.
-class BlockAvalanche final : public Scene {
+class BlockAvalanche final : public SlopeAvalanche {
  public:
-  using Config = BlockAvalancheConfig;
-
   BlockAvalanche();
   ~BlockAvalanche() override;
 
-  /// The sand: block, slope, wall and release (change it before build()).
-  SlopeAvalanche& slope() { return m_slope; }
+  /// The blocks (change them before build()); config() is the slope's.
+  BlockAvalancheConfig& blocks() { return m_blocksConfig; }
 
   std::string_view name() const override { return "avalanche"; }
   WorldSettings worldSettings() const override;
   /// The slope's sand and container, and a new Bullet world with its floor and the two blocks.
   void build(World& world) override;
   StepReport step(World& world, float frameDt) override;
-  void update(World& world, const StepReport& report, double simTime) override {
-    m_slope.update(world, report, simTime);
-  }
-  bool finished() const override { return m_slope.finished(); }
   /// The slope's status and the plank's tilt.
   std::string status() const override;
-  bool contains(const Vec3& centre) const override { return m_slope.contains(centre); }
   /// The slope's metrics, and each block's tilt (deg) and displacement (m) since build.
   std::vector<SceneMetric> metrics(std::span<const BodyState> bodies) const override;
   /// The slope's parameters, then the blocks'.
   std::vector<SceneParameter> parameters() override;
-  SceneBounds bounds() const override { return m_slope.bounds(); }
-  SceneView view(const std::optional<SceneBounds>& contents) const override {
-    return m_slope.view(contents);
-  }
   /// "low-block" and "plank", as Bullet has them now.
   std::vector<SceneBody> bodies(const World& /*world*/) const override { return blockBodies(); }
   std::vector<RecordedInput> externalInputs() const override;
@@ -60,10 +49,8 @@ class BlockAvalanche final : public Scene {
  private:
   struct Blocks;
   std::vector<SceneBody> blockBodies() const;
-  float d() const { return m_slope.config().particleDiameter; }
 
-  Config m_config;
-  SlopeAvalanche m_slope;
+  BlockAvalancheConfig m_blocksConfig;
   std::unique_ptr<Blocks> m_blocks;
 };
 

@@ -33,7 +33,7 @@ struct SlopeAvalancheConfig {
 /// resting on the slope beneath it. The run-out (the bottom of the container box) runs from the
 /// slope's foot at x = slopeLength to slopeLength + runoutLength. Every surface has `friction`.
 /// The metrics measure the motion since the release.
-class SlopeAvalanche final : public kit::SceneWith<SlopeAvalancheConfig> {
+class SlopeAvalanche : public kit::SceneWith<SlopeAvalancheConfig> {
  public:
   using Config = SlopeAvalancheConfig;
   using SceneWith::SceneWith;

@@ -34,7 +34,7 @@ float distance(const Vec3& a, const Vec3& b) {
 // Runs the scene for `seconds` of simulated time and prints the blocks every 0.25 s.
 Outcome run(float releaseTime, double seconds) {
   BlockAvalanche scene;
-  SlopeAvalanche::Config& slope = scene.slope().config();
+  SlopeAvalanche::Config& slope = scene.config();
   slope.block = {10, 4, 8};
   slope.slopeLength = 20.0f;
   slope.runoutLength = 30.0f;
@@ -46,7 +46,7 @@ Outcome run(float releaseTime, double seconds) {
   int frame = 0;
   while (world.simulatedTime() < seconds) {
     const StepReport report = scene.step(world, kFrame);
-    if (!scene.slope().released()) {
+    if (!scene.released()) {
       const std::vector<SceneBody> held = scene.bodies(world);
       outcome.plankTiltHeld = held[1].tiltDegrees;
       outcome.lowMovedHeld = distance(start[0].position, held[0].position);

@@ -21,7 +21,8 @@ class SceneWith : public Scene {
   Config& config() { return m_config; }
   const Config& config() const { return m_config; }
 
-  std::vector<SceneParameter> parameters() final { return bind(table(), m_config); }
+  /// The table's rows; a scene built on another adds its own after them.
+  std::vector<SceneParameter> parameters() override { return bind(table(), m_config); }
 
  protected:
   /// The scene's parameter table (a static array in its .cpp).
