@@ -204,6 +204,7 @@ void RockDrop::build(World& world) {
                           .actAfter = m_config.settleTime},
                          kit::granuleMass(world.settings()));
   m_run = {};
+  m_surfaces.clear();  // the rock's, once dropped
   const float height = boxHeight();
   world.addCollider(Box{.center = {0.0f, 0.5f * height, 0.0f},
                         .halfExtents = {halfWidth(0), 0.5f * height, halfWidth(2)},
@@ -241,7 +242,7 @@ void RockDrop::drop(World& world, double simTime) {
   const float y = m_run.bedTop + m_config.dropHeight * d() + 0.5f * d() - rock.drop.min.y;
   m_run.rock =
       world.addBody(rock.sampled.shape, BodyDesc{.position = {0.0f, y, 0.0f}, .orientation = q});
-  m_run.surfaces = {surfaceOf(m_run.rock, rock.mesh, rock.sampled, BodyMaterial::Stone)};
+  m_surfaces = {surfaceOf(m_run.rock, rock.mesh, rock.sampled, BodyMaterial::Stone)};
   m_run.startUp = rotate(conjugate(q), {0.0f, 1.0f, 0.0f});
   m_course.endAct(simTime);
   // The first check after the fall onto the bed: before it the rock is in the air (and calm at

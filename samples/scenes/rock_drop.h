@@ -63,7 +63,6 @@ class RockDrop final : public kit::SceneWith<RockDropConfig> {
   const TriangleMesh& rockMesh() const;
   bool dropped() const { return m_run.rock.isValid(); }
   BodyId rock() const { return m_run.rock; }
-  std::span<const SceneSurface> surfaces() const override { return m_run.surfaces; }
   double droppedAt() const { return m_course.actStart(); }  // s, negative before the drop
 
  private:
@@ -89,7 +88,6 @@ class RockDrop final : public kit::SceneWith<RockDropConfig> {
     int calmChecks = 0;              // in a row
     double restedAt = -1.0;          // s, the first of those
     bool finished = false;
-    std::vector<SceneSurface> surfaces;  // the rock's, once dropped
   } m_run;
 };
 
