@@ -91,7 +91,7 @@ Vec3 SandTools::clampToScene(Vec3 point, float margin) const {
 void SandTools::update(World& world, bool pour, bool push, const Ray& cursorRay, float frameDt) {
   std::optional<Vec3> floorPoint;
   if (const auto hit = hitHorizontalPlane(cursorRay, m_bounds.min.y)) {
-    floorPoint = Vec3{hit->x(), hit->y(), hit->z()};
+    floorPoint = toVec3(*hit);
   }
   updatePour(world, pour && m_poured < kPourGranules ? floorPoint : std::nullopt);
   updatePush(world, push ? floorPoint : std::nullopt, frameDt);

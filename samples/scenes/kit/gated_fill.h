@@ -49,8 +49,8 @@ SurfaceMaterial wallMaterial(const Config& c) {
 }
 
 /// The settings rule of a gated fill of `granules` whose grains fall at most `fall` (m): the
-/// grains' material and substeps from the config, statistics every frame (the settle tests and
-/// the count left).
+/// grains' material and substeps from the config; the default per-frame statistics serve the
+/// settle tests and the count left.
 template <class Config>
 SettingsRule gatedFillRule(const Config& c, std::uint64_t granules, float fall) {
   return {.granules = granules,
