@@ -1,7 +1,5 @@
 #include "scenes/scene.h"
 
-#include "scenes/kit/parameters.h"
-
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -17,6 +15,44 @@ std::string rangeText(const SceneParameter& parameter) {
   std::ostringstream out;
   out << "[" << parameter.min << ", " << parameter.max << "]";
   return out.str();
+}
+
+bool inRange(double value, const SceneParameter& parameter) {
+  return value >= parameter.min && value <= parameter.max;
+}
+
+bool valid(const SceneParameter& parameter) {
+  return std::visit(
+      [&](auto* value) {
+        using T = std::remove_pointer_t<decltype(value)>;
+        if constexpr (std::is_same_v<T, Count3>) {
+          for (std::uint32_t count : *value) {
+            if (!inRange(count, parameter)) return false;
+          }
+          return true;
+        } else if constexpr (std::is_same_v<T, std::string>) {
+          return !value->empty();
+        } else {
+          return inRange(static_cast<double>(*value), parameter);
+        }
+      },
+      parameter.value);
+}
+
+// Throws InvalidArgument naming the scene, the parameter, its value and the valid range when a
+// value is outside its range (a Count3 component included) or a text is empty.
+void checkRanges(std::string_view scene, std::span<const SceneParameter> parameters) {
+  for (const SceneParameter& parameter : parameters) {
+    if (valid(parameter)) continue;
+    std::ostringstream out;
+    out << scene << ": parameter '" << parameter.name << "' = " << formatSceneParameter(parameter);
+    if (std::holds_alternative<std::string*>(parameter.value)) {
+      out << " is empty (" << parameter.help << ")";
+    } else {
+      out << " is out of range " << rangeText(parameter) << " (" << parameter.help << ")";
+    }
+    throw InvalidArgument(out.str());
+  }
 }
 
 [[noreturn]] void fail(const SceneParameter& parameter, std::string_view text,
@@ -151,7 +187,7 @@ std::optional<ContactLaw> contactLawFromName(std::string_view name) {
 
 WorldSettings Scene::settings() const {
   // parameters() hands out pointers to write through; the check only reads them.
-  kit::checkRanges(name(), const_cast<Scene&>(*this).parameters());
+  checkRanges(name(), const_cast<Scene&>(*this).parameters());
   WorldSettings settings = worldSettings();
   settings.contactLaw = m_contactLaw;
   settings.sleep.enabled = m_sleep;

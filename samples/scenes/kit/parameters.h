@@ -52,10 +52,6 @@ std::vector<SceneParameter> bind(std::span<const Param<Config>> table, Config& c
   return out;
 }
 
-/// Throws InvalidArgument naming the scene, the parameter, its value and the valid range when a
-/// value of `parameters` is outside its range (a Count3 component included) or a text is empty.
-void checkRanges(std::string_view scene, std::span<const SceneParameter> parameters);
-
 // Rows that many scenes share, so that their name, range and help are said once.
 
 /// Largest 64-bit seed, as the range's upper end.
