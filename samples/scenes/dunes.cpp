@@ -46,14 +46,10 @@ WorldSettings Dunes::worldSettings() const {
                " d) reach past the floor (floor-half-length ", c.floorHalfLength,
                " d, floor-half-width ", c.floorHalfWidth, " d)");
   pour().checkAboveFloor(name());
-  // The floor's particles, at most (World::addRoughFloor rounds each half down to whole d).
-  const std::uint64_t floorParticles =
-      static_cast<std::uint64_t>(2.0 * std::floor(c.floorHalfLength) + 1.0) *
-      static_cast<std::uint64_t>(2.0 * std::floor(c.floorHalfWidth) + 1.0);
   return kit::worldSettings(name(), d(),
                             {.granules = 2ull * c.granules,
                              .bodies = 1,
-                             .particles = floorParticles,
+                             .particles = roughFloorParticles(roughFloor(), d()),
                              .maxSpeed = pour().guardSpeed(),
                              .stepsPerContact = c.stepsPerContact,
                              .youngsModulus = c.youngsModulus,
@@ -65,15 +61,19 @@ void Dunes::build(World& world) {
   m_course = kit::PourCourse(pour().course(m_config.settleSpeed, m_config.maxSettleSeconds,
                                            length(world.settings().gravity)),
                              kit::granuleMass(world.settings()), 2 * m_config.granules);
-  const float halfX = m_config.floorHalfLength * d();
-  const float halfZ = m_config.floorHalfWidth * d();
-  world.addRoughFloor(RoughFloor{.halfExtentX = halfX, .halfExtentZ = halfZ, .spacing = d()});
-  world.addSink(pour().sink(std::max(halfX, halfZ)));
+  world.addRoughFloor(roughFloor());
+  world.addSink(pour().sink(std::max(roughFloor().halfExtentX, roughFloor().halfExtentZ)));
   for (int side : {-1, 1}) {
     const float x = static_cast<float>(side) * 0.5f * m_config.separation * d();
     // Two different streams of orientations.
     world.addEmitter(pour().emitter(x, m_config.seed * 2 + (side > 0 ? 1 : 0)));
   }
+}
+
+RoughFloor Dunes::roughFloor() const {
+  return RoughFloor{.halfExtentX = m_config.floorHalfLength * d(),
+                    .halfExtentZ = m_config.floorHalfWidth * d(),
+                    .spacing = d()};
 }
 
 void Dunes::update(World& world, const StepReport& report, double simTime) {

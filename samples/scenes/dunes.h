@@ -59,6 +59,7 @@ class Dunes final : public kit::PourScene<DunesConfig> {
 
  private:
   std::span<const kit::Param<Config>> table() const override;
+  RoughFloor roughFloor() const;  // long along x
 
   Profile m_profile;
 };
