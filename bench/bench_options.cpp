@@ -178,6 +178,17 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
                  "guard, WorldSettings::listSkin); it changes the cost, not the result")
       ->check(CLI::Range(0.0f, 1.0f))
       ->capture_default_str();
+  app.add_option("--lammps-ranks", measure.lammpsRanks,
+                 "after each size, run the same pile in LAMMPS for as many steps (exported at the "
+                 "start of timing: fix rigid/small, pair granular), once per number of MPI ranks "
+                 "given (1: lmp alone; comma-separated), and report its time beside sandphys's; "
+                 "needs lmp and mpirun (lammps, openmpi-bin)")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 1024));
+  app.add_option("--lammps-dir", measure.lammpsDir,
+                 "with --lammps-ranks: folder of the decks and LAMMPS's output, one per size "
+                 "(kept)")
+      ->capture_default_str();
   app.add_flag("--sleep", measure.sleep,
                "sleeping sand (WorldSettings::sleep): time the pile once it has fallen asleep");
   app.add_option("--rock", measure.rockSpeed,
@@ -334,6 +345,9 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
     }
     if (measure.render.frames == 0) throw UsageError("--render-frames 0: must be >= 1");
     if (measure.kernelSteps == 0) throw UsageError("--kernel-steps 0: must be >= 1");
+    if (!measure.lammpsRanks.empty() && measure.sandboxSeconds > 0.0) {
+      throw UsageError("--lammps-ranks with --sandbox: LAMMPS runs timed substeps, not the script");
+    }
     measure.kernelTimes = !noKernelTimes;
     measure.progress = !quiet;
     if (!options.jsonPath.empty()) checkWritable("--json", options.jsonPath);

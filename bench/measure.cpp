@@ -9,6 +9,7 @@
 #include <fstream>
 #include <optional>
 
+#include "lammps_side_by_side.h"
 #include "pile_cache.h"
 
 namespace sandphys::bench {
@@ -308,6 +309,10 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
     result.rockParticles = std::uint32_t(rock.size());
   }
 
+  // LAMMPS runs the same pile after sandphys, from a deck of it as timing starts (a read-back).
+  std::filesystem::path lammpsDeck;
+  if (!options.lammpsRanks.empty()) lammpsDeck = exportForLammps(world, plan, options);
+
   // Measure: whole chunks of substeps, timed from a synchronised start to a synchronised end;
   // or the sandbox script's frames.
   const Clock::time_point start = Clock::now();
@@ -358,6 +363,17 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   if (options.progress && !result.renders.empty()) {
     std::fprintf(stderr, "%s rendered %dx%d at %zu quality presets\n", tag().c_str(),
                  options.render.width, options.render.height, result.renders.size());
+  }
+  for (const int ranks : options.lammpsRanks) {
+    const double seconds = double(plan.steps) * double(world.timeStep());
+    result.lammps.push_back(runLammps(lammpsDeck, ranks, seconds));
+    if (options.progress) {
+      const LammpsTiming& run = result.lammps.back();
+      std::fprintf(stderr, "%s LAMMPS on %d rank(s): %s\n", tag().c_str(), ranks,
+                   run.failure.empty()
+                       ? (std::to_string(run.millisecondsPerStep()) + " ms per step").c_str()
+                       : run.failure.c_str());
+    }
   }
   return result;
 }

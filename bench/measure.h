@@ -66,6 +66,11 @@ struct MeasureOptions {
   /// Folder of settled piles (--pile-cache; empty: none): a pile settled there before is restored
   /// instead of settled again, and one settled now is kept there (pile_cache.h).
   std::string pileCache;
+  /// MPI ranks of the LAMMPS runs of each size's pile, one run per entry (empty: none): the World
+  /// as timing starts, exported (exportLammps) into lammpsDir/<scene>-<granules> and run for the
+  /// timed substeps after sandphys's (SizeResult::lammps).
+  std::vector<int> lammpsRanks;
+  std::string lammpsDir = "bench-lammps";
 };
 inline constexpr float kRockRadius = 3.0f;  // d
 
@@ -86,6 +91,17 @@ struct KernelStep {
   std::string name;
   double millisecondsPerStep = 0.0;
   double dispatchesPerStep = 0.0;
+};
+
+/// One LAMMPS run of a size's pile (MeasureOptions::lammpsRanks).
+struct LammpsTiming {
+  int ranks = 0;
+  std::string deck;          ///< the deck's folder
+  double loopSeconds = 0.0;  ///< LAMMPS's "Loop time" (its timesteps only), s
+  std::uint64_t steps = 0;   ///< timesteps it ran
+  std::string failure;       ///< why there is no time (empty: it ran)
+
+  double millisecondsPerStep() const { return steps > 0 ? 1e3 * loopSeconds / double(steps) : 0.0; }
 };
 
 /// Everything measured for one size.
@@ -141,6 +157,7 @@ struct SizeResult {
   std::uint64_t listOverflows = 0;         ///< particles over a list's capacity at those builds
   std::vector<KernelStep> kernels;         ///< empty without kernel times
   std::vector<RenderTiming> renders;       ///< one per quality preset; empty without --render
+  std::vector<LammpsTiming> lammps;        ///< one per MeasureOptions::lammpsRanks entry
   double loadBefore = -1.0;  ///< 1-minute load average before the size ran (-1: unknown)
   double loadAfter = -1.0;
 

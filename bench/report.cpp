@@ -183,6 +183,24 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
         {"measured", pileStateJson(size.measured)}}},
   };
   if (!size.timeline.empty()) result["sandbox_timeline"] = timeline;
+  nlohmann::json lammps = nlohmann::json::array();
+  for (const LammpsTiming& run : size.lammps) {
+    const bool ran = run.failure.empty();
+    lammps.push_back(
+        {{"ranks", run.ranks},
+         {"deck", run.deck},
+         {"loop_seconds", run.loopSeconds},
+         {"steps", run.steps},
+         {"ms_per_step", ran ? nlohmann::json(run.millisecondsPerStep()) : nlohmann::json(nullptr)},
+         {"granule_steps_per_second",
+          ran ? nlohmann::json(granules * run.steps / run.loopSeconds) : nlohmann::json(nullptr)},
+         // Above 1: sandphys runs faster than this LAMMPS run.
+         {"sandphys_speed_ratio",
+          ran ? nlohmann::json(run.millisecondsPerStep() / size.wallMillisecondsPerStep())
+              : nlohmann::json(nullptr)},
+         {"failure", run.failure}});
+  }
+  if (!size.lammps.empty()) result["lammps"] = lammps;
   return result;
 }
 
@@ -331,6 +349,32 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
                "is due); list builds/1k: neighbour-list builds per 1000 substeps "
                "(WorldStats::listBuilds); n/a: no contacts, or --no-kernel-times)\n",
                box ? "" : ", the rough floor's included");
+
+  if (!measure.lammpsRanks.empty()) {
+    std::fprintf(out,
+                 "\nSide by side with LAMMPS (the pile as timing starts, exported by exportLammps: "
+                 "fix rigid/small, pair granular Hertz-Mindlin, the same material and dt; as many "
+                 "steps, run after sandphys's):\n");
+    std::fprintf(out, "%9s %16s %7s %15s %13s %16s\n", "granules", "sandphys ms/step", "ranks",
+                 "LAMMPS ms/step", "granule-st/s", "sandphys/LAMMPS");
+    for (const SizeResult& s : report.sizes) {
+      for (const LammpsTiming& run : s.lammps) {
+        if (!run.failure.empty()) {
+          std::fprintf(out, "%9u %16.3f %7d  did not run: %s\n", s.granules,
+                       s.wallMillisecondsPerStep(), run.ranks, run.failure.c_str());
+          continue;
+        }
+        std::fprintf(out, "%9u %16.3f %7d %15.3f %13.4g %16.2f\n", s.granules,
+                     s.wallMillisecondsPerStep(), run.ranks, run.millisecondsPerStep(),
+                     double(s.granules) * double(run.steps) / run.loopSeconds,
+                     run.millisecondsPerStep() / s.wallMillisecondsPerStep());
+      }
+    }
+    std::fprintf(out,
+                 "(LAMMPS ms/step: its \"Loop time\" over its steps; sandphys/LAMMPS: how many "
+                 "times faster sandphys ran, below 1 slower; both on this machine, one after the "
+                 "other)\n");
+  }
 
   std::fprintf(out, "\nHow settled (at the start of timing -> at its end):\n");
   std::fprintf(out, "%9s %14s %20s %18s %16s %10s %14s\n", "granules", "settle steps",

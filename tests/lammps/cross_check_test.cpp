@@ -117,6 +117,10 @@ PileRecord runLammps(const std::filesystem::path& dir, int ranks) {
     return {};
   }
   const LammpsRun run = readLammpsRun(dir);
+  // Its loop line: every timestep of kSeconds, on `ranks` ranks.
+  EXPECT_EQ(run.loopRanks, ranks);
+  EXPECT_EQ(run.loopSteps, std::uint64_t(std::lround(kSeconds / kTimeStep)));
+  EXPECT_GT(run.loopSeconds, 0.0);
   PileRecord r;
   for (const LammpsThermo& t : run.thermo) {
     if (t.step == 0.0) continue;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -25,6 +26,11 @@ struct LammpsRun {
   /// Each clump's centre in final.dump, in molecule order: the mean of its particles, which for
   /// a granule is its centre of mass.
   std::vector<Vec3> clumpCentres;
+  /// The run's "Loop time of T on P procs for N steps" line: the wall time of its timesteps, s,
+  /// its MPI ranks and its timesteps (0, 0, 0 when the log holds no such line).
+  double loopSeconds = 0.0;
+  int loopRanks = 0;
+  std::uint64_t loopSteps = 0;
 };
 
 /// The shell command that runs the deck in `directory` for `seconds` of simulated time on

@@ -43,7 +43,21 @@ LammpsRun readLammpsRun(const std::filesystem::path& directory) {
       thermo = true;
       continue;
     }
-    if (line.rfind("Loop time", 0) == 0) thermo = false;
+    if (line.rfind("Loop time of ", 0) == 0) {
+      thermo = false;
+      // "Loop time of T on P procs for N steps with A atoms"
+      std::istringstream words(line);
+      std::string word;
+      double seconds = 0.0;
+      int ranks = 0;
+      std::uint64_t steps = 0;
+      words >> word >> word >> word >> seconds >> word >> ranks >> word >> word >> steps;
+      if (words) {
+        run.loopSeconds = seconds;
+        run.loopRanks = ranks;
+        run.loopSteps = steps;
+      }
+    }
     if (!thermo) continue;
     std::istringstream fields(line);
     LammpsThermo t;

@@ -1,0 +1,80 @@
+#include <gtest/gtest.h>
+#include <sandphys/sandphys.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "process.h"
+
+namespace sandphys::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A small box pile, briefly settled, timed for 100 substeps and then run in LAMMPS.
+const std::string kBench = std::string(SANDPHYS_BENCH_EXE) +
+                           " --scene box --sizes 256 --settle-steps 2000 --steps 100"
+                           " --no-kernel-times --quiet --lammps-ranks 1";
+
+class LammpsSideBySide : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+    m_dir = fs::temp_directory_path() / (std::string("sandphys_bench_lammps_") + test->name());
+    fs::remove_all(m_dir);
+    fs::create_directories(m_dir);
+  }
+  void TearDown() override { fs::remove_all(m_dir); }
+
+  // One run; its JSON's only size, and its output.
+  nlohmann::json run(const std::string& prefix, std::string& output) {
+    const fs::path json = m_dir / "bench.json";
+    const ProcessResult result =
+        runCommand(prefix + kBench + " --lammps-dir " + (m_dir / "decks").string() + " --json " +
+                   json.string());
+    EXPECT_EQ(result.exitCode, 0) << result.output;
+    output = result.output;
+    std::ifstream file(json);
+    return nlohmann::json::parse(file).at("sizes").at(0);
+  }
+
+  fs::path m_dir;
+};
+
+TEST_F(LammpsSideBySide, RunsTheTimedPileForAsManyStepsAndReportsItsLoopTime) {
+  std::string output;
+  const nlohmann::json size = run("", output);
+  ASSERT_EQ(size.at("lammps").size(), 1u) << output;
+  const nlohmann::json& lammps = size["lammps"][0];
+  EXPECT_EQ(lammps["failure"], "") << output;
+  EXPECT_EQ(lammps["ranks"], 1);
+  EXPECT_EQ(lammps["steps"], size["steps"]);
+  EXPECT_GT(lammps["loop_seconds"].get<double>(), 0.0);
+  EXPECT_NE(output.find("Side by side with LAMMPS"), std::string::npos) << output;
+  // The deck holds the pile sandphys timed: every particle of it, in the folder named by size.
+  const fs::path deck = m_dir / "decks" / "box-256";
+  EXPECT_EQ(lammps["deck"], deck.string());
+  const LammpsRun log = readLammpsRun(deck);
+  ASSERT_FALSE(log.thermo.empty());
+  EXPECT_EQ(log.thermo.front().atoms, size["particles"].get<double>());
+  EXPECT_EQ(log.loopRanks, 1);
+}
+
+TEST_F(LammpsSideBySide, ALammpsThatCannotRunIsNamedAndTheBenchStillReports) {
+  std::string output;
+  // No lmp on the PATH.
+  const nlohmann::json size = run("env PATH=" + (m_dir / "nothing").string() + " ", output);
+  ASSERT_EQ(size.at("lammps").size(), 1u) << output;
+  const std::string failure = size["lammps"][0]["failure"];
+  EXPECT_NE(failure.find("lmp -in in.sandphys"), std::string::npos) << failure;
+  EXPECT_NE(failure.find("lammps.out"), std::string::npos) << failure;
+  EXPECT_TRUE(size["lammps"][0]["ms_per_step"].is_null());
+  EXPECT_NE(output.find("did not run"), std::string::npos) << output;
+  EXPECT_GT(size["granule_steps_per_second"].get<double>(), 0.0);
+}
+
+}  // namespace
+}  // namespace sandphys::testing
