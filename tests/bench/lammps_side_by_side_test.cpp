@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "process.h"
+#include "support/test_folder.h"
 
 namespace sandphys::testing {
 namespace {
@@ -21,14 +22,6 @@ const std::string kBench = std::string(SANDPHYS_BENCH_EXE) +
 
 class LammpsSideBySide : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    m_dir = fs::temp_directory_path() / (std::string("sandphys_bench_lammps_") + test->name());
-    fs::remove_all(m_dir);
-    fs::create_directories(m_dir);
-  }
-  void TearDown() override { fs::remove_all(m_dir); }
-
   // One run; its JSON's only size, and its output.
   nlohmann::json run(const std::string& prefix, std::string& output) {
     const fs::path json = m_dir / "bench.json";
@@ -41,7 +34,8 @@ class LammpsSideBySide : public ::testing::Test {
     return nlohmann::json::parse(file).at("sizes").at(0);
   }
 
-  fs::path m_dir;
+  TestFolder m_folder{"sandphys_bench_lammps_"};
+  const fs::path& m_dir = m_folder.path();
 };
 
 TEST_F(LammpsSideBySide, RunsTheTimedPileForAsManyStepsAndReportsItsLoopTime) {

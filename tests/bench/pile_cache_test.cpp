@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "process.h"
+#include "support/test_folder.h"
 
 namespace sandphys::testing {
 namespace {
@@ -21,14 +22,6 @@ const std::string kBench = std::string(SANDPHYS_BENCH_EXE) +
 
 class PileCache : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    m_dir = fs::temp_directory_path() / (std::string("sandphys_pile_cache_") + test->name());
-    fs::remove_all(m_dir);
-    fs::create_directories(m_dir);
-  }
-  void TearDown() override { fs::remove_all(m_dir); }
-
   // One run with the cache; its JSON's only size.
   nlohmann::json run(const std::string& name, const std::string& extra = "",
                      std::string* output = nullptr) {
@@ -48,7 +41,8 @@ class PileCache : public ::testing::Test {
     return files;
   }
 
-  fs::path m_dir;
+  TestFolder m_folder{"sandphys_pile_cache_"};
+  const fs::path& m_dir = m_folder.path();
 };
 
 TEST_F(PileCache, ASecondRunRestoresThePileAndMeasuresWhatTheFirstDid) {
