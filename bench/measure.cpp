@@ -167,6 +167,11 @@ double SizeResult::listBuildsPer1000Steps() const {
   return steps > 0 ? 1000.0 * double(listBuilds) / steps : 0.0;
 }
 
+double SizeResult::speedAgainst(const LammpsTiming& run) const {
+  return wallMillisecondsPerStep() > 0.0 ? run.millisecondsPerStep() / wallMillisecondsPerStep()
+                                         : 0.0;
+}
+
 std::unique_ptr<BenchPile> makePile(const MeasureOptions& options, std::uint32_t granules) {
   if (options.scene == BenchScene::Box) {
     BoxPileConfig config = options.box;

@@ -102,6 +102,9 @@ struct LammpsTiming {
   std::string failure;       ///< why there is no time (empty: it ran)
 
   double millisecondsPerStep() const { return steps > 0 ? 1e3 * loopSeconds / double(steps) : 0.0; }
+  double granuleStepsPerSecond(std::uint32_t granules) const {
+    return loopSeconds > 0.0 ? double(granules) * double(steps) / loopSeconds : 0.0;
+  }
 };
 
 /// Everything measured for one size.
@@ -179,6 +182,8 @@ struct SizeResult {
   double dispatchesPerStep() const;
   /// Builds of the neighbour lists per 1000 measured substeps (WorldStats::listBuilds).
   double listBuildsPer1000Steps() const;
+  /// How many times faster per step sandphys ran than `run` of its pile (below 1: slower).
+  double speedAgainst(const LammpsTiming& run) const;
 };
 
 /// The pile `options` selects (the cylinder's DensePile or the BoxPile), of `granules` granules.

@@ -193,11 +193,10 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
          {"steps", run.steps},
          {"ms_per_step", ran ? nlohmann::json(run.millisecondsPerStep()) : nlohmann::json(nullptr)},
          {"granule_steps_per_second",
-          ran ? nlohmann::json(granules * run.steps / run.loopSeconds) : nlohmann::json(nullptr)},
+          ran ? nlohmann::json(run.granuleStepsPerSecond(size.granules)) : nlohmann::json(nullptr)},
          // Above 1: sandphys runs faster than this LAMMPS run.
          {"sandphys_speed_ratio",
-          ran ? nlohmann::json(run.millisecondsPerStep() / size.wallMillisecondsPerStep())
-              : nlohmann::json(nullptr)},
+          ran ? nlohmann::json(size.speedAgainst(run)) : nlohmann::json(nullptr)},
          {"failure", run.failure}});
   }
   if (!size.lammps.empty()) result["lammps"] = lammps;
@@ -366,8 +365,7 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
         }
         std::fprintf(out, "%9u %16.3f %7d %15.3f %13.4g %16.2f\n", s.granules,
                      s.wallMillisecondsPerStep(), run.ranks, run.millisecondsPerStep(),
-                     double(s.granules) * double(run.steps) / run.loopSeconds,
-                     run.millisecondsPerStep() / s.wallMillisecondsPerStep());
+                     run.granuleStepsPerSecond(s.granules), s.speedAgainst(run));
       }
     }
     std::fprintf(out,
