@@ -2,21 +2,34 @@
 
 // The benchmark's pile in LAMMPS, for --lammps-ranks: the same granules, material and time step
 // (exportLammps), run for as many steps as sandphys was timed.
+#include <cstdint>
 #include <filesystem>
+#include <string>
 
 #include <sandphys/sandphys.h>
 
-#include "measure.h"
-
 namespace sandphys::bench {
 
-/// Writes `world` as timing starts into options.lammpsDir/<scene>-<granules>, a deck that runs
-/// plan.steps timesteps; returns its folder (absolute). Sync point.
-std::filesystem::path exportForLammps(const World& world, const SizePlan& plan,
-                                      const MeasureOptions& options);
+/// One LAMMPS run of a deck.
+struct LammpsTiming {
+  int ranks = 0;
+  std::string deck;          ///< the deck's folder
+  double loopSeconds = 0.0;  ///< LAMMPS's "Loop time" (its timesteps only), s
+  std::uint64_t steps = 0;   ///< timesteps it ran
+  std::string failure;       ///< why there is no time (empty: it ran)
 
-/// Runs the deck in `deck` for `seconds` of simulated time on `ranks` MPI ranks and reads its loop
-/// time; a run that fails, or leaves no loop time, is named in LammpsTiming::failure.
-LammpsTiming runLammps(const std::filesystem::path& deck, int ranks, double seconds);
+  double millisecondsPerStep() const { return steps > 0 ? 1e3 * loopSeconds / double(steps) : 0.0; }
+  double granuleStepsPerSecond(std::uint32_t granules) const {
+    return loopSeconds > 0.0 ? double(granules) * double(steps) / loopSeconds : 0.0;
+  }
+};
+
+/// Writes `world` into the folder `deck` as a deck that runs `steps` timesteps. Sync point.
+void exportForLammps(const World& world, const std::filesystem::path& deck, std::uint32_t steps);
+
+/// Runs the deck in `deck` for `steps` timesteps of `timeStep` s on `ranks` MPI ranks and reads
+/// its loop time; a run that fails, or leaves no loop time, is named in LammpsTiming::failure.
+LammpsTiming runLammps(const std::filesystem::path& deck, int ranks, std::uint32_t steps,
+                       float timeStep);
 
 }  // namespace sandphys::bench

@@ -9,7 +9,6 @@
 #include <fstream>
 #include <optional>
 
-#include "lammps_side_by_side.h"
 #include "pile_cache.h"
 
 namespace sandphys::bench {
@@ -315,8 +314,10 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   }
 
   // LAMMPS runs the same pile after sandphys, from a deck of it as timing starts (a read-back).
-  std::filesystem::path lammpsDeck;
-  if (!options.lammpsRanks.empty()) lammpsDeck = exportForLammps(world, plan, options);
+  const std::filesystem::path lammpsDeck =
+      std::filesystem::absolute(options.lammpsDir) /
+      (std::string(benchSceneName(options.scene)) + "-" + std::to_string(plan.granules));
+  if (!options.lammpsRanks.empty()) exportForLammps(world, lammpsDeck, plan.steps);
 
   // Measure: whole chunks of substeps, timed from a synchronised start to a synchronised end;
   // or the sandbox script's frames.
@@ -370,8 +371,7 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
                  options.render.width, options.render.height, result.renders.size());
   }
   for (const int ranks : options.lammpsRanks) {
-    const double seconds = double(plan.steps) * double(world.timeStep());
-    result.lammps.push_back(runLammps(lammpsDeck, ranks, seconds));
+    result.lammps.push_back(runLammps(lammpsDeck, ranks, plan.steps, world.timeStep()));
     if (options.progress) {
       const LammpsTiming& run = result.lammps.back();
       std::fprintf(stderr, "%s LAMMPS on %d rank(s): %s\n", tag().c_str(), ranks,

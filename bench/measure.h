@@ -10,6 +10,7 @@
 #include "bench_pile.h"
 #include "box_pile.h"
 #include "dense_pile.h"
+#include "lammps_side_by_side.h"
 #include "render_measure.h"
 #include "sandbox_timeline.h"
 
@@ -91,20 +92,6 @@ struct KernelStep {
   std::string name;
   double millisecondsPerStep = 0.0;
   double dispatchesPerStep = 0.0;
-};
-
-/// One LAMMPS run of a size's pile (MeasureOptions::lammpsRanks).
-struct LammpsTiming {
-  int ranks = 0;
-  std::string deck;          ///< the deck's folder
-  double loopSeconds = 0.0;  ///< LAMMPS's "Loop time" (its timesteps only), s
-  std::uint64_t steps = 0;   ///< timesteps it ran
-  std::string failure;       ///< why there is no time (empty: it ran)
-
-  double millisecondsPerStep() const { return steps > 0 ? 1e3 * loopSeconds / double(steps) : 0.0; }
-  double granuleStepsPerSecond(std::uint32_t granules) const {
-    return loopSeconds > 0.0 ? double(granules) * double(steps) / loopSeconds : 0.0;
-  }
 };
 
 /// Everything measured for one size.
