@@ -72,9 +72,7 @@ T parseNumber(const SceneParameter& parameter, std::string_view text) {
   if constexpr (std::is_floating_point_v<T>) {
     if (!std::isfinite(value)) fail(parameter, text, "is not finite");
   }
-  if (static_cast<double>(value) < parameter.min || static_cast<double>(value) > parameter.max) {
-    fail(parameter, text, "is out of range");
-  }
+  if (!inRange(static_cast<double>(value), parameter)) fail(parameter, text, "is out of range");
   return value;
 }
 
