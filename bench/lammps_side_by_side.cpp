@@ -1,7 +1,5 @@
 #include "lammps_side_by_side.h"
 
-#include <cstdlib>
-
 namespace sandphys::bench {
 
 void exportForLammps(const World& world, const std::filesystem::path& deck, std::uint32_t steps) {
@@ -12,14 +10,8 @@ void exportForLammps(const World& world, const std::filesystem::path& deck, std:
 LammpsTiming runLammps(const std::filesystem::path& deck, int ranks, std::uint32_t steps,
                        float timeStep) {
   LammpsTiming timing{.ranks = ranks, .deck = deck.string()};
-  const std::string command = lammpsCommand(deck, ranks, double(steps) * double(timeStep));
-  if (const int status = std::system(command.c_str()); status != 0) {
-    timing.failure = "`" + command + "` failed with status " + std::to_string(status) + " (see " +
-                     (deck / "lammps.out").string() + ")";
-    return timing;
-  }
   try {
-    const LammpsRun run = readLammpsRun(deck);
+    const LammpsRun run = runLammpsDeck(deck, ranks, double(steps) * double(timeStep));
     timing.loopSeconds = run.loopSeconds;
     timing.steps = run.loopSteps;
     if (run.loopSteps == 0) timing.failure = (deck / "log.lammps").string() + " has no loop time";

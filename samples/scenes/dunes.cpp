@@ -61,8 +61,9 @@ void Dunes::build(World& world) {
   m_course = kit::PourCourse(pour().course(m_config.settleSpeed, m_config.maxSettleSeconds,
                                            length(world.settings().gravity)),
                              kit::granuleMass(world.settings()), 2 * m_config.granules);
-  world.addRoughFloor(roughFloor());
-  world.addSink(pour().sink(std::max(roughFloor().halfExtentX, roughFloor().halfExtentZ)));
+  const RoughFloor floor = roughFloor();
+  world.addRoughFloor(floor);
+  world.addSink(pour().sink(std::max(floor.halfExtentX, floor.halfExtentZ)));
   for (int side : {-1, 1}) {
     const float x = static_cast<float>(side) * 0.5f * m_config.separation * d();
     // Two different streams of orientations.

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -126,13 +125,8 @@ nlohmann::json compareAt(const ExperimentContext& context, const LammpsReposeOpt
   std::fprintf(stderr, "lammps-repose: mu = %g: %s (%.3f s simulated)\n", mu, command.c_str(),
                span);
   const Clock::time_point lammpsStart = Clock::now();
-  const int status = std::system(command.c_str());
+  const LammpsRun lammpsRun = runLammpsDeck(dir, options.ranks, span);
   const double lammpsWall = std::chrono::duration<double>(Clock::now() - lammpsStart).count();
-  if (status != 0) {
-    throw std::runtime_error("lammps-repose: `" + command + "` failed (status " +
-                             std::to_string(status) + "); see " + (dir / "lammps.out").string());
-  }
-  const LammpsRun lammpsRun = readLammpsRun(dir);
   nlohmann::json theirs = measure(scene, granulesAt(lammpsRun.clumpCentres), config.granules);
   theirs.update({{"wall_seconds", lammpsWall},
                  {"kinetic_energy_j", lammpsRun.thermo.back().kineticEnergy},

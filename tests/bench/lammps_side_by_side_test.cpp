@@ -2,12 +2,11 @@
 #include <sandphys/sandphys.h>
 
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
-#include "process.h"
+#include "bench_run.h"
 #include "support/test_folder.h"
 
 namespace sandphys::testing {
@@ -24,14 +23,8 @@ class LammpsSideBySide : public ::testing::Test {
  protected:
   // One run; its JSON's only size, and its output.
   nlohmann::json run(const std::string& prefix, std::string& output) {
-    const fs::path json = m_dir / "bench.json";
-    const ProcessResult result =
-        runCommand(prefix + kBench + " --lammps-dir " + (m_dir / "decks").string() + " --json " +
-                   json.string());
-    EXPECT_EQ(result.exitCode, 0) << result.output;
-    output = result.output;
-    std::ifstream file(json);
-    return nlohmann::json::parse(file).at("sizes").at(0);
+    return benchSize(prefix + kBench + " --lammps-dir " + (m_dir / "decks").string(),
+                     m_dir / "bench.json", &output);
   }
 
   TestFolder m_folder{"sandphys_bench_lammps_"};

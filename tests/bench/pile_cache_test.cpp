@@ -1,13 +1,12 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
-#include "process.h"
+#include "bench_run.h"
 #include "support/test_folder.h"
 
 namespace sandphys::testing {
@@ -25,14 +24,8 @@ class PileCache : public ::testing::Test {
   // One run with the cache; its JSON's only size.
   nlohmann::json run(const std::string& name, const std::string& extra = "",
                      std::string* output = nullptr) {
-    const fs::path json = m_dir / (name + ".json");
-    const ProcessResult result =
-        runCommand(kBench + extra + " --pile-cache " + (m_dir / "piles").string() + " --json " +
-                   json.string());
-    EXPECT_EQ(result.exitCode, 0) << result.output;
-    if (output) *output = result.output;
-    std::ifstream file(json);
-    return nlohmann::json::parse(file).at("sizes").at(0);
+    return benchSize(kBench + extra + " --pile-cache " + (m_dir / "piles").string(),
+                     m_dir / (name + ".json"), output);
   }
 
   std::vector<fs::path> piles() const {

@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -106,17 +105,17 @@ std::string exportedPile(const std::filesystem::path& dir) {
 
 // Runs the deck in `dir` on `ranks` MPI ranks (1: lmp alone) and reads its thermo and final state.
 PileRecord runLammps(const std::filesystem::path& dir, int ranks) {
-  const std::string command = lammpsCommand(dir, ranks, kSeconds);
-  if (const int status = std::system(command.c_str()); status != 0) {
+  LammpsRun run;
+  try {
+    run = runLammpsDeck(dir, ranks, kSeconds);
+  } catch (const Error& error) {
     std::ifstream out(dir / "lammps.out");
     std::stringstream text;
     text << out.rdbuf();
-    ADD_FAILURE() << "`" << command << "` failed (status " << status
-                  << "; lammps and openmpi-bin come with scripts/install-deps.sh):\n"
+    ADD_FAILURE() << error.what() << "; lammps and openmpi-bin come with scripts/install-deps.sh:\n"
                   << text.str();
     return {};
   }
-  const LammpsRun run = readLammpsRun(dir);
   // Its loop line: every timestep of kSeconds, on `ranks` ranks.
   EXPECT_EQ(run.loopRanks, ranks);
   EXPECT_EQ(run.loopSteps, std::uint64_t(std::lround(kSeconds / kTimeStep)));

@@ -43,4 +43,8 @@ std::string lammpsCommand(const std::filesystem::path& directory, int ranks, dou
 /// missing or holds no thermo line or no particle.
 LammpsRun readLammpsRun(const std::filesystem::path& directory);
 
+/// Runs lammpsCommand(directory, ranks, seconds) and returns readLammpsRun(directory). Throws
+/// Error naming the command, its exit status and lammps.out when the command fails.
+LammpsRun runLammpsDeck(const std::filesystem::path& directory, int ranks, double seconds);
+
 }  // namespace sandphys

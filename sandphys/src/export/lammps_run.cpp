@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -95,6 +96,15 @@ LammpsRun readLammpsRun(const std::filesystem::path& directory) {
     run.clumpCentres.push_back(clump.first / float(clump.second));
   }
   return run;
+}
+
+LammpsRun runLammpsDeck(const std::filesystem::path& directory, int ranks, double seconds) {
+  const std::string command = lammpsCommand(directory, ranks, seconds);
+  if (const int status = std::system(command.c_str()); status != 0) {
+    throw Error("`" + command + "` failed with status " + std::to_string(status) + " (see " +
+                (directory / "lammps.out").string() + ")");
+  }
+  return readLammpsRun(directory);
 }
 
 }  // namespace sandphys
