@@ -21,6 +21,18 @@ TEST(RoughFloorParticles, CountsTheLatticePointsInTheDiscOrTheRectangle) {
             3u * 5u);
 }
 
+TEST(RoughFloorParticles, APointOnTheEdgeCountsThoughTheFloatExtentFallsShortOfIt) {
+  // 0.9f / 0.02f is 44.9999998 in double: 45 d asked for, 45 columns each side still built.
+  const float d = 0.02f;
+  EXPECT_EQ(roughFloorParticles(RoughFloor{.halfExtentX = 45 * d, .halfExtentZ = 0.5f * d}, d),
+            91u * 1u);
+  // So does a disc whose float radius falls short of 45 spacings: i² + j² <= 45².
+  EXPECT_EQ(roughFloorParticles(RoughFloor{.radius = 45 * d}, d), 6361u);
+  // Well short of the next point, nothing is added.
+  EXPECT_EQ(roughFloorParticles(RoughFloor{.halfExtentX = 44.99f * d, .halfExtentZ = 0.5f * d}, d),
+            89u);
+}
+
 TEST(RoughFloorParticles, AFloorBeyondAnyWorldIsCountedWithoutBuildingIt) {
   // 10^5 points a side: 10^10 particles, more than 2^32, counted row by row.
   const std::uint64_t rows = 2 * 50000 + 1;

@@ -44,13 +44,13 @@ BodyId World::addRoughFloor(const RoughFloor& floor) {
   const std::uint64_t room = std::uint64_t(w.particleCapacity) - w.particleCount;
   const double radius = floor.radius;
   w.requireRoom(1, roughFloorParticles(spacing, hx, hz, radius, room));
-  const auto nx = std::int64_t(std::floor(hx / spacing));
-  const auto nz = std::int64_t(std::floor(hz / spacing));
+  const auto nx = std::int64_t(roughFloorSteps(hx, spacing));
+  const auto nz = std::int64_t(roughFloorSteps(hz, spacing));
   std::vector<Vec3> centres;
   for (std::int64_t z = -nz; z <= nz; ++z) {
     for (std::int64_t x = -nx; x <= nx; ++x) {
       double px = double(x) * spacing, pz = double(z) * spacing;
-      if (radius > 0.0 && !inRoughFloor(px, pz, radius)) continue;
+      if (radius > 0.0 && !inRoughFloor(px, pz, radius, spacing)) continue;
       centres.push_back({float(px), 0.0f, float(pz)});
     }
   }

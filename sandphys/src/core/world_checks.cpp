@@ -108,11 +108,13 @@ void requireRestorable(const WorldSnapshot& snapshot) {
 std::uint64_t roughFloorParticles(double spacing, double hx, double hz, double radius,
                                   std::uint64_t limit) {
   // Every row holds its point at x = 0, so rows alone may already pass the limit.
-  const double rows = 2.0 * std::floor(hz / spacing) + 1.0;
-  const double columns = 2.0 * std::floor(hx / spacing) + 1.0;
-  if (!(rows <= double(limit)) || !(columns <= double(limit))) return limit + 1;
-  const auto nz = std::int64_t(std::floor(hz / spacing));
-  const auto nx = std::int64_t(std::floor(hx / spacing));
+  const double stepsZ = roughFloorSteps(hz, spacing);
+  const double stepsX = roughFloorSteps(hx, spacing);
+  if (!(2.0 * stepsZ + 1.0 <= double(limit)) || !(2.0 * stepsX + 1.0 <= double(limit))) {
+    return limit + 1;
+  }
+  const auto nz = std::int64_t(stepsZ);
+  const auto nx = std::int64_t(stepsX);
   std::uint64_t count = 0;
   for (std::int64_t z = -nz; z <= nz; ++z) {
     std::int64_t reach = nx;
@@ -122,8 +124,8 @@ std::uint64_t roughFloorParticles(double spacing, double hx, double hz, double r
       reach = std::min(
           nx,
           std::int64_t(std::floor(std::sqrt(std::max(0.0, radius * radius - pz * pz)) / spacing)));
-      while (reach < nx && inRoughFloor(double(reach + 1) * spacing, pz, radius)) ++reach;
-      while (reach >= 0 && !inRoughFloor(double(reach) * spacing, pz, radius)) --reach;
+      while (reach < nx && inRoughFloor(double(reach + 1) * spacing, pz, radius, spacing)) ++reach;
+      while (reach >= 0 && !inRoughFloor(double(reach) * spacing, pz, radius, spacing)) --reach;
       if (reach < 0) continue;
     }
     count += std::uint64_t(2 * reach + 1);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -41,9 +42,21 @@ void requireRestorable(const WorldSnapshot& snapshot);
 std::uint64_t roughFloorParticles(double spacing, double hx, double hz, double radius,
                                   std::uint64_t limit);
 
+/// How far, in spacings, a RoughFloor's lattice point may lie past its edge and still count: a
+/// floor asked for in float metres (45 d at d = 0.02 m) reaches a little short of the points
+/// meant to be on its edge, and must still get them.
+inline constexpr double kRoughFloorEdgeTolerance = 1e-4;
+
+/// The lattice steps of a RoughFloor from its centre to its edge `halfExtent` away (a whole
+/// number; a double, so that a floor beyond any World is counted without overflow).
+inline double roughFloorSteps(double halfExtent, double spacing) {
+  return std::floor(halfExtent / spacing + kRoughFloorEdgeTolerance);
+}
+
 /// Whether the lattice point (px, pz) of a round RoughFloor of `radius` (> 0) belongs to it.
-inline bool inRoughFloor(double px, double pz, double radius) {
-  return px * px + pz * pz <= radius * radius;
+inline bool inRoughFloor(double px, double pz, double radius, double spacing) {
+  const double reach = radius + kRoughFloorEdgeTolerance * spacing;
+  return px * px + pz * pz <= reach * reach;
 }
 
 }  // namespace sandphys::detail
