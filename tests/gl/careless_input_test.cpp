@@ -65,8 +65,8 @@ TEST(CarelessInput, AHugeRoughFloorIsCountedBeforeItIsBuilt) {
   // A rectangle reaches the edge asked for, though 45 d in float metres is a hair under 45
   // spacings: 91 columns.
   const float d = w->settings().particleDiameter;
-  w->addRoughFloor(RoughFloor{.center = {0.0f, 0.5f, 0.0f}, .halfExtentX = 45 * d,
-                              .halfExtentZ = 0.5f * d});
+  w->addRoughFloor(
+      RoughFloor{.center = {0.0f, 0.5f, 0.0f}, .halfExtentX = 45 * d, .halfExtentZ = 0.5f * d});
   EXPECT_EQ(w->particleCount(), 317u + 91u);
 }
 
