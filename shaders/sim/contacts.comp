@@ -61,18 +61,25 @@ layout(local_size_x = WORKGROUP_SIZE) in;
 #define LEAVES_COLLIDERS
 #endif
 // It lists particles for another pass as it runs: with sleep those that search the grid, and under
-// HertzMindlin those with more slots in use than it loads.
-#if defined(EVERY_PARTICLE_PASS) && (defined(SLEEPING) || !defined(PAPER_LAW))
+// HertzMindlin those with more slots in use than it loads (so does contacts_colliders).
+#if !defined(PAPER_LAW) && (defined(EVERY_PARTICLE_PASS) || defined(COLLIDERS_PASS))
 #define HANDS_OVER
 #endif
-// The contact slots a compilation loads (HertzMindlin). The pass every particle (with sleep, every
-// active one) runs loads the first group only: the loads are texel fetches, which llvmpipe makes
-// for every batch of particles whether a lane has the slot in use or not, and few particles have
-// more in use. It leaves those to a pass that loads them all: without sleep contacts_colliders
-// (which finds no collider for them), with sleep contacts_search (which takes their partners
-// from their lists, as this pass would).
-#ifdef EVERY_PARTICLE_PASS
+#if defined(EVERY_PARTICLE_PASS) && defined(SLEEPING)
+#define HANDS_OVER
+#endif
+// The contact slots a compilation loads (HertzMindlin). The loads are texel fetches, which
+// llvmpipe makes for every batch of particles whether a lane has the slot in use or not, and the
+// slots a pass loads are also the ones it clears. The pass every particle (with sleep, every
+// active one) runs loads the first group only, as few particles have more in use. It leaves
+// those to a pass that loads more: without sleep contacts_colliders (which finds no collider for
+// them), which loads two groups and leaves the rarer particles with more in use still to
+// contacts_search; with sleep contacts_search. The search's pass loads them all, and takes a
+// particle's partners from its list as the other passes would.
+#if defined(EVERY_PARTICLE_PASS)
 #define LOADED_SLOTS CONTACT_SLOTS_PER_GROUP
+#elif defined(COLLIDERS_PASS)
+#define LOADED_SLOTS (2 * CONTACT_SLOTS_PER_GROUP)
 #else
 #define LOADED_SLOTS CONTACT_SLOTS
 #endif
@@ -121,13 +128,15 @@ CONTACT_SLOTS_2(coherent)
 #endif
 #ifdef HANDS_OVER
 COUNTERS(coherent)
-#ifdef SLEEPING
-SEARCH_DUE(writeonly)
-#else
-COLLIDERS_DUE(writeonly)
-#endif
 #else
 COUNTERS(readonly)
+#endif
+// The lists it adds to (HANDS_OVER) and the one it runs over.
+#if defined(HANDS_OVER) && (defined(SLEEPING) || defined(COLLIDERS_PASS))
+SEARCH_DUE(writeonly)
+#endif
+#if defined(HANDS_OVER) && defined(EVERY_PARTICLE_PASS) && !defined(SLEEPING)
+COLLIDERS_DUE(writeonly)
 #endif
 #ifdef COLLIDERS_PASS
 COLLIDERS_DUE(readonly)
@@ -631,14 +640,18 @@ void main() {
   }
 #ifndef PAPER_LAW
   previousPairs = texelFetch(contactPairsTexture, int(i));
-#endif
-#ifdef EVERY_PARTICLE_PASS
-#ifndef PAPER_LAW
-  // More slots in use than this pass loads: left to a pass that loads them all (LOADED_SLOTS).
+  // More slots in use than this compilation loads: left to a pass that loads more (LOADED_SLOTS).
   bool manySlots = min(previousPairs.w, uint(CONTACT_SLOTS)) > uint(LOADED_SLOTS);
 #else
   const bool manySlots = false;
 #endif
+#if defined(COLLIDERS_PASS) && defined(HANDS_OVER)
+  if (manySlots) {
+    searchDue[appendToPass(ACTIVE_PASS_SEARCH)] = i;  // in any order: each result is its own
+    return;
+  }
+#endif
+#ifdef EVERY_PARTICLE_PASS
   // Partners beyond the list's capacity, or a list the last build passed over (it was built while
   // the particle slept, and may miss what came near since): found in the grid, by the other pass.
   bool searches = listOverflows(listWord);

@@ -111,6 +111,7 @@ void main() {
   if (alive && selfInverseMass >= 0.0) {
     if (listOverflows(listed)) {
       searchDue[appendToPass(ACTIVE_PASS_SEARCH)] = i;
+      atomicAdd(counters[COUNTER_SEARCH_LISTED], 1u);
     } else if ((listed & LIST_NEAR_COLLIDER) != 0u) {
       collidersDue[appendToPass(ACTIVE_PASS_COLLIDERS)] = i;
       atomicAdd(counters[COUNTER_COLLIDERS_LISTED], 1u);

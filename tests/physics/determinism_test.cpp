@@ -233,10 +233,11 @@ TEST(Determinism, ParticlesLeftToTheColliderPassAreThoseOfEveryParticleWithItsCo
 }
 
 // The contacts pass every particle runs loads one group of contact slots and leaves a particle
-// with more in use to a pass that loads them all (contacts.comp, LOADED_SLOTS): without sleep the
-// collider pass, away from any collider too; with sleep the search's. A sphere with its twelve
-// neighbours of a close packing, each of which touches five, pressed together and turning: every
-// bit is that of every particle running with every slot (the grid search's pass).
+// with more in use to a pass that loads more (contacts.comp, LOADED_SLOTS): without sleep the
+// collider pass, away from any collider too, which loads two groups and leaves a particle with
+// more still to the search's; with sleep the search's. A sphere with its twelve neighbours of a
+// close packing, each of which touches five, pressed together and turning: every bit is that of
+// every particle running with every slot (the grid search's pass).
 class MoreSlotsThanLoaded : public ::testing::TestWithParam<bool> {};
 
 TEST_P(MoreSlotsThanLoaded, KeepTheirBits) {
@@ -264,14 +265,17 @@ TEST_P(MoreSlotsThanLoaded, KeepTheirBits) {
       }
     }
   }
-  std::uint32_t left = 0;
+  std::uint32_t left = 0, searched = 0;
   for (int substep = 0; substep < 60; ++substep) {
     some->substep(1);
     every->substep(1);
     left = std::max(left, sleep ? testing::particlesLeftToSearch(*some)
                                 : testing::particlesLeftToColliders(*some));
+    searched = std::max(searched, testing::particlesLeftToSearch(*some));
   }
   EXPECT_GT(left, 0u) << "no particle had more slots in use than the contacts pass loads";
+  // The centre's twelve slots are more than the collider pass loads too.
+  EXPECT_GT(searched, 0u) << "no particle reached the search's pass";
   EXPECT_EQ(some->readStateHash(), every->readStateHash());
 }
 

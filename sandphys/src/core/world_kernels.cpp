@@ -157,7 +157,8 @@ void World::Impl::prepareContacts() {
 
 void World::Impl::searchContacts() {
   // 3b. The same for the particles whose partners are not all in their lists, which the contacts
-  // pass left to this one: they search the grid (none in most substeps: an empty dispatch).
+  // passes left to this one: they search the grid (none in most substeps: an empty dispatch);
+  // and for those with more contact slots in use than the other passes load.
   dispatchIndirect(kernels.contactsSearch, "contacts_search",
                    activeDispatchOffset(kActivePassSearch));
 }
@@ -189,13 +190,14 @@ void World::Impl::runSubstep() {
   } else {
     // 3. Contact forces (eq. 9, 10) from the lists, and colliders, gathered per particle.
     dispatch(kernels.contacts, "contacts", particleCount, kWorkgroupSize);
-    searchContacts();
     if (collidersInOwnPass()) {
       // 3c. The particles whose list's build found a collider near, which the contacts pass left
-      // to this one: the collider code runs for them alone.
+      // to this one: the collider code runs for them alone. Before the search's pass, which
+      // takes the particles with more contact slots in use than this one loads.
       dispatchIndirect(kernels.contactsColliders, "contacts_colliders",
                        activeDispatchOffset(kActivePassColliders));
     }
+    searchContacts();
     // 4. Body sums (eq. 2, 3) and integration (eq. 4-6), guards, sinks; the particles of the
     // next substep.
     dispatch(kernels.integrateBodies, "integrate_bodies", bodyCount, kWorkgroupSize);

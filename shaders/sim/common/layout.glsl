@@ -89,10 +89,12 @@ struct SinkBox {
 // Six words: the extent of the cells the grid was last fitted to (grid_extent.comp,
 // common/grid_fit.glsl), zero before any.
 #define COUNTER_GRID_EXTENT 15
-// Without sleep: the particles the last list build listed for contacts_colliders (list_build.comp),
-// to which each substep's list goes back before the contacts pass adds the particles it leaves to
-// that pass in the substep (clearRunningCommands in common/list_decision.glsl).
+// Without sleep: the particles the last list build listed for contacts_colliders and for
+// contacts_search (list_build.comp), to which each substep's lists go back before the contacts
+// passes add the particles they leave to those passes in the substep (clearRunningCommands in
+// common/list_decision.glsl).
 #define COUNTER_COLLIDERS_LISTED 21
+#define COUNTER_SEARCH_LISTED 22
 // From this uint on: the indirect dispatch commands of the list build, one per pass below (4
 // uints each: groups x, y, z and padding), zero groups when no build is due.
 #define COUNTER_LIST_DISPATCH 24

@@ -38,19 +38,21 @@ uint appendToPass(uint pass) {
 // The commands of the passes whose lists appendToPass fills, set for the substep by its first
 // pass: count_pairs.comp's (integrate_bodies.comp fills its list as the substep runs; a substep
 // with no granule to advance runs none), and contacts_search's and contacts_colliders', over the
-// particles the contacts pass leaves to them. Without sleep list_build.comp lists those for the
-// substeps until the next build (`built`: one is due in this substep, and empties them), and the
-// contacts pass adds to contacts_colliders' the particles with more slots in use than it loads,
-// in each substep after the build's; under SLEEPING contacts.comp fills the search's as the
-// substep runs. Every other list starts empty.
+// particles the contacts passes leave to them. Without sleep list_build.comp lists those for the
+// substeps until the next build (`built`: one is due in this substep, and empties them), and in
+// each substep after the build's the contacts pass adds to contacts_colliders' the particles with
+// more slots in use than it loads, and contacts_colliders to the search's those with more than it
+// loads; under SLEEPING contacts.comp fills the search's as the substep runs. Every other list
+// starts empty.
 void clearRunningCommands(bool built) {
   for (uint pass = ACTIVE_PASS_PAIRS; pass <= ACTIVE_PASS_COLLIDERS; ++pass) {
     uint length = 0u;
 #ifndef SLEEPING
-    if (pass == ACTIVE_PASS_SEARCH && !built) continue;
-    if (pass == ACTIVE_PASS_COLLIDERS) {
-      if (built) counters[COUNTER_COLLIDERS_LISTED] = 0u;
-      length = counters[COUNTER_COLLIDERS_LISTED];
+    if (pass == ACTIVE_PASS_SEARCH || pass == ACTIVE_PASS_COLLIDERS) {
+      uint listed =
+          pass == ACTIVE_PASS_SEARCH ? COUNTER_SEARCH_LISTED : COUNTER_COLLIDERS_LISTED;
+      if (built) counters[listed] = 0u;
+      length = counters[listed];
     }
 #endif
     uint at = uint(COUNTER_ACTIVE_DISPATCH) + 4u * pass;
