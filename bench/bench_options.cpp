@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -189,6 +190,18 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
                  "with --lammps-ranks: folder of the decks and LAMMPS's output, one per size "
                  "(kept)")
       ->capture_default_str();
+  app.add_option("--compare-shaders", measure.compareShaders,
+                 "after each size's timed substeps, run the pile as timing started under each of "
+                 "these kernel versions (shader folders as SANDPHYS_SHADER_DIR takes them, or "
+                 "built-in: the library's own; comma-separated), one World each, in one process, "
+                 "--compare-rounds rounds of --steps / --compare-rounds substeps each in turn; "
+                 "reports each version's ms per substep and whether its state stayed bit for bit "
+                 "the first's")
+      ->delimiter(',');
+  app.add_option("--compare-rounds", measure.compareRounds,
+                 "with --compare-shaders: rounds of each version")
+      ->check(CLI::Range(1u, 10000u))
+      ->capture_default_str();
   app.add_flag("--sleep", measure.sleep,
                "sleeping sand (WorldSettings::sleep): time the pile once it has fallen asleep");
   app.add_option("--rock", measure.rockSpeed,
@@ -347,6 +360,19 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
     if (measure.kernelSteps == 0) throw UsageError("--kernel-steps 0: must be >= 1");
     if (!measure.lammpsRanks.empty() && measure.sandboxSeconds > 0.0) {
       throw UsageError("--lammps-ranks with --sandbox: LAMMPS runs timed substeps, not the script");
+    }
+    for (const std::string& folder : measure.compareShaders) {
+      std::error_code error;
+      if (folder != kBuiltInShaders && !std::filesystem::is_directory(folder, error)) {
+        throw UsageError("--compare-shaders " + folder + ": not a folder (a shader folder as " +
+                         "SANDPHYS_SHADER_DIR takes it, or " + kBuiltInShaders + ")");
+      }
+    }
+    if (!measure.compareShaders.empty() &&
+        (measure.rockSpeed > 0.0f || measure.sandboxSeconds > 0.0)) {
+      throw UsageError(
+          "--compare-shaders with --rock or --sandbox: the versions run the settled "
+          "pile as it was built, without the ball or the script's bodies");
     }
     measure.kernelTimes = !noKernelTimes;
     measure.progress = !quiet;

@@ -1,25 +1,18 @@
 #include "measure.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <optional>
 
+#include "clocks.h"
 #include "pile_cache.h"
 
 namespace sandphys::bench {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // Seconds between progress lines.
 constexpr double kProgressInterval = 15.0;
@@ -52,10 +45,6 @@ void accumulateKernels(std::vector<KernelStep>& totals, const std::vector<Kernel
     it->millisecondsPerStep += time.milliseconds;
     it->dispatchesPerStep += time.dispatches;
   }
-}
-
-double processCpuSeconds() {
-  return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
 }
 
 // Per-kernel GPU time per substep over options.kernelSteps further substeps, with the timer
@@ -299,6 +288,9 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   result.settled = readPileState(world, pile, settledStats);
   result.settled.maxOverlap = std::max(result.settled.maxOverlap, peakBefore);
   world.resetPeakOverlap();  // the end state's peak is the measured span's
+  // The pile as timing starts, for the Worlds of the kernel versions compared.
+  std::optional<WorldSnapshot> timingStart;
+  if (!options.compareShaders.empty()) timingStart = world.readSnapshot();
   if (options.rockSpeed > 0.0f) {
     const float side = result.layout.boxSide * d;
     const Vec3 at{-0.5f * side + (kRockRadius + 2.0f) * d,
@@ -363,6 +355,19 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   if (options.progress) {
     std::fprintf(stderr, "%s measured %u substeps in %.1f s: Cundall number %.3g\n", tag().c_str(),
                  result.steps, result.wallSeconds, result.cundallNumber());
+  }
+  if (timingStart) {
+    const ShaderComparePlan comparePlan{
+        .folders = options.compareShaders,
+        .rounds = options.compareRounds,
+        .stepsPerRound = std::max(plan.steps / options.compareRounds, 1u),
+        .chunk = options.chunk};
+    if (options.progress) {
+      std::fprintf(stderr, "%s comparing %zu kernel versions: %u rounds of %u substeps each\n",
+                   tag().c_str(), comparePlan.folders.size(), comparePlan.rounds,
+                   comparePlan.stepsPerRound);
+    }
+    result.shaderRuns = compareShaders(gpu, settings, pile, *timingStart, comparePlan);
   }
   // After the timed span, so that drawing never shares the machine with the substeps measured.
   result.renders = measureRender(world, pile.bounds(), options.render);

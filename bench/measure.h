@@ -13,6 +13,7 @@
 #include "lammps_side_by_side.h"
 #include "render_measure.h"
 #include "sandbox_timeline.h"
+#include "shader_compare.h"
 
 namespace sandphys::bench {
 
@@ -72,6 +73,11 @@ struct MeasureOptions {
   /// timed substeps after sandphys's (SizeResult::lammps).
   std::vector<int> lammpsRanks;
   std::string lammpsDir = "bench-lammps";
+  /// Kernel versions (shader folders, or kBuiltInShaders) run from the pile as timing starts, in
+  /// one process, `compareRounds` rounds of each in turn after the timed substeps
+  /// (SizeResult::shaderRuns; empty: none).
+  std::vector<std::string> compareShaders;
+  std::uint32_t compareRounds = 10;
 };
 inline constexpr float kRockRadius = 3.0f;  // d
 
@@ -148,6 +154,7 @@ struct SizeResult {
   std::vector<KernelStep> kernels;         ///< empty without kernel times
   std::vector<RenderTiming> renders;       ///< one per quality preset; empty without --render
   std::vector<LammpsTiming> lammps;        ///< one per MeasureOptions::lammpsRanks entry
+  std::vector<ShaderRun> shaderRuns;       ///< one per MeasureOptions::compareShaders folder
   double loadBefore = -1.0;  ///< 1-minute load average before the size ran (-1: unknown)
   double loadAfter = -1.0;
 

@@ -200,6 +200,20 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
          {"failure", run.failure}});
   }
   if (!size.lammps.empty()) result["lammps"] = lammps;
+  nlohmann::json versions = nlohmann::json::array();
+  for (const ShaderRun& run : size.shaderRuns) {
+    char hash[17];
+    std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(run.stateHash));
+    versions.push_back({{"folder", run.folder},
+                        {"round_ms_per_step", run.roundMilliseconds},
+                        {"median_ms_per_step", run.medianMilliseconds()},
+                        {"fastest_ms_per_step", run.fastestMilliseconds()},
+                        {"cpu_ms_per_step", run.cpuMillisecondsPerStep()},
+                        {"steps", run.steps},
+                        {"state_hash", hash},
+                        {"same_state_as_first", run.stateHash == size.shaderRuns[0].stateHash}});
+  }
+  if (!size.shaderRuns.empty()) result["shader_comparison"] = versions;
   return result;
 }
 
@@ -372,6 +386,29 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
                  "(LAMMPS ms/step: its \"Loop time\" over its steps; sandphys/LAMMPS: how many "
                  "times faster sandphys ran, below 1 slower; both on this machine, one after the "
                  "other)\n");
+  }
+
+  if (!measure.compareShaders.empty()) {
+    std::fprintf(out,
+                 "\nKernel versions in one process (--compare-shaders: the pile as timing started, "
+                 "one World each, %u rounds in turn):\n",
+                 measure.compareRounds);
+    std::fprintf(out, "%9s %14s %14s %10s %9s %6s  %s\n", "granules", "median ms/step",
+                 "fastest ms/st", "CPU ms/st", "vs first", "state", "kernels");
+    for (const SizeResult& s : report.sizes) {
+      for (const ShaderRun& run : s.shaderRuns) {
+        const ShaderRun& first = s.shaderRuns.front();
+        std::fprintf(out, "%9u %14.3f %14.3f %10.3f %9.3f %6s  %s\n", s.granules,
+                     run.medianMilliseconds(), run.fastestMilliseconds(),
+                     run.cpuMillisecondsPerStep(),
+                     run.medianMilliseconds() / first.medianMilliseconds(),
+                     run.stateHash == first.stateHash ? "same" : "DIFFER", run.folder.c_str());
+      }
+    }
+    std::fprintf(out,
+                 "(ms/step: wall time per substep of a round, which ends with a sync; vs first: "
+                 "the median against the first version's, below 1 faster; state: World's state "
+                 "hash after the last round, bit for bit the first version's or not)\n");
   }
 
   std::fprintf(out, "\nHow settled (at the start of timing -> at its end):\n");
