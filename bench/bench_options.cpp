@@ -186,6 +186,13 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
                  "needs lmp and mpirun (lammps, openmpi-bin)")
       ->delimiter(',')
       ->check(CLI::Range(1, 1024));
+  app.add_option("--lammps-rounds", measure.lammpsRounds,
+                 "with --lammps-ranks: time the substeps in this many rounds of equal length, "
+                 "each followed by the LAMMPS runs of as many steps, so that the two alternate "
+                 "on the machine; the table adds the median of the rounds' ratios (--steps must "
+                 "be a multiple)")
+      ->check(CLI::Range(1u, 1000u))
+      ->capture_default_str();
   app.add_option("--lammps-dir", measure.lammpsDir,
                  "with --lammps-ranks: folder of the decks and LAMMPS's output, one per size "
                  "(kept)")
@@ -320,6 +327,11 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
     }
     for (std::size_t i = 0; i < granules.size(); ++i) {
       options.sizes.push_back({granules[i], settle[i], timed[i]});
+      if (!measure.lammpsRanks.empty() && timed[i] % measure.lammpsRounds != 0) {
+        throw UsageError("--steps " + std::to_string(timed[i]) + " with --lammps-rounds " +
+                         std::to_string(measure.lammpsRounds) +
+                         ": the rounds must be of equal length (a multiple of the rounds)");
+      }
     }
     if (!(measure.budgetSeconds >= 0.0)) {
       throw UsageError("--budget-seconds " + formatValue(measure.budgetSeconds) + ": must be >= 0");

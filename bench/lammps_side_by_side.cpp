@@ -7,18 +7,22 @@ void exportForLammps(const World& world, const std::filesystem::path& deck, std:
   exportLammps(world, deck, {.runSeconds = seconds, .outputSeconds = seconds});
 }
 
-LammpsTiming runLammps(const std::filesystem::path& deck, int ranks, std::uint32_t steps,
-                       float timeStep) {
-  LammpsTiming timing{.ranks = ranks, .deck = deck.string()};
+void runLammpsRound(const std::filesystem::path& deck, std::uint32_t steps, float timeStep,
+                    LammpsTiming& timing) {
+  if (!timing.failure.empty()) return;
+  timing.deck = deck.string();
   try {
-    const LammpsRun run = runLammpsDeck(deck, ranks, double(steps) * double(timeStep));
-    timing.loopSeconds = run.loopSeconds;
-    timing.steps = run.loopSteps;
-    if (run.loopSteps == 0) timing.failure = (deck / "log.lammps").string() + " has no loop time";
+    const LammpsRun run = runLammpsDeck(deck, timing.ranks, double(steps) * double(timeStep));
+    if (run.loopSteps == 0) {
+      timing.failure = (deck / "log.lammps").string() + " has no loop time";
+      return;
+    }
+    timing.loopSeconds += run.loopSeconds;
+    timing.steps += run.loopSteps;
+    timing.roundLoopSeconds.push_back(run.loopSeconds);
   } catch (const Error& error) {
     timing.failure = error.what();
   }
-  return timing;
 }
 
 }  // namespace sandphys::bench

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <sandphys/sandphys.h>
 
@@ -14,9 +15,11 @@ namespace sandphys::bench {
 struct LammpsTiming {
   int ranks = 0;
   std::string deck;          ///< the deck's folder
-  double loopSeconds = 0.0;  ///< LAMMPS's "Loop time" (its timesteps only), s
-  std::uint64_t steps = 0;   ///< timesteps it ran
-  std::string failure;       ///< why there is no time (empty: it ran)
+  double loopSeconds = 0.0;  ///< LAMMPS's "Loop time" (its timesteps only), s; over all rounds
+  std::uint64_t steps = 0;   ///< timesteps it ran, over all rounds
+  /// Each round's loop time, s (MeasureOptions::lammpsRounds; one entry for one round).
+  std::vector<double> roundLoopSeconds;
+  std::string failure;  ///< why there is no time (empty: it ran)
 
   double millisecondsPerStep() const { return steps > 0 ? 1e3 * loopSeconds / double(steps) : 0.0; }
   double granuleStepsPerSecond(std::uint32_t granules) const {
@@ -27,9 +30,10 @@ struct LammpsTiming {
 /// Writes `world` into the folder `deck` as a deck that runs `steps` timesteps. Sync point.
 void exportForLammps(const World& world, const std::filesystem::path& deck, std::uint32_t steps);
 
-/// Runs the deck in `deck` for `steps` timesteps of `timeStep` s on `ranks` MPI ranks and reads
-/// its loop time; a run that fails, or leaves no loop time, is named in LammpsTiming::failure.
-LammpsTiming runLammps(const std::filesystem::path& deck, int ranks, std::uint32_t steps,
-                       float timeStep);
+/// Runs the deck in `deck` for `steps` timesteps of `timeStep` s on `ranks` MPI ranks and adds
+/// its loop time to `timing` as one more round; a run that fails, or leaves no loop time, is
+/// named in LammpsTiming::failure, and a timing that holds a failure runs no more rounds.
+void runLammpsRound(const std::filesystem::path& deck, std::uint32_t steps, float timeStep,
+                    LammpsTiming& timing);
 
 }  // namespace sandphys::bench

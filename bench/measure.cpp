@@ -160,6 +160,19 @@ double SizeResult::speedAgainst(const LammpsTiming& run) const {
                                          : 0.0;
 }
 
+double SizeResult::medianRoundSpeedAgainst(const LammpsTiming& run) const {
+  if (roundWallSeconds.size() < 2 || run.roundLoopSeconds.size() != roundWallSeconds.size()) {
+    return speedAgainst(run);
+  }
+  std::vector<double> ratios;
+  for (std::size_t r = 0; r < roundWallSeconds.size(); ++r) {
+    ratios.push_back(run.roundLoopSeconds[r] / roundWallSeconds[r]);
+  }
+  std::sort(ratios.begin(), ratios.end());
+  const std::size_t middle = ratios.size() / 2;
+  return ratios.size() % 2 == 1 ? ratios[middle] : 0.5 * (ratios[middle - 1] + ratios[middle]);
+}
+
 std::unique_ptr<BenchPile> makePile(const MeasureOptions& options, std::uint32_t granules) {
   if (options.scene == BenchScene::Box) {
     BoxPileConfig config = options.box;
@@ -309,13 +322,23 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   const std::filesystem::path lammpsDeck =
       std::filesystem::absolute(options.lammpsDir) /
       (std::string(benchSceneName(options.scene)) + "-" + std::to_string(plan.granules));
-  if (!options.lammpsRanks.empty()) exportForLammps(world, lammpsDeck, plan.steps);
+  // In rounds, LAMMPS runs a round's steps after each of sandphys's (the clocks stopped).
+  const std::uint32_t rounds = options.lammpsRanks.empty() ? 1u : options.lammpsRounds;
+  const std::uint32_t roundSteps = plan.steps / rounds;
+  if (!options.lammpsRanks.empty()) exportForLammps(world, lammpsDeck, roundSteps);
+  for (const int ranks : options.lammpsRanks) result.lammps.push_back({.ranks = ranks});
+  const auto runLammpsRounds = [&] {
+    for (LammpsTiming& run : result.lammps) {
+      runLammpsRound(lammpsDeck, roundSteps, world.timeStep(), run);
+    }
+  };
 
   // Measure: whole chunks of substeps, timed from a synchronised start to a synchronised end;
   // or the sandbox script's frames.
-  const Clock::time_point start = Clock::now();
-  const double cpuStart = processCpuSeconds();
+  Clock::time_point start = Clock::now();
+  double cpuStart = processCpuSeconds();
   Clock::time_point lastProgress = start;
+  std::uint32_t roundEnd = roundSteps;
   if (options.sandboxSeconds > 0.0) {
     const double before = world.simulatedTime();
     result.timeline = runSandbox(world, sandbox, result.layout.boxSide * d,
@@ -324,23 +347,36 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   }
   while (options.sandboxSeconds <= 0.0 && result.steps < plan.steps) {
     if (options.budgetSeconds > 0.0 && result.steps > 0 &&
-        secondsSince(start) >= options.budgetSeconds) {
+        result.wallSeconds + secondsSince(start) >= options.budgetSeconds) {
       result.budgetHit = true;
       break;
     }
-    const std::uint32_t count = std::min(options.chunk, plan.steps - result.steps);
+    const std::uint32_t count = std::min(options.chunk, roundEnd - result.steps);
     world.substep(count);
     result.steps += count;
+    if (rounds > 1 && result.steps == roundEnd && roundEnd < plan.steps) {
+      world.readStateHash();  // the sync that ends the round
+      const double roundSeconds = secondsSince(start);
+      result.roundWallSeconds.push_back(roundSeconds);
+      result.wallSeconds += roundSeconds;
+      result.cpuSeconds += processCpuSeconds() - cpuStart;
+      runLammpsRounds();
+      start = Clock::now();
+      cpuStart = processCpuSeconds();
+      roundEnd += roundSteps;
+    }
     if (options.progress && secondsSince(lastProgress) >= kProgressInterval) {
       lastProgress = Clock::now();
       std::fprintf(stderr, "%s measuring: %u/%u substeps, %.0f s wall\n", tag().c_str(),
-                   result.steps, plan.steps, secondsSince(start));
+                   result.steps, plan.steps, result.wallSeconds + secondsSince(start));
     }
   }
   const WorldStats endStats = world.readStats();  // the sync that ends the timed span
   result.asleepAtEnd = endStats.granulesAsleep;
-  result.wallSeconds = secondsSince(start);
-  result.cpuSeconds = processCpuSeconds() - cpuStart;
+  const double lastSeconds = secondsSince(start);
+  if (rounds > 1) result.roundWallSeconds.push_back(lastSeconds);
+  result.wallSeconds += lastSeconds;
+  result.cpuSeconds += processCpuSeconds() - cpuStart;
   result.loadAfter = loadAverage();
 
   result.penetrationClamps = endStats.penetrationClamps - settledStats.penetrationClamps;
@@ -375,11 +411,10 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
     std::fprintf(stderr, "%s rendered %dx%d at %zu quality presets\n", tag().c_str(),
                  options.render.width, options.render.height, result.renders.size());
   }
-  for (const int ranks : options.lammpsRanks) {
-    result.lammps.push_back(runLammps(lammpsDeck, ranks, plan.steps, world.timeStep()));
+  runLammpsRounds();  // the last round, or the only one
+  for (const LammpsTiming& run : result.lammps) {
     if (options.progress) {
-      const LammpsTiming& run = result.lammps.back();
-      std::fprintf(stderr, "%s LAMMPS on %d rank(s): %s\n", tag().c_str(), ranks,
+      std::fprintf(stderr, "%s LAMMPS on %d rank(s): %s\n", tag().c_str(), run.ranks,
                    run.failure.empty()
                        ? (std::to_string(run.millisecondsPerStep()) + " ms per step").c_str()
                        : run.failure.c_str());

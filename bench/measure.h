@@ -73,6 +73,10 @@ struct MeasureOptions {
   /// timed substeps after sandphys's (SizeResult::lammps).
   std::vector<int> lammpsRanks;
   std::string lammpsDir = "bench-lammps";
+  /// With lammpsRanks: the timed substeps in this many rounds of equal length, each followed by
+  /// LAMMPS runs of as many steps from the deck, so that the two alternate on the machine and its
+  /// drift falls on both (SizeResult::medianRoundSpeedAgainst); 1: LAMMPS after all of them.
+  std::uint32_t lammpsRounds = 1;
   /// Kernel versions (shader folders, or kBuiltInShaders) run from the pile as timing starts, in
   /// one process, `compareRounds` rounds of each in turn after the timed substeps
   /// (SizeResult::shaderRuns; empty: none).
@@ -144,7 +148,10 @@ struct SizeResult {
 
   std::uint32_t steps = 0;   ///< substeps measured
   double wallSeconds = 0.0;  ///< wall time of those substeps (ends with a sync)
-  double cpuSeconds = 0.0;   ///< process CPU time over the same span (all threads)
+  /// With MeasureOptions::lammpsRounds above 1: the wall time of each round, s (each ends with a
+  /// sync; wallSeconds is their sum).
+  std::vector<double> roundWallSeconds;
+  double cpuSeconds = 0.0;  ///< process CPU time over the same span (all threads)
   bool budgetHit = false;
   std::uint64_t penetrationClamps = 0;     ///< during the measurement (ContactLaw::PaperViscous)
   std::uint64_t contactSlotOverflows = 0;  ///< during the measurement (HertzMindlin)
@@ -178,6 +185,9 @@ struct SizeResult {
   double listBuildsPer1000Steps() const;
   /// How many times faster per step sandphys ran than `run` of its pile (below 1: slower).
   double speedAgainst(const LammpsTiming& run) const;
+  /// The same round by round (rounds of equal length, MeasureOptions::lammpsRounds): the median
+  /// of the rounds' ratios; speedAgainst when there are no rounds to pair.
+  double medianRoundSpeedAgainst(const LammpsTiming& run) const;
 };
 
 /// The pile `options` selects (the cylinder's DensePile or the BoxPile), of `granules` granules.

@@ -155,6 +155,7 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
       {"steps_planned", size.plan.steps},
       {"budget_hit", size.budgetHit},
       {"wall_seconds", size.wallSeconds},
+      {"round_wall_seconds", size.roundWallSeconds},
       {"wall_ms_per_step", size.wallMillisecondsPerStep()},
       {"cpu_ms_per_step", size.cpuMillisecondsPerStep()},
       {"kernel_ms_per_step", kernels},
@@ -197,6 +198,9 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
          // Above 1: sandphys runs faster than this LAMMPS run.
          {"sandphys_speed_ratio",
           ran ? nlohmann::json(size.speedAgainst(run)) : nlohmann::json(nullptr)},
+         {"round_loop_seconds", run.roundLoopSeconds},
+         {"sandphys_speed_ratio_median_of_rounds",
+          ran ? nlohmann::json(size.medianRoundSpeedAgainst(run)) : nlohmann::json(nullptr)},
          {"failure", run.failure}});
   }
   if (!size.lammps.empty()) result["lammps"] = lammps;
@@ -367,9 +371,10 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
     std::fprintf(out,
                  "\nSide by side with LAMMPS (the pile as timing starts, exported by exportLammps: "
                  "fix rigid/small, pair granular Hertz-Mindlin, the same material and dt; as many "
-                 "steps, run after sandphys's):\n");
-    std::fprintf(out, "%9s %16s %7s %15s %13s %16s\n", "granules", "sandphys ms/step", "ranks",
-                 "LAMMPS ms/step", "granule-st/s", "sandphys/LAMMPS");
+                 "steps, run after sandphys's, in %u round(s)):\n",
+                 measure.lammpsRounds);
+    std::fprintf(out, "%9s %16s %7s %15s %13s %16s %16s\n", "granules", "sandphys ms/step", "ranks",
+                 "LAMMPS ms/step", "granule-st/s", "sandphys/LAMMPS", "median of rounds");
     for (const SizeResult& s : report.sizes) {
       for (const LammpsTiming& run : s.lammps) {
         if (!run.failure.empty()) {
@@ -377,15 +382,17 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
                        s.wallMillisecondsPerStep(), run.ranks, run.failure.c_str());
           continue;
         }
-        std::fprintf(out, "%9u %16.3f %7d %15.3f %13.4g %16.2f\n", s.granules,
+        std::fprintf(out, "%9u %16.3f %7d %15.3f %13.4g %16.2f %16.2f\n", s.granules,
                      s.wallMillisecondsPerStep(), run.ranks, run.millisecondsPerStep(),
-                     run.granuleStepsPerSecond(s.granules), s.speedAgainst(run));
+                     run.granuleStepsPerSecond(s.granules), s.speedAgainst(run),
+                     s.medianRoundSpeedAgainst(run));
       }
     }
     std::fprintf(out,
                  "(LAMMPS ms/step: its \"Loop time\" over its steps; sandphys/LAMMPS: how many "
-                 "times faster sandphys ran, below 1 slower; both on this machine, one after the "
-                 "other)\n");
+                 "times faster sandphys ran, below 1 slower, over all steps; median of rounds: "
+                 "the same ratio round by round (--lammps-rounds), its median; both on this "
+                 "machine, one after the other)\n");
   }
 
   if (!measure.compareShaders.empty()) {

@@ -21,9 +21,10 @@ const std::string kBench = std::string(SANDPHYS_BENCH_EXE) +
 
 class LammpsSideBySide : public ::testing::Test {
  protected:
-  // One run; its JSON's only size, and its output.
-  nlohmann::json run(const std::string& prefix, std::string& output) {
-    return benchSize(prefix + kBench + " --lammps-dir " + (m_dir / "decks").string(),
+  // One run, with `options` more; its JSON's only size, and its output.
+  nlohmann::json run(const std::string& prefix, std::string& output,
+                     const std::string& options = "") {
+    return benchSize(prefix + kBench + options + " --lammps-dir " + (m_dir / "decks").string(),
                      m_dir / "bench.json", &output);
   }
 
@@ -61,6 +62,38 @@ TEST_F(LammpsSideBySide, ALammpsThatCannotRunIsNamedAndTheBenchStillReports) {
   EXPECT_TRUE(size["lammps"][0]["ms_per_step"].is_null());
   EXPECT_NE(output.find("did not run"), std::string::npos) << output;
   EXPECT_GT(size["granule_steps_per_second"].get<double>(), 0.0);
+}
+
+TEST_F(LammpsSideBySide, InRoundsEachRoundOfSandphysIsFollowedByOneOfLammps) {
+  std::string output;
+  const nlohmann::json size = run("", output, " --lammps-rounds 2");
+  ASSERT_EQ(size.at("lammps").size(), 1u) << output;
+  const nlohmann::json& lammps = size["lammps"][0];
+  EXPECT_EQ(lammps["failure"], "") << output;
+  // Two rounds of 50 substeps, each paired with a LAMMPS run of 50 steps.
+  const nlohmann::json& walls = size.at("round_wall_seconds");
+  const nlohmann::json& loops = lammps.at("round_loop_seconds");
+  ASSERT_EQ(walls.size(), 2u) << output;
+  ASSERT_EQ(loops.size(), 2u) << output;
+  EXPECT_EQ(size["steps"], 100);
+  EXPECT_EQ(lammps["steps"], 100);
+  EXPECT_EQ(readLammpsRun(m_dir / "decks" / "box-256").loopSteps, 50u);
+  EXPECT_NEAR(walls[0].get<double>() + walls[1].get<double>(), size["wall_seconds"].get<double>(),
+              1e-9);
+  EXPECT_NEAR(loops[0].get<double>() + loops[1].get<double>(), lammps["loop_seconds"].get<double>(),
+              1e-9);
+  // The median of two rounds' ratios is their mean.
+  const double mean = 0.5 * (loops[0].get<double>() / walls[0].get<double>() +
+                             loops[1].get<double>() / walls[1].get<double>());
+  EXPECT_NEAR(lammps["sandphys_speed_ratio_median_of_rounds"].get<double>(), mean, 1e-9 * mean);
+  EXPECT_NE(output.find("in 2 round(s)"), std::string::npos) << output;
+}
+
+TEST_F(LammpsSideBySide, RoundsOfUnequalLengthAreAUsageError) {
+  const ProcessResult result = runCommand(kBench + " --lammps-rounds 3");
+  EXPECT_EQ(result.exitCode, 2) << result.output;
+  EXPECT_NE(result.output.find("--steps 100 with --lammps-rounds 3"), std::string::npos)
+      << result.output;
 }
 
 }  // namespace
