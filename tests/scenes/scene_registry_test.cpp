@@ -57,16 +57,6 @@ TEST(CylinderPile, DefaultsAreThePapersBenchmark) {
   EXPECT_FLOAT_EQ(pile.config().particleDiameter, 0.02f);
 }
 
-TEST(CylinderPile, FloorParticleCountIsTheLatticeInTheDisc) {
-  // Lattice points with i² + j² <= 50² (Gauss's circle problem): 7845, close to π·50² = 7854.
-  EXPECT_EQ(roughFloorParticles(RoughFloor{.radius = 1.0f}, 0.02f), 7845u);
-  EXPECT_EQ(roughFloorParticles(RoughFloor{.radius = 0.05f}, 0.02f), 21u);  // 5 × 5 less 4 corners
-  EXPECT_EQ(roughFloorParticles(RoughFloor{.radius = 0.01f}, 0.02f), 1u);
-  // A rectangle: 2 floor(h / s) + 1 points along each side.
-  EXPECT_EQ(roughFloorParticles(RoughFloor{.halfExtentX = 0.05f, .halfExtentZ = 0.1f}, 0.02f),
-            5u * 11u);
-}
-
 TEST(CylinderPile, CapacityHoldsEveryBatchAndTheFloor) {
   CylinderPile pile;
   pile.config().batches = 4;
