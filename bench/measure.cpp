@@ -7,8 +7,8 @@
 #include <fstream>
 #include <optional>
 
-#include "clocks.h"
 #include "pile_cache.h"
+#include "timing.h"
 
 namespace sandphys::bench {
 
@@ -161,16 +161,16 @@ double SizeResult::speedAgainst(const LammpsTiming& run) const {
 }
 
 double SizeResult::medianRoundSpeedAgainst(const LammpsTiming& run) const {
-  if (roundWallSeconds.size() < 2 || run.roundLoopSeconds.size() != roundWallSeconds.size()) {
+  // A budget that cut the last round short leaves rounds of unequal length.
+  if (budgetHit || roundWallSeconds.size() < 2 ||
+      run.roundLoopSeconds.size() != roundWallSeconds.size()) {
     return speedAgainst(run);
   }
   std::vector<double> ratios;
   for (std::size_t r = 0; r < roundWallSeconds.size(); ++r) {
     ratios.push_back(run.roundLoopSeconds[r] / roundWallSeconds[r]);
   }
-  std::sort(ratios.begin(), ratios.end());
-  const std::size_t middle = ratios.size() / 2;
-  return ratios.size() % 2 == 1 ? ratios[middle] : 0.5 * (ratios[middle - 1] + ratios[middle]);
+  return median(ratios);
 }
 
 std::unique_ptr<BenchPile> makePile(const MeasureOptions& options, std::uint32_t granules) {

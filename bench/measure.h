@@ -186,7 +186,7 @@ struct SizeResult {
   /// How many times faster per step sandphys ran than `run` of its pile (below 1: slower).
   double speedAgainst(const LammpsTiming& run) const;
   /// The same round by round (rounds of equal length, MeasureOptions::lammpsRounds): the median
-  /// of the rounds' ratios; speedAgainst when there are no rounds to pair.
+  /// of the rounds' ratios; speedAgainst when there are no rounds to pair (or the budget cut one).
   double medianRoundSpeedAgainst(const LammpsTiming& run) const;
 };
 

@@ -5,7 +5,7 @@
 #include <memory>
 #include <optional>
 
-#include "clocks.h"
+#include "timing.h"
 
 namespace sandphys::bench {
 
@@ -65,11 +65,7 @@ void run(World& world, std::uint32_t steps, std::uint32_t chunk) {
 }  // namespace
 
 double ShaderRun::medianMilliseconds() const {
-  if (roundMilliseconds.empty()) return 0.0;
-  std::vector<double> sorted = roundMilliseconds;
-  std::sort(sorted.begin(), sorted.end());
-  const std::size_t middle = sorted.size() / 2;
-  return sorted.size() % 2 == 1 ? sorted[middle] : 0.5 * (sorted[middle - 1] + sorted[middle]);
+  return median(roundMilliseconds);
 }
 
 double ShaderRun::fastestMilliseconds() const {
