@@ -37,16 +37,6 @@ PileState readPileState(World& world, const BenchPile& pile, const WorldStats& s
   return state;
 }
 
-void accumulateKernels(std::vector<KernelStep>& totals, const std::vector<KernelTime>& times) {
-  for (const KernelTime& time : times) {
-    auto it = std::find_if(totals.begin(), totals.end(),
-                           [&](const KernelStep& k) { return k.name == time.name; });
-    if (it == totals.end()) it = totals.insert(totals.end(), KernelStep{time.name, 0.0, 0.0});
-    it->millisecondsPerStep += time.milliseconds;
-    it->dispatchesPerStep += time.dispatches;
-  }
-}
-
 // Per-kernel GPU time per substep over options.kernelSteps further substeps, with the timer
 // queries on (and off again after them).
 std::vector<KernelStep> profileKernels(World& world, const MeasureOptions& options) {
@@ -60,10 +50,7 @@ std::vector<KernelStep> profileKernels(World& world, const MeasureOptions& optio
     accumulateKernels(kernels, world.kernelTimes());
   }
   world.setProfileKernels(false);
-  for (KernelStep& kernel : kernels) {
-    kernel.millisecondsPerStep /= options.kernelSteps;
-    kernel.dispatchesPerStep /= options.kernelSteps;
-  }
+  divideBySteps(kernels, options.kernelSteps);
   return kernels;
 }
 
@@ -397,7 +384,8 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
         .folders = options.compareShaders,
         .rounds = options.compareRounds,
         .stepsPerRound = std::max(plan.steps / options.compareRounds, 1u),
-        .chunk = options.chunk};
+        .chunk = options.chunk,
+        .kernelTimes = options.kernelTimes};
     if (options.progress) {
       std::fprintf(stderr, "%s comparing %zu kernel versions: %u rounds of %u substeps each\n",
                    tag().c_str(), comparePlan.folders.size(), comparePlan.rounds,

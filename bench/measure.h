@@ -10,6 +10,7 @@
 #include "bench_pile.h"
 #include "box_pile.h"
 #include "dense_pile.h"
+#include "kernel_times.h"
 #include "lammps_side_by_side.h"
 #include "render_measure.h"
 #include "sandbox_timeline.h"
@@ -95,13 +96,6 @@ struct PileState {
   double maxOverlap = 0.0;               ///< largest overlap of the phase that ends here, d
   double pileTop = 0.0;                  ///< CylinderPile::pileTop, d
   std::uint32_t granulesOutside = 0;     ///< granule centres outside the container
-};
-
-/// Per-kernel GPU time, averaged per substep.
-struct KernelStep {
-  std::string name;
-  double millisecondsPerStep = 0.0;
-  double dispatchesPerStep = 0.0;
 };
 
 /// Everything measured for one size.

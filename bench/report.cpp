@@ -92,6 +92,13 @@ void printTimeline(std::FILE* out, const SizeResult& size) {
   }
 }
 
+// Each kernel's GPU ms per substep, by name.
+nlohmann::json kernelsJson(const std::vector<KernelStep>& kernels) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const KernelStep& kernel : kernels) out[kernel.name] = kernel.millisecondsPerStep;
+  return out;
+}
+
 nlohmann::json sizeJson(const SizeResult& size, double d) {
   nlohmann::json renders = nlohmann::json::array();
   for (const RenderTiming& timing : size.renders) renders.push_back(renderJson(timing));
@@ -215,6 +222,7 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
                         {"cpu_ms_per_step", run.cpuMillisecondsPerStep()},
                         {"steps", run.steps},
                         {"state_hash", hash},
+                        {"kernel_ms_per_substep", kernelsJson(run.kernels)},
                         {"same_state_as_first", run.stateHash == size.shaderRuns[0].stateHash}});
   }
   if (!size.shaderRuns.empty()) result["shader_comparison"] = versions;
@@ -400,12 +408,13 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
                  "\nKernel versions in one process (--compare-shaders: the pile as timing started, "
                  "one World each, %u rounds in turn):\n",
                  measure.compareRounds);
-    std::fprintf(out, "%9s %14s %14s %10s %9s %6s  %s\n", "granules", "median ms/step",
+    std::fprintf(out, "%9s %3s %14s %14s %10s %9s %6s  %s\n", "granules", "#", "median ms/step",
                  "fastest ms/st", "CPU ms/st", "vs first", "state", "kernels");
     for (const SizeResult& s : report.sizes) {
-      for (const ShaderRun& run : s.shaderRuns) {
+      for (std::size_t v = 0; v < s.shaderRuns.size(); ++v) {
+        const ShaderRun& run = s.shaderRuns[v];
         const ShaderRun& first = s.shaderRuns.front();
-        std::fprintf(out, "%9u %14.3f %14.3f %10.3f %9.3f %6s  %s\n", s.granules,
+        std::fprintf(out, "%9u %3zu %14.3f %14.3f %10.3f %9.3f %6s  %s\n", s.granules, v + 1,
                      run.medianMilliseconds(), run.fastestMilliseconds(),
                      run.cpuMillisecondsPerStep(),
                      run.medianMilliseconds() / first.medianMilliseconds(),
@@ -416,6 +425,31 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
                  "(ms/step: wall time per substep of a round, which ends with a sync; vs first: "
                  "the median against the first version's, below 1 faster; state: World's state "
                  "hash after the last round, bit for bit the first version's or not)\n");
+    if (measure.kernelTimes) {
+      std::fprintf(out,
+                   "Their kernels (GPU ms per substep over the rounds, timer queries on in every "
+                   "version; columns as # above):\n");
+      for (const SizeResult& s : report.sizes) {
+        if (s.shaderRuns.empty()) continue;
+        std::fprintf(out, "%9s %-24s", "granules", "kernel");
+        for (std::size_t v = 0; v < s.shaderRuns.size(); ++v) std::fprintf(out, " %9zu", v + 1);
+        std::fprintf(out, "\n");
+        for (const KernelStep& kernel : s.shaderRuns.front().kernels) {
+          std::fprintf(out, "%9u %-24s", s.granules, kernel.name.c_str());
+          for (const ShaderRun& run : s.shaderRuns) {
+            const auto it =
+                std::find_if(run.kernels.begin(), run.kernels.end(),
+                             [&](const KernelStep& k) { return k.name == kernel.name; });
+            if (it == run.kernels.end()) {
+              std::fprintf(out, " %9s", "-");
+            } else {
+              std::fprintf(out, " %9.3f", it->millisecondsPerStep);
+            }
+          }
+          std::fprintf(out, "\n");
+        }
+      }
+    }
   }
 
   std::fprintf(out, "\nHow settled (at the start of timing -> at its end):\n");

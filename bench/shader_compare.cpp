@@ -53,12 +53,15 @@ std::unique_ptr<World> worldOf(const std::string& folder, const GpuContext& gpu,
   }
 }
 
-// Runs `steps` substeps of `world` in calls of `chunk`.
-void run(World& world, std::uint32_t steps, std::uint32_t chunk) {
+// Runs `steps` substeps of `world` in calls of `chunk`, adding each call's kernel times to
+// `kernels` when given.
+void run(World& world, std::uint32_t steps, std::uint32_t chunk,
+         std::vector<KernelStep>* kernels = nullptr) {
   for (std::uint32_t done = 0; done < steps;) {
     const std::uint32_t count = std::min(chunk, steps - done);
     world.substep(count);
     done += count;
+    if (kernels) accumulateKernels(*kernels, world.kernelTimes());
   }
 }
 
@@ -85,6 +88,7 @@ std::vector<ShaderRun> compareShaders(const GpuContext& gpu, const WorldSettings
   std::vector<ShaderRun> runs;
   for (const std::string& folder : plan.folders) {
     worlds.push_back(worldOf(folder, gpu, settings, pile, start));
+    worlds.back()->setProfileKernels(plan.kernelTimes);
     run(*worlds.back(), plan.warmupSteps, plan.chunk);
     worlds.back()->readStateHash();  // waits for the GPU
     runs.push_back({.folder = folder});
@@ -95,13 +99,15 @@ std::vector<ShaderRun> compareShaders(const GpuContext& gpu, const WorldSettings
       const std::size_t i = round % 2 == 0 ? turn : worlds.size() - 1 - turn;
       const Clock::time_point wallStart = Clock::now();
       const double cpuStart = processCpuSeconds();
-      run(*worlds[i], plan.stepsPerRound, plan.chunk);
+      run(*worlds[i], plan.stepsPerRound, plan.chunk,
+          plan.kernelTimes ? &runs[i].kernels : nullptr);
       runs[i].stateHash = worlds[i]->readStateHash();  // the sync that ends the round
       runs[i].roundMilliseconds.push_back(1e3 * secondsSince(wallStart) / plan.stepsPerRound);
       runs[i].cpuSeconds += processCpuSeconds() - cpuStart;
       runs[i].steps += plan.stepsPerRound;
     }
   }
+  for (ShaderRun& version : runs) divideBySteps(version.kernels, version.steps);
   return runs;
 }
 

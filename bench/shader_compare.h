@@ -10,6 +10,7 @@
 #include <sandphys/sandphys.h>
 
 #include "bench_pile.h"
+#include "kernel_times.h"
 
 namespace sandphys::bench {
 
@@ -24,6 +25,8 @@ struct ShaderRun {
   double cpuSeconds = 0.0;      ///< process CPU time over its rounds (all threads), s
   std::uint32_t steps = 0;      ///< substeps over its rounds
   std::uint64_t stateHash = 0;  ///< World::readStateHash after its last round
+  /// ShaderComparePlan::kernelTimes: each kernel's GPU time per substep over its rounds.
+  std::vector<KernelStep> kernels;
 
   double medianMilliseconds() const;
   double fastestMilliseconds() const;
@@ -31,13 +34,16 @@ struct ShaderRun {
 };
 
 /// How the versions are run: `rounds` rounds of `stepsPerRound` substeps each, in calls of
-/// `chunk`, after `warmupSteps` untimed ones (llvmpipe compiles a kernel at its first dispatch).
+/// `chunk`, after `warmupSteps` untimed ones (llvmpipe compiles a kernel at its first dispatch);
+/// with `kernelTimes`, every World's timer queries on throughout (each pays for them alike), so
+/// that a change to one pass shows in its own time as well.
 struct ShaderComparePlan {
   std::vector<std::string> folders;
   std::uint32_t rounds = 10;
   std::uint32_t stepsPerRound = 200;
   std::uint32_t chunk = 10;
   std::uint32_t warmupSteps = 10;
+  bool kernelTimes = false;
 };
 
 /// Builds `pile` in one World of `settings` per folder, restores `start` into each and runs them
