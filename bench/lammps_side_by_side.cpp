@@ -7,10 +7,9 @@ void exportForLammps(const World& world, const std::filesystem::path& deck, std:
   exportLammps(world, deck, {.runSeconds = seconds, .outputSeconds = seconds});
 }
 
-void runLammpsRound(const std::filesystem::path& deck, std::uint32_t steps, float timeStep,
-                    LammpsTiming& timing) {
+void runLammpsRound(std::uint32_t steps, float timeStep, LammpsTiming& timing) {
   if (!timing.failure.empty()) return;
-  timing.deck = deck.string();
+  const std::filesystem::path deck = timing.deck;
   try {
     const LammpsRun run = runLammpsDeck(deck, timing.ranks, double(steps) * double(timeStep));
     if (run.loopSteps == 0) {

@@ -30,10 +30,9 @@ struct LammpsTiming {
 /// Writes `world` into the folder `deck` as a deck that runs `steps` timesteps. Sync point.
 void exportForLammps(const World& world, const std::filesystem::path& deck, std::uint32_t steps);
 
-/// Runs the deck in `deck` for `steps` timesteps of `timeStep` s on `ranks` MPI ranks and adds
-/// its loop time to `timing` as one more round; a run that fails, or leaves no loop time, is
-/// named in LammpsTiming::failure, and a timing that holds a failure runs no more rounds.
-void runLammpsRound(const std::filesystem::path& deck, std::uint32_t steps, float timeStep,
-                    LammpsTiming& timing);
+/// Runs the deck in timing.deck for `steps` timesteps of `timeStep` s on timing.ranks MPI ranks
+/// and adds its loop time to `timing` as one more round; a run that fails, or leaves no loop
+/// time, is named in LammpsTiming::failure, and a timing that holds a failure runs no more rounds.
+void runLammpsRound(std::uint32_t steps, float timeStep, LammpsTiming& timing);
 
 }  // namespace sandphys::bench

@@ -313,11 +313,11 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   const std::uint32_t rounds = options.lammpsRanks.empty() ? 1u : options.lammpsRounds;
   const std::uint32_t roundSteps = plan.steps / rounds;
   if (!options.lammpsRanks.empty()) exportForLammps(world, lammpsDeck, roundSteps);
-  for (const int ranks : options.lammpsRanks) result.lammps.push_back({.ranks = ranks});
+  for (const int ranks : options.lammpsRanks) {
+    result.lammps.push_back({.ranks = ranks, .deck = lammpsDeck.string()});
+  }
   const auto runLammpsRounds = [&] {
-    for (LammpsTiming& run : result.lammps) {
-      runLammpsRound(lammpsDeck, roundSteps, world.timeStep(), run);
-    }
+    for (LammpsTiming& run : result.lammps) runLammpsRound(roundSteps, world.timeStep(), run);
   };
 
   // Measure: whole chunks of substeps, timed from a synchronised start to a synchronised end;

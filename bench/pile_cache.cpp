@@ -17,12 +17,6 @@ constexpr const char* kSettleSetting = "settle_substeps";
 constexpr const char* kSleepWaitSetting = "sleep_wait_substeps";
 constexpr const char* kPeakOverlapSetting = "peak_overlap_d";
 
-std::string hex(std::uint64_t value) {
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
-  return text;
-}
-
 // A double as text that reads back to the same value.
 std::string exact(double value) {
   char text[32];

@@ -33,8 +33,8 @@ std::vector<std::string> kernelNames(const BenchReport& report) {
   return names;
 }
 
-const KernelStep* findKernel(const SizeResult& size, const std::string& name) {
-  for (const KernelStep& kernel : size.kernels) {
+const KernelStep* findKernel(const std::vector<KernelStep>& kernels, const std::string& name) {
+  for (const KernelStep& kernel : kernels) {
     if (kernel.name == name) return &kernel;
   }
   return nullptr;
@@ -213,15 +213,13 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
   if (!size.lammps.empty()) result["lammps"] = lammps;
   nlohmann::json versions = nlohmann::json::array();
   for (const ShaderRun& run : size.shaderRuns) {
-    char hash[17];
-    std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(run.stateHash));
     versions.push_back({{"folder", run.folder},
                         {"round_ms_per_step", run.roundMilliseconds},
                         {"median_ms_per_step", run.medianMilliseconds()},
                         {"fastest_ms_per_step", run.fastestMilliseconds()},
                         {"cpu_ms_per_step", run.cpuMillisecondsPerStep()},
                         {"steps", run.steps},
-                        {"state_hash", hash},
+                        {"state_hash", hex(run.stateHash)},
                         {"kernel_ms_per_substep", kernelsJson(run.kernels)},
                         {"same_state_as_first", run.stateHash == size.shaderRuns[0].stateHash}});
   }
@@ -297,6 +295,12 @@ nlohmann::json reportJson(const BenchOptions& options, const BenchReport& report
       {"options", common},
       {"sizes", sizes},
   };
+}
+
+std::string hex(std::uint64_t value) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
+  return text;
 }
 
 void writeJson(const std::string& path, const nlohmann::json& json) {
@@ -437,13 +441,10 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
         for (const KernelStep& kernel : s.shaderRuns.front().kernels) {
           std::fprintf(out, "%9u %-24s", s.granules, kernel.name.c_str());
           for (const ShaderRun& run : s.shaderRuns) {
-            const auto it =
-                std::find_if(run.kernels.begin(), run.kernels.end(),
-                             [&](const KernelStep& k) { return k.name == kernel.name; });
-            if (it == run.kernels.end()) {
-              std::fprintf(out, " %9s", "-");
+            if (const KernelStep* own = findKernel(run.kernels, kernel.name)) {
+              std::fprintf(out, " %9.3f", own->millisecondsPerStep);
             } else {
-              std::fprintf(out, " %9.3f", it->millisecondsPerStep);
+              std::fprintf(out, " %9s", "-");
             }
           }
           std::fprintf(out, "\n");
@@ -491,7 +492,7 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
     for (const std::string& name : names) {
       std::fprintf(out, "%-20s", name.c_str());
       for (const SizeResult& s : report.sizes) {
-        const KernelStep* kernel = findKernel(s, name);
+        const KernelStep* kernel = findKernel(s.kernels, name);
         std::fprintf(out, " %10.3f", kernel ? kernel->millisecondsPerStep : 0.0);
       }
       std::fprintf(out, "\n");

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -28,6 +29,9 @@ nlohmann::json pileJson(const MeasureOptions& measure);
 
 /// Everything, for scripts: options, machine, and per size every number of the tables.
 nlohmann::json reportJson(const BenchOptions& options, const BenchReport& report);
+
+/// A 64-bit hash as the 16 hex digits the JSON and the pile cache's file names use.
+std::string hex(std::uint64_t value);
 
 /// Writes `json` to `path` (indented); throws sandphys::Error naming the path on failure.
 void writeJson(const std::string& path, const nlohmann::json& json);

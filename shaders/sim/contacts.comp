@@ -62,10 +62,8 @@ layout(local_size_x = WORKGROUP_SIZE) in;
 #endif
 // It lists particles for another pass as it runs: with sleep those that search the grid, and under
 // HertzMindlin those with more slots in use than it loads (so does contacts_colliders).
-#if !defined(PAPER_LAW) && (defined(EVERY_PARTICLE_PASS) || defined(COLLIDERS_PASS))
-#define HANDS_OVER
-#endif
-#if defined(EVERY_PARTICLE_PASS) && defined(SLEEPING)
+#if (defined(EVERY_PARTICLE_PASS) && defined(SLEEPING)) || \
+    (!defined(PAPER_LAW) && (defined(EVERY_PARTICLE_PASS) || defined(COLLIDERS_PASS)))
 #define HANDS_OVER
 #endif
 // The contact slots a compilation loads (HertzMindlin). The loads are texel fetches, which
