@@ -141,7 +141,7 @@ std::uint64_t SceneRecorder::finish(World& world) {
   return m_writer.finish(wallSeconds);
 }
 
-std::vector<std::uint8_t> toolEvents(bool pour, bool push, const scenes::Ray& cursor) {
+std::vector<std::uint8_t> toolEvents(bool pour, bool push, const samples::Ray& cursor) {
   if (!pour && !push) return {};
   std::vector<std::uint8_t> events(kToolEventBytes);
   events[0] = std::uint8_t((pour ? 1u : 0u) | (push ? 2u : 0u));

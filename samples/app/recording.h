@@ -10,7 +10,7 @@
 
 #include <sandphys/sandphys.h>
 
-#include "scenes/sand_tools.h"
+#include "app/sand_tools.h"
 #include "scenes/scene.h"
 
 namespace sandphys::samples {
@@ -35,7 +35,7 @@ class SceneRecorder {
   /// `world`, the settings of the World it runs in (which a replay builds its World from),
   /// `frameDt`, `snapshotEvery` and `device` (GpuContext::description). Throws sandphys::Error
   /// naming the file when it cannot be written.
-  /// `sandTools`: the run has the viewer's sand tools attached (scenes::SandTools), whose input
+  /// `sandTools`: the run has the viewer's sand tools attached (samples::SandTools), whose input
   /// each frame's events hold (toolEvents) and a replay applies.
   SceneRecorder(const std::filesystem::path& file, scenes::Scene& scene, const WorldSettings& world,
                 double frameDt, std::uint64_t snapshotEvery, const std::string& device,
@@ -67,13 +67,13 @@ class SceneRecorder {
 /// The sand tools' input of one frame as a recording's events: nothing when no tool is held (the
 /// cursor does not matter then); else a byte of flags (1 pour, 2 push) and the cursor ray, origin
 /// and direction, 6 floats.
-std::vector<std::uint8_t> toolEvents(bool pour, bool push, const scenes::Ray& cursor);
+std::vector<std::uint8_t> toolEvents(bool pour, bool push, const samples::Ray& cursor);
 
 /// What toolEvents wrote.
 struct ToolInput {
   bool pour = false;
   bool push = false;
-  scenes::Ray cursor;
+  samples::Ray cursor;
 };
 /// Reads toolEvents' bytes of frame `frame` of `recording`. Throws RecordingError naming the file
 /// and the frame when they are not.

@@ -57,7 +57,7 @@ class ReplayRun {
   const Recording& m_recording;
   std::unique_ptr<scenes::Scene> m_scene;
   std::optional<World> m_world;
-  std::optional<scenes::SandTools> m_tools;
+  std::optional<samples::SandTools> m_tools;
   std::uint64_t m_frame = 0;
 };
 

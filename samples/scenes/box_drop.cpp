@@ -14,8 +14,6 @@ namespace {
 using C = BoxDropConfig;
 const auto kTable = std::to_array<kit::Param<C>>({
     {"block", &C::block, "", 1, 1024, "granules along x, y (layers), z"},
-    kit::seedParam(&C::seed),
-    kit::diameterParam(&C::particleDiameter),
 });
 
 }  // namespace
@@ -37,10 +35,6 @@ void BoxDrop::build(World& world) {
   const float spacing = m_config.spacing * d();
   world.addGranules(
       kit::blockAbove(m_config.dropHeight * d(), m_config.block, spacing, m_config.seed));
-}
-
-bool BoxDrop::contains(const Vec3& centre) const {
-  return kit::inBounds(bounds(), centre);
 }
 
 std::vector<SceneMetric> BoxDrop::metrics(std::span<const BodyState> bodies) const {

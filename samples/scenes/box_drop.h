@@ -26,7 +26,6 @@ class BoxDrop final : public kit::SceneWith<BoxDropConfig> {
   std::string_view name() const override { return "box-drop"; }
   WorldSettings worldSettings() const override;
   void build(World& world) override;
-  bool contains(const Vec3& centre) const override;
   /// Mean and highest granule centre, m.
   std::vector<SceneMetric> metrics(std::span<const BodyState> bodies) const override;
   SceneBounds bounds() const override;

@@ -51,10 +51,6 @@ const auto kTable = std::to_array<kit::Param<C>>({
     {"blade-overhang", &C::bladeOverhang, "d", 0.0, 1e3,
      "how far the blade reaches beyond the berm on each side"},
     {"floor-friction", &C::floorFriction, "", 0.0, 10.0, "friction coefficient of the floor"},
-    kit::settleSpeedParam(&C::settleSpeed),
-    kit::maxSettleSecondsParam(&C::maxSettleSeconds),
-    kit::seedParam(&C::seed),
-    kit::diameterParam(&C::particleDiameter),
 });
 
 }  // namespace

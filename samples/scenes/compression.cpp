@@ -38,13 +38,6 @@ const auto kTable = std::to_array<kit::Param<C>>({
     // the loading curve is mostly its collapse.
     {"preload", &C::preloadFraction, "", 0.0, 1.0,
      "stress that flattens the top first, as a fraction of max-stress"},
-    kit::frictionParam(&C::friction),
-    kit::youngsModulusParam(&C::youngsModulus),
-    kit::settleSpeedParam(&C::settleSpeed),
-    kit::maxSettleSecondsParam(&C::maxSettleSeconds),
-    kit::stepsPerContactParam(&C::stepsPerContact),
-    kit::seedParam(&C::seed),
-    kit::diameterParam(&C::particleDiameter),
 });
 
 }  // namespace

@@ -21,15 +21,12 @@ using C = CylinderPileConfig;
 const auto kTable = std::to_array<kit::Param<C>>({
     {"batches", &C::batches, "", 1, 4096, "batches dropped in total"},
     {"batch", &C::batch, "", 1, 1024, "granules per batch along x, y (layers), z"},
-    kit::seedParam(&C::seed),
-    kit::diameterParam(&C::particleDiameter),
     {"spacing", &C::spacing, "d", 2.0, 10.0, "lattice spacing of a batch"},
     {"radius", &C::cylinderRadius, "d", 2.0, 1e4, "radius of the cylinder wall and the floor"},
     {"height", &C::cylinderHeight, "d", 1.0, 1e5, "height of the cylinder wall"},
     // Any lower and the first batch (reach 1.11 d) starts inside the floor (particles of 0.5 d).
     {"first-drop", &C::firstDropHeight, "d", 2.0, 1e5, "height of the first batch above the floor"},
     {"drop-gap", &C::dropGap, "d", 1.5, 1e5, "gap between the pile top and the next batch"},
-    kit::settleSpeedParam(&C::settleSpeed),
     {"max-batch-seconds", &C::maxSecondsPerBatch, "s", 0.0, 1e6, "longest wait for a batch"},
 });
 

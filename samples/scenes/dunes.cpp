@@ -18,18 +18,11 @@ using C = DunesConfig;
 const auto kTable = std::to_array<kit::Param<C>>({
     {"granules", &C::granules, "", 1, 1e8, "granules poured by each column"},
     {"separation", &C::separation, "d", 0.0, 1e4, "distance between the two columns"},
-    kit::frictionParam(&C::friction),
     {"outlet", &C::outlet, "d", 0.5, 1e4, "width of each emitter's square"},
     {"rate", &C::rate, "granules/s", 1.0, 1e5, "pour rate of each column"},
     {"pour-height", &C::pourHeight, "d", 1.0, 1e4, "height of the emitters above the floor"},
     {"floor-half-length", &C::floorHalfLength, "d", 2.0, 1e4, "half length of the floor along x"},
     {"floor-half-width", &C::floorHalfWidth, "d", 2.0, 1e4, "half width of the floor along z"},
-    kit::youngsModulusParam(&C::youngsModulus),
-    kit::settleSpeedParam(&C::settleSpeed),
-    kit::maxSettleSecondsParam(&C::maxSettleSeconds),
-    kit::stepsPerContactParam(&C::stepsPerContact),
-    kit::seedParam(&C::seed),
-    kit::diameterParam(&C::particleDiameter),
 });
 
 }  // namespace

@@ -41,11 +41,7 @@ const auto kTable = std::to_array<kit::Param<C>>({
     {"friction", &C::friction, "", 0.0, 10.0, "friction coefficient of grain-grain contacts"},
     {"wall-friction", &C::wallFriction, "", 0.0, 10.0,
      "friction coefficient of the funnel wall and the gate"},
-    kit::youngsModulusParam(&C::youngsModulus),
-    kit::restitutionParam(&C::restitution),
     {"release-time", &C::releaseTime, "s", 0.0, 1e9, "earliest time the outlet opens"},
-    kit::settleSpeedParam(&C::settleSpeed),
-    kit::maxSettleSecondsParam(&C::maxSettleSeconds),
     {"steady-from", &C::steadyFrom, "", 0.0, 0.99,
      "the steady flow starts when this fraction has left"},
     {"steady-to", &C::steadyTo, "", 0.01, 1.0, "the steady flow ends when this fraction has left"},
@@ -53,8 +49,6 @@ const auto kTable = std::to_array<kit::Param<C>>({
      "finished when no granule has left for this long"},
     {"steps-per-contact", &C::stepsPerContact, "", kMinStepsPerContact, 1e3,
      "substeps per Hertz contact time at the speed guard"},
-    kit::seedParam(&C::seed),
-    kit::diameterParam(&C::particleDiameter),
 });
 
 // The first and the last lattice slot i with |(i + offset) spacing| <= half, in d.

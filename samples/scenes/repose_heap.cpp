@@ -26,18 +26,10 @@ constexpr float kFootMargin = 4.0f;
 using C = ReposeHeapConfig;
 const auto kTable = std::to_array<kit::Param<C>>({
     {"granules", &C::granules, "", 1, 1e8, "granules poured"},
-    kit::frictionParam(&C::friction),
     {"outlet", &C::outlet, "d", 0.5, 1e4, "width of the emitter's square"},
     {"rate", &C::rate, "granules/s", 1.0, 1e5, "pour rate"},
     {"pour-height", &C::pourHeight, "d", 1.0, 1e4, "height of the emitter above the floor"},
     {"floor-radius", &C::floorRadius, "d", 2.0, 1e4, "radius of the rough floor"},
-    kit::youngsModulusParam(&C::youngsModulus),
-    kit::restitutionParam(&C::restitution),
-    kit::settleSpeedParam(&C::settleSpeed),
-    kit::maxSettleSecondsParam(&C::maxSettleSeconds),
-    kit::stepsPerContactParam(&C::stepsPerContact),
-    kit::seedParam(&C::seed),
-    kit::diameterParam(&C::particleDiameter),
 });
 
 }  // namespace

@@ -45,18 +45,11 @@ const auto kTable = std::to_array<kit::Param<C>>({
     {"sump-length", &C::sumpLength, "d", 1.0, 1e4, "length of the sump's floor"},
     {"wall-margin", &C::wallMargin, "d", 0.0, 1e4,
      "the flank is read this far from the side walls"},
-    kit::youngsModulusParam(&C::youngsModulus),
-    kit::restitutionParam(&C::restitution),
     {"release-time", &C::releaseTime, "s", 0.0, 1e9, "earliest time the scupper opens"},
-    kit::settleSpeedParam(&C::settleSpeed),
-    kit::maxSettleSecondsParam(&C::maxSettleSeconds),
     {"min-drain-seconds", &C::minDrainSeconds, "s", 0.0, 1e6,
      "the run ends when calm at least this long after the release"},
     {"max-drain-seconds", &C::maxDrainSeconds, "s", 0.0, 1e6,
      "the run ends this long after the release"},
-    kit::stepsPerContactParam(&C::stepsPerContact),
-    kit::seedParam(&C::seed),
-    kit::diameterParam(&C::particleDiameter),
 });
 
 // Lattice slots across a reservoir `width` d wide, clear of the walls on either side; alternate

@@ -55,12 +55,8 @@ const auto kTable = std::to_array<kit::Param<C>>({
     {"drop-height", &C::dropHeight, "d", 0.0, 1e4, "gap between the bed's top and the rock"},
     {"tilt", &C::tilt, "deg", 0.0, 90.0, "tilt of the rock when let go"},
     {"settle-time", &C::settleTime, "s", 0.0, 1e9, "earliest time the rock is dropped"},
-    kit::settleSpeedParam(&C::settleSpeed),
-    kit::maxSettleSecondsParam(&C::maxSettleSeconds),
     {"rest-speed", &C::restSpeed, "m/s", 0.0, 10.0, "at rest when no point of the rock is faster"},
     {"max-rest-seconds", &C::maxRestSeconds, "s", 0.0, 1e6, "longest wait for the rock to stop"},
-    kit::seedParam(&C::seed),
-    kit::diameterParam(&C::particleDiameter),
 });
 
 float radians(float degrees) {
@@ -283,11 +279,6 @@ std::string RockDrop::status() const {
   const double restedAfter = std::round((m_run.restedAt - droppedAt()) * 100.0) / 100.0;
   if (atRest()) return "rock at rest " + numberText(restedAfter) + " s after the drop";
   return "rock still moving " + numberText(m_config.maxRestSeconds) + " s after the drop";
-}
-
-bool RockDrop::contains(const Vec3& centre) const {
-  return centre.y >= 0.0f && centre.y <= boxHeight() && std::abs(centre.x) <= halfWidth(0) &&
-         std::abs(centre.z) <= halfWidth(2);
 }
 
 std::vector<SceneBody> RockDrop::bodies(const World& world) const {

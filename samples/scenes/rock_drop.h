@@ -50,7 +50,6 @@ class RockDrop final : public kit::SceneWith<RockDropConfig> {
   void update(World& world, const StepReport& report, double simTime) override;
   bool finished() const override { return m_run.finished; }
   std::string status() const override;
-  bool contains(const Vec3& centre) const override;  // inside the box
   /// The bed's top, the rock's lowest point and depth below it, its speed and tilt, the time it
   /// took to stop.
   std::vector<SceneMetric> metrics(std::span<const BodyState> bodies) const override;

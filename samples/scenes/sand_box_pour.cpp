@@ -33,11 +33,6 @@ const auto kTable = std::to_array<kit::Param<C>>({
     {"emitter-size", &C::outlet, "d", 0.5, 1e4, "width of the square emitter"},
     {"block", &C::block, "", 0, 1024,
      "bed of granules on the floor before the pour, x, y (layers), z; 0,0,0 for none"},
-    kit::settleSpeedParam(&C::settleSpeed),
-    kit::maxSettleSecondsParam(&C::maxSettleSeconds),
-    kit::youngsModulusParam(&C::youngsModulus),
-    kit::seedParam(&C::seed),
-    kit::diameterParam(&C::particleDiameter),
 });
 
 }  // namespace
@@ -106,12 +101,6 @@ void SandBoxPour::update(World& world, const StepReport& report, double simTime)
   if (m_course.update(report, simTime, world.granulesSpawned()) && m_course.acting()) {
     world.addEmitter(pour().emitter(0.0f, m_config.seed));
   }
-}
-
-bool SandBoxPour::contains(const Vec3& centre) const {
-  const float half = halfWidth();
-  return centre.y >= 0.0f && centre.y <= m_config.boxHeight * d() && std::abs(centre.x) <= half &&
-         std::abs(centre.z) <= half;
 }
 
 std::array<float, 2> SandBoxPour::pileExtent(std::span<const BodyState> bodies) const {

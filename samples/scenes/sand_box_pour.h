@@ -37,8 +37,6 @@ class SandBoxPour final : public kit::PourScene<SandBoxPourConfig> {
   WorldSettings worldSettings() const override;
   void build(World& world) override;
   void update(World& world, const StepReport& report, double simTime) override;
-  /// Inside the box.
-  bool contains(const Vec3& centre) const override;
   std::vector<SceneMetric> metrics(std::span<const BodyState> bodies) const override;
   SceneBounds bounds() const override;
 

@@ -43,10 +43,6 @@ const auto kTable = std::to_array<kit::Param<C>>({
     {"runout-length", &C::runoutLength, "d", 1.0, 1e4, "length of the flat floor beyond it"},
     {"moved-distance", &C::movedDistance, "d", 0.0, 1e4,
      "a granule has moved when this far from its place at release"},
-    kit::settleSpeedParam(&C::settleSpeed),
-    kit::maxSettleSecondsParam(&C::maxSettleSeconds),
-    kit::seedParam(&C::seed),
-    kit::diameterParam(&C::particleDiameter),
 });
 
 }  // namespace

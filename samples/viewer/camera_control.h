@@ -3,13 +3,13 @@
 #include <Eigen/Core>
 #include <optional>
 
+#include "app/sand_tools.h"
 #include "render/camera.h"
-#include "scenes/sand_tools.h"
 
 namespace sandphys::viewer {
 
-using scenes::hitHorizontalPlane;
-using scenes::Ray;
+using samples::hitHorizontalPlane;
+using samples::Ray;
 
 /// How the mouse moves the renderer's orbit camera. Drags are in window pixels (the unit of GLFW
 /// cursor positions), not framebuffer pixels, so that high-DPI screens feel the same.

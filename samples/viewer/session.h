@@ -8,16 +8,16 @@
 #include <sandphys/sandphys.h>
 
 #include "app/recording.h"
+#include "app/sand_tools.h"
 #include "scenes/registry.h"
-#include "scenes/sand_tools.h"
 #include "scenes/scene.h"
 #include "viewer/frame_pacer.h"
 #include "viewer/frame_stats.h"
 
 namespace sandphys::viewer {
 
-using scenes::Ray;
-using scenes::SandTools;
+using samples::Ray;
+using samples::SandTools;
 
 /// Material and time-step values the panel edits. They apply at the next restart, because they
 /// set the World's contact law and time step, which are fixed at creation; kernel profiling and

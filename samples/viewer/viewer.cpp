@@ -1,6 +1,6 @@
 // The viewer's frame loop: input, simulation, drawing, panel, screenshots. The pieces live in
 // their own files (window, input, camera control, session, panel, gui, screenshot; the sand tools
-// in scenes/sand_tools.h, where a headless replay can use them too).
+// in app/sand_tools.h, where a headless replay can use them too).
 #include "viewer/viewer.h"
 
 #include <GL/glew.h>

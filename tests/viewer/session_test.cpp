@@ -20,7 +20,7 @@ TEST(Session, KernelProfilingFollowsThePanelWithoutARestart) {
   scenes::useTestSize(*scene);
   Session session(testing::gpu(), std::move(scene), 0.004);
   FrameStats stats;
-  const scenes::Ray noCursor{};
+  const samples::Ray noCursor{};
   session.stepFrame(false, false, noCursor, stats);
   const World* world = &session.world();
   const double time = world->simulatedTime();
@@ -48,7 +48,7 @@ TEST(Session, ThePushingSphereIsDrawnAsAMetalBallAroundItsParticles) {
   EXPECT_EQ(session.tools().surface(), nullptr);
   // Straight down onto the middle of the scene's floor.
   const scenes::SceneBounds bounds = session.scene().bounds();
-  scenes::Ray down;
+  samples::Ray down;
   down.origin = {0.5f * (bounds.min.x + bounds.max.x), bounds.max.y + 1.0f,
                  0.5f * (bounds.min.z + bounds.max.z)};
   down.direction = {0.0f, -1.0f, 0.0f};

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "app/cli.h"
-#include "scenes/sand_tools.h"
+#include "app/sand_tools.h"
 #include "viewer/camera_control.h"
 #include "viewer/frame_pacer.h"
 #include "viewer/frame_stats.h"
@@ -28,7 +28,7 @@ void PrintTo(const KeyScript::Event& event, std::ostream* out) {
 
 namespace {
 
-using scenes::SandTools;
+using samples::SandTools;
 
 using KeyEvent = KeyScript::Event;
 using KeyEvents = std::vector<KeyEvent>;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -95,6 +96,44 @@ Param<C> settleSpeedParam(float C::*member) {
 template <class C>
 Param<C> maxSettleSecondsParam(float C::*member) {
   return {"max-settle-seconds", member, "s", 0.0, 1e6, "longest wait for the sand to settle"};
+}
+
+/// The shared rows of the members of `C` that have these names, in this order: friction,
+/// youngsModulus, restitution, settleSpeed, maxSettleSeconds, stepsPerContact, seed and
+/// particleDiameter. A member of one of these names is always that parameter.
+template <class C>
+std::vector<Param<C>> standardRows() {
+  std::vector<Param<C>> rows;
+  if constexpr (requires { &C::friction; }) rows.push_back(frictionParam(&C::friction));
+  if constexpr (requires { &C::youngsModulus; }) {
+    rows.push_back(youngsModulusParam(&C::youngsModulus));
+  }
+  if constexpr (requires { &C::restitution; }) rows.push_back(restitutionParam(&C::restitution));
+  if constexpr (requires { &C::settleSpeed; }) rows.push_back(settleSpeedParam(&C::settleSpeed));
+  if constexpr (requires { &C::maxSettleSeconds; }) {
+    rows.push_back(maxSettleSecondsParam(&C::maxSettleSeconds));
+  }
+  if constexpr (requires { &C::stepsPerContact; }) {
+    rows.push_back(stepsPerContactParam(&C::stepsPerContact));
+  }
+  if constexpr (requires { &C::seed; }) rows.push_back(seedParam(&C::seed));
+  if constexpr (requires { &C::particleDiameter; }) {
+    rows.push_back(diameterParam(&C::particleDiameter));
+  }
+  return rows;
+}
+
+/// A scene's own rows, then the standard rows of its Config that its own do not name (a scene
+/// whose "friction" acts on the walls only says so in a row of its own).
+template <class C>
+std::vector<Param<C>> withStandardRows(std::span<const Param<C>> own) {
+  std::vector<Param<C>> rows(own.begin(), own.end());
+  for (const Param<C>& row : standardRows<C>()) {
+    if (std::ranges::none_of(own, [&](const Param<C>& mine) { return mine.name == row.name; })) {
+      rows.push_back(row);
+    }
+  }
+  return rows;
 }
 
 }  // namespace sandphys::scenes::kit

@@ -3,6 +3,7 @@
 #include <span>
 #include <vector>
 
+#include "scenes/kit/geometry.h"
 #include "scenes/kit/parameters.h"
 #include "scenes/scene.h"
 
@@ -21,11 +22,18 @@ class SceneWith : public Scene {
   Config& config() { return m_config; }
   const Config& config() const { return m_config; }
 
-  /// The table's rows; a scene built on another adds its own after them.
-  std::vector<SceneParameter> parameters() override { return bind(table(), m_config); }
+  /// Inside bounds(), unless the scene says otherwise.
+  bool contains(const Vec3& centre) const override { return inBounds(bounds(), centre); }
+
+  /// The table's rows and the standard ones (withStandardRows); a scene built on another adds its
+  /// own after them.
+  std::vector<SceneParameter> parameters() override {
+    const std::vector<Param<Config>> rows = withStandardRows(table());
+    return bind(std::span<const Param<Config>>(rows), m_config);
+  }
 
  protected:
-  /// The scene's parameter table (a static array in its .cpp).
+  /// The scene's own parameter table (a static array in its .cpp), without the standard rows.
   virtual std::span<const Param<Config>> table() const = 0;
   float d() const { return m_config.particleDiameter; }
 

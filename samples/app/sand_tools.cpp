@@ -1,4 +1,4 @@
-#include "scenes/sand_tools.h"
+#include "app/sand_tools.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,10 @@
 
 #include "scenes/eigen_conversions.h"
 
-namespace sandphys::scenes {
+namespace sandphys::samples {
+
+using scenes::toEigen;
+using scenes::toVec3;
 
 namespace {
 
@@ -76,8 +79,8 @@ void SandTools::addSphere(World& world) {
   m_sphere = world.addBody(ball, BodyDesc{.position = m_parkedAt, .motion = Motion::Kinematic});
   // The lattice is symmetric about its centre, so the mesh needs no shift; the outermost
   // particles reach half a diameter beyond their centres.
-  m_sphereSurface = SceneSurface{m_sphere, icosphereMesh(radius + 0.5f * m_diameter, 3),
-                                 ball.principalRotation, BodyMaterial::Metal};
+  m_sphereSurface = scenes::SceneSurface{m_sphere, icosphereMesh(radius + 0.5f * m_diameter, 3),
+                                         ball.principalRotation, scenes::BodyMaterial::Metal};
 }
 
 Vec3 SandTools::clampToScene(Vec3 point, float margin) const {
@@ -163,4 +166,4 @@ void SandTools::updatePush(World& world, const std::optional<Vec3>& floorPoint, 
   m_spherePosition += velocity * frameDt;
 }
 
-}  // namespace sandphys::scenes
+}  // namespace sandphys::samples

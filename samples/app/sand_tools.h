@@ -8,7 +8,7 @@
 
 #include "scenes/scene.h"
 
-namespace sandphys::scenes {
+namespace sandphys::samples {
 
 /// A half-line in world space, m.
 struct Ray {
@@ -20,7 +20,7 @@ struct Ray {
 /// it or runs parallel to it.
 std::optional<Eigen::Vector3f> hitHorizontalPlane(const Ray& ray, float y);
 
-/// The viewer's hands in the sand (here, beside the scenes, so that a headless replay can apply a
+/// The viewer's hands in the sand (here, beside the replay, so that a headless replay can apply a
 /// recording's tool events): pours granules from an Emitter above the point under the
 /// cursor, and pushes sand with a kinematic sphere of particles that follows the cursor along the
 /// floor. Both work on the horizontal plane at the bottom of the scene's bounds.
@@ -48,7 +48,9 @@ class SandTools {
   /// Counts what an emitter added this frame (from StepReport::granulesEmitted).
   void countEmitted(std::uint32_t granules) { m_poured += granules; }
   /// The pushing sphere as a metal ball, once it has joined the World; null before.
-  const SceneSurface* surface() const { return m_sphereSurface ? &*m_sphereSurface : nullptr; }
+  const scenes::SceneSurface* surface() const {
+    return m_sphereSurface ? &*m_sphereSurface : nullptr;
+  }
 
  private:
   // Each tool works at the point of the floor under the cursor, and stops without one.
@@ -57,17 +59,17 @@ class SandTools {
   Vec3 clampToScene(Vec3 point, float margin) const;
   void addSphere(World& world);
 
-  SceneBounds m_bounds{};
+  scenes::SceneBounds m_bounds{};
   float m_diameter = 0.02f;
   float m_maxSpeed = 10.0f;
   EmitterId m_emitter{};
   Vec3 m_emitterCentre{};
   std::uint32_t m_poured = 0;
   BodyId m_sphere{};
-  std::optional<SceneSurface> m_sphereSurface;
+  std::optional<scenes::SceneSurface> m_sphereSurface;
   Vec3 m_parkedAt{};
   Vec3 m_spherePosition{};
   bool m_pushing = false;
 };
 
-}  // namespace sandphys::scenes
+}  // namespace sandphys::samples
