@@ -20,7 +20,6 @@ struct BoxDropConfig {
 /// enough for tests and a first look in the viewer.
 class BoxDrop final : public kit::SceneWith<BoxDropConfig> {
  public:
-  using Config = BoxDropConfig;
   using SceneWith::SceneWith;
 
   std::string_view name() const override { return "box-drop"; }

@@ -10,7 +10,6 @@
 
 namespace sandphys::scenes {
 
-/// Lengths in particle diameters d unless stated; the parameter table in the .cpp describes each.
 struct BulldozerConfig {
   float particleDiameter = 0.02f;
   Count3 berm{6, 6, 12};
@@ -37,7 +36,6 @@ struct BulldozerConfig {
 /// sand's force on the blade belongs to one phase.
 class Bulldozer final : public kit::SceneWith<BulldozerConfig> {
  public:
-  using Config = BulldozerConfig;
   using SceneWith::SceneWith;
 
   enum class Phase { Waiting = 0, Pushing = 1, Stopped = 2 };

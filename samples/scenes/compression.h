@@ -10,7 +10,6 @@
 
 namespace sandphys::scenes {
 
-/// Lengths in particle diameters d unless stated; the parameter table in the .cpp describes each.
 struct CompressionConfig {
   float particleDiameter = 0.02f;
   float radius = 12.0f;
@@ -36,7 +35,6 @@ struct CompressionConfig {
 /// twice: at rest and at the peak.
 class Compression final : public kit::SceneWith<CompressionConfig> {
  public:
-  using Config = CompressionConfig;
   using SceneWith::SceneWith;
 
   /// Every contact at one moment, and the bodies then (for granule-level forces).

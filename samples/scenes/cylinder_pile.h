@@ -9,7 +9,6 @@
 
 namespace sandphys::scenes {
 
-/// Lengths in particle diameters d unless stated; the parameter table in the .cpp describes each.
 struct CylinderPileConfig {
   float particleDiameter = 0.02f;
   std::uint32_t batches = 1;
@@ -31,7 +30,6 @@ struct CylinderPileConfig {
 /// reach past the wall: its X·Z columns are the lattice columns nearest the axis, Y high.
 class CylinderPile final : public kit::SceneWith<CylinderPileConfig> {
  public:
-  using Config = CylinderPileConfig;
   using SceneWith::SceneWith;
 
   std::string_view name() const override { return "cylinder-pile"; }

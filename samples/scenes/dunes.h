@@ -9,7 +9,6 @@
 
 namespace sandphys::scenes {
 
-/// Lengths in particle diameters d unless stated; the parameter table in the .cpp describes each.
 struct DunesConfig {
   float particleDiameter = 0.02f;
   std::uint32_t granules = 1000;  // per column
@@ -33,7 +32,6 @@ struct DunesConfig {
 /// floor fall into a sink. Once the sand has settled, one read-back gives the profile.
 class Dunes final : public kit::PourScene<DunesConfig> {
  public:
-  using Config = DunesConfig;
   using PourScene::PourScene;
 
   /// The dune along the x axis: the highest granule centre of each strip one granule wide, from

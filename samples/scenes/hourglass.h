@@ -13,7 +13,6 @@
 
 namespace sandphys::scenes {
 
-/// Lengths in particle diameters d unless stated; the parameter table in the .cpp describes each.
 struct HourglassConfig {
   float particleDiameter = 0.02f;
   std::uint32_t granules = 8192;
@@ -44,7 +43,6 @@ struct HourglassConfig {
 /// wallFriction whatever the grains' μ, as the paper's containers do.
 class Hourglass final : public kit::SceneWith<HourglassConfig> {
  public:
-  using Config = HourglassConfig;
   using SceneWith::SceneWith;
 
   /// The line through the steady part of the drain (all 0 without one).

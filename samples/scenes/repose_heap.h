@@ -10,7 +10,6 @@
 
 namespace sandphys::scenes {
 
-/// Lengths in particle diameters d unless stated; the parameter table in the .cpp describes each.
 struct ReposeHeapConfig {
   float particleDiameter = 0.02f;
   std::uint32_t granules = 3000;
@@ -35,7 +34,6 @@ struct ReposeHeapConfig {
 /// friction is the grains' μ.
 class ReposeHeap final : public kit::PourScene<ReposeHeapConfig> {
  public:
-  using Config = ReposeHeapConfig;
   using PourScene::PourScene;
 
   std::string_view name() const override { return "repose-heap"; }

@@ -11,7 +11,6 @@
 
 namespace sandphys::scenes {
 
-/// Lengths in particle diameters d unless stated; the parameter table in the .cpp describes each.
 struct ReposeScupperConfig {
   float particleDiameter = 0.02f;
   std::uint32_t granules = 1200;
@@ -47,7 +46,6 @@ struct ReposeScupperConfig {
 /// particles have the grains' μ.
 class ReposeScupper final : public kit::SceneWith<ReposeScupperConfig> {
  public:
-  using Config = ReposeScupperConfig;
   using SceneWith::SceneWith;
 
   std::string_view name() const override { return "repose-scupper"; }

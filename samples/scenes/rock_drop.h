@@ -14,7 +14,6 @@ namespace sandphys::scenes {
 /// assets/rock.obj of the source tree, the default rock.
 std::string defaultRockMesh();
 
-/// Lengths in particle diameters d unless stated; the parameter table in the .cpp describes each.
 struct RockDropConfig {
   float particleDiameter = 0.02f;
   std::string mesh = defaultRockMesh();
@@ -39,7 +38,6 @@ struct RockDropConfig {
 /// rest (read back every 0.1 s of simulated time to see whether it has stopped).
 class RockDrop final : public kit::SceneWith<RockDropConfig> {
  public:
-  using Config = RockDropConfig;
   using SceneWith::SceneWith;
 
   std::string_view name() const override { return "rock-drop"; }

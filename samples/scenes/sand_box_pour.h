@@ -9,7 +9,6 @@
 
 namespace sandphys::scenes {
 
-/// Lengths in particle diameters d unless stated; the parameter table in the .cpp describes each.
 struct SandBoxPourConfig {
   float particleDiameter = 0.02f;
   float rate = 1000.0f;  // granules/s
@@ -30,7 +29,6 @@ struct SandBoxPourConfig {
 /// bed (a block resting on the floor) and starts once the bed has settled.
 class SandBoxPour final : public kit::PourScene<SandBoxPourConfig> {
  public:
-  using Config = SandBoxPourConfig;
   using PourScene::PourScene;
 
   std::string_view name() const override { return "sand-box-pour"; }

@@ -10,7 +10,6 @@
 
 namespace sandphys::scenes {
 
-/// Lengths in particle diameters d unless stated; the parameter table in the .cpp describes each.
 struct SlopeAvalancheConfig {
   float particleDiameter = 0.02f;
   float slopeAngle = 30.0f;  // degrees
@@ -35,7 +34,6 @@ struct SlopeAvalancheConfig {
 /// The metrics measure the motion since the release.
 class SlopeAvalanche : public kit::SceneWith<SlopeAvalancheConfig> {
  public:
-  using Config = SlopeAvalancheConfig;
   using SceneWith::SceneWith;
 
   std::string_view name() const override { return "slope-avalanche"; }

@@ -11,10 +11,12 @@ namespace sandphys::scenes::kit {
 
 /// The base of a scene with a Config: it owns the config, hands out its parameters from the
 /// scene's table (Param rows, one per field that a user may set) and gives d, the particle
-/// diameter every scene measures its lengths in (Config::particleDiameter, m).
-template <class Config>
+/// diameter every scene measures its lengths in (Config::particleDiameter, m). A Config's lengths
+/// are in d unless its comments say otherwise; the scene's table describes each field.
+template <class C>
 class SceneWith : public Scene {
  public:
+  using Config = C;
   SceneWith() = default;
   explicit SceneWith(const Config& config) : m_config(config) {}
 
