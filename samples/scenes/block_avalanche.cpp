@@ -1,12 +1,7 @@
 #include "scenes/block_avalanche.h"
 
-#include <BulletCollision/BroadphaseCollision/btDbvtBroadphase.h>
-#include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
-#include <BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h>
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
 #include <BulletCollision/CollisionShapes/btStaticPlaneShape.h>
-#include <BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h>
-#include <BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h>
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 
 #include <algorithm>
@@ -17,6 +12,7 @@
 
 #include <sandphys/bullet/bridge.h>
 #include <sandphys/bullet/conversions.h>
+#include <sandphys/bullet/owned_world.h>
 #include <sandphys/bullet/shape_mesh.h>
 
 #include "scenes/kit/parameters.h"
@@ -47,52 +43,31 @@ std::uint32_t sampledParticles(const Vec3& size, float d) {
 
 }  // namespace
 
-// Bullet's world, with everything it points to, and the bridge to the sand.
+// Bullet's world with its floor and blocks, and the bridge to the sand.
 struct BlockAvalanche::Blocks {
   struct Block {
     std::string name;
-    std::unique_ptr<btBoxShape> shape;
-    std::unique_ptr<btRigidBody> body;
+    btRigidBody* body;
     Vec3 start;
   };
 
-  btDefaultCollisionConfiguration configuration;
-  btCollisionDispatcher dispatcher{&configuration};
-  btDbvtBroadphase broadphase;
-  btSequentialImpulseConstraintSolver solver;
-  btDiscreteDynamicsWorld dynamics{&dispatcher, &broadphase, &solver, &configuration};
-  btStaticPlaneShape floorShape;
-  std::unique_ptr<btRigidBody> floor;
+  bullet::OwnedWorld bullet;
   std::vector<Block> blocks;
   std::unique_ptr<bullet::Bridge> bridge;
   BlockAvalancheConfig config;  // as at build()
 
   Blocks(float floorY, const BlockAvalancheConfig& blockConfig, const Vec3& gravity)
-      : floorShape(btVector3(0, 1, 0), floorY), config(blockConfig) {
-    dynamics.setGravity(bullet::toBullet(gravity));
-    btRigidBody::btRigidBodyConstructionInfo info(0.0f, nullptr, &floorShape);
-    info.m_friction = config.blockFriction;
-    floor = std::make_unique<btRigidBody>(info);
-    dynamics.addRigidBody(floor.get());
-  }
-  ~Blocks() {
-    for (Block& block : blocks) dynamics.removeRigidBody(block.body.get());
-    dynamics.removeRigidBody(floor.get());
+      : bullet(gravity), config(blockConfig) {
+    bullet.add(std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), floorY), 0.0f,
+               btTransform::getIdentity(), config.blockFriction);
   }
 
   void addBlock(std::string name, const btVector3& half, const btVector3& centre) {
-    Block block{std::move(name), std::make_unique<btBoxShape>(half), nullptr,
-                bullet::toSand(centre)};
     const float mass = config.density * 8.0f * float(half.x() * half.y() * half.z());
-    btVector3 inertia;
-    block.shape->calculateLocalInertia(mass, inertia);
-    // No motion state: nothing draws from Bullet's interpolated poses.
-    btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, block.shape.get(), inertia);
-    info.m_startWorldTransform.setOrigin(centre);
-    info.m_friction = config.blockFriction;
-    block.body = std::make_unique<btRigidBody>(info);
-    dynamics.addRigidBody(block.body.get());
-    blocks.push_back(std::move(block));
+    btRigidBody* body =
+        bullet.add(std::make_unique<btBoxShape>(half), mass,
+                   btTransform(btQuaternion::getIdentity(), centre), config.blockFriction);
+    blocks.push_back({std::move(name), body, bullet::toSand(centre)});
   }
 };
 
@@ -125,9 +100,9 @@ void BlockAvalanche::build(World& world) {
   const float lowX = foot + m_blocksConfig.blockDistance * d + low.x();
   m_blocks->addBlock("low-block", low, btVector3(lowX, floorY + low.y(), 0.0f));
   m_blocks->addBlock("plank", plank, btVector3(lowX, floorY + 2.0f * low.y() + plank.y(), 0.0f));
-  m_blocks->bridge = std::make_unique<bullet::Bridge>(world, m_blocks->dynamics);
+  m_blocks->bridge = std::make_unique<bullet::Bridge>(world, m_blocks->bullet.dynamics());
   m_surfaces.clear();
-  for (Blocks::Block& block : m_blocks->blocks) m_blocks->bridge->couple(block.body.get());
+  for (Blocks::Block& block : m_blocks->blocks) m_blocks->bridge->couple(block.body);
   for (const bullet::Bridge::Coupled& c : m_blocks->bridge->coupled()) {
     m_surfaces.push_back({c.sandBody, c.surface, c.principalRotation, BodyMaterial::Wood});
   }

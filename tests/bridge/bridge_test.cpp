@@ -2,15 +2,9 @@
 // momentum the sand hands to a light box.
 #include <gtest/gtest.h>
 
-#include <BulletCollision/BroadphaseCollision/btDbvtBroadphase.h>
-#include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
-#include <BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h>
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
 #include <BulletCollision/CollisionShapes/btStaticPlaneShape.h>
-#include <BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h>
-#include <BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h>
 #include <BulletDynamics/Dynamics/btRigidBody.h>
-#include <LinearMath/btDefaultMotionState.h>
 
 #include <chrono>
 #include <cmath>
@@ -20,6 +14,7 @@
 #include <vector>
 
 #include <sandphys/bullet/bridge.h>
+#include <sandphys/bullet/owned_world.h>
 
 #include "support/test_world.h"
 
@@ -28,42 +23,6 @@ namespace {
 
 using sandphys::testing::gpu;
 using sandphys::testing::smallSettings;
-
-// A Bullet world with its parts, and bodies made in it.
-class Physics {
- public:
-  Physics()
-      : m_dispatcher(&m_configuration),
-        m_world(&m_dispatcher, &m_broadphase, &m_solver, &m_configuration) {
-    m_world.setGravity(btVector3(0, -9.81f, 0));
-  }
-  ~Physics() {
-    for (auto& body : m_bodies) m_world.removeRigidBody(body.get());
-  }
-
-  btDiscreteDynamicsWorld& world() { return m_world; }
-
-  btRigidBody* add(btCollisionShape* shape, float mass, const btVector3& position,
-                   const btQuaternion& rotation = btQuaternion::getIdentity()) {
-    btVector3 inertia(0, 0, 0);
-    if (mass > 0) shape->calculateLocalInertia(mass, inertia);
-    btTransform pose(rotation, position);
-    m_states.push_back(std::make_unique<btDefaultMotionState>(pose));
-    btRigidBody::btRigidBodyConstructionInfo info(mass, m_states.back().get(), shape, inertia);
-    m_bodies.push_back(std::make_unique<btRigidBody>(info));
-    m_world.addRigidBody(m_bodies.back().get());
-    return m_bodies.back().get();
-  }
-
- private:
-  btDefaultCollisionConfiguration m_configuration;
-  btCollisionDispatcher m_dispatcher;
-  btDbvtBroadphase m_broadphase;
-  btSequentialImpulseConstraintSolver m_solver;
-  btDiscreteDynamicsWorld m_world;
-  std::vector<std::unique_ptr<btDefaultMotionState>> m_states;
-  std::vector<std::unique_ptr<btRigidBody>> m_bodies;
-};
 
 bool sameTransform(const btTransform& a, const btTransform& b) {
   for (int i = 0; i < 3; ++i) {
@@ -81,25 +40,15 @@ TEST(Bridge, WithoutSandBulletRunsExactlyAsAlone) {
   btBoxShape box(btVector3(0.1f, 0.05f, 0.08f));
   btStaticPlaneShape ground(btVector3(0, 1, 0), 0);
   const btQuaternion tilt(btVector3(1, 0, 1).normalized(), 0.4f);
-  Physics coupled, alone;
-  for (Physics* p : {&coupled, &alone}) {
-    p->add(&ground, 0.0f, btVector3(0, 0, 0));
-    btRigidBody* b = p->add(&box, 2.0f, btVector3(0, 0.3f, 0), tilt);
+  OwnedWorld coupled, alone;
+  const auto addBox = [&](OwnedWorld& world) {
+    world.add(ground, 0.0f, btTransform::getIdentity());
+    btRigidBody* b = world.add(box, 2.0f, btTransform(tilt, btVector3(0, 0.3f, 0)));
     b->setAngularVelocity(btVector3(1.0f, 3.0f, -2.0f));
-  }
-  btRigidBody* coupledBox = nullptr;
-  btRigidBody* aloneBox = nullptr;
-  for (int i = 0; i < coupled.world().getNumCollisionObjects(); ++i) {
-    if (auto* b = btRigidBody::upcast(coupled.world().getCollisionObjectArray()[i]);
-        b && b->getInvMass() > 0) {
-      coupledBox = b;
-    }
-    if (auto* b = btRigidBody::upcast(alone.world().getCollisionObjectArray()[i]);
-        b && b->getInvMass() > 0) {
-      aloneBox = b;
-    }
-  }
-  ASSERT_TRUE(coupledBox && aloneBox);
+    return b;
+  };
+  btRigidBody* coupledBox = addBox(coupled);
+  btRigidBody* aloneBox = addBox(alone);
 
   WorldSettings settings = smallSettings(64);
   settings.maxParticles = 20000;
@@ -107,7 +56,7 @@ TEST(Bridge, WithoutSandBulletRunsExactlyAsAlone) {
   settings.material.youngsModulus = 5.0e5f;
   settings.maxSpeed = 1.0f;
   World sand(gpu(), settings);
-  Bridge bridge(sand, coupled.world());
+  Bridge bridge(sand, coupled.dynamics());
   bridge.couple(coupledBox);
   const float frame = 1.0f / 60.0f;
   bool touched = false;
@@ -116,7 +65,7 @@ TEST(Bridge, WithoutSandBulletRunsExactlyAsAlone) {
     bridge.step(frame);
     // The same fixed steps as the bridge took this frame (it chooses them from the speeds).
     for (int i = 0; i < bridge.exchanges(); ++i) {
-      alone.world().stepSimulation(bridge.couplingStep(), 0);
+      alone.dynamics().stepSimulation(bridge.couplingStep(), 0);
     }
     exchanges += bridge.exchanges();
     ASSERT_TRUE(
@@ -133,21 +82,22 @@ TEST(Bridge, WithoutSandBulletRunsExactlyAsAlone) {
 }
 
 TEST(Bridge, RefusesMismatchedGravityLightBodiesAndDoubleCoupling) {
-  Physics physics;
+  OwnedWorld physics;
   WorldSettings settings = smallSettings(64);
   settings.maxParticles = 20000;
   World sand(gpu(), settings);
-  physics.world().setGravity(btVector3(0, -9.0f, 0));
+  physics.dynamics().setGravity(btVector3(0, -9.0f, 0));
   try {
-    Bridge bridge(sand, physics.world());
+    Bridge bridge(sand, physics.dynamics());
     FAIL() << "no error";
   } catch (const InvalidArgument& error) {
     EXPECT_NE(std::string(error.what()).find("gravity"), std::string::npos) << error.what();
   }
-  physics.world().setGravity(btVector3(0, -9.81f, 0));
-  Bridge bridge(sand, physics.world());
+  physics.dynamics().setGravity(btVector3(0, -9.81f, 0));
+  Bridge bridge(sand, physics.dynamics());
   btBoxShape pebble(btVector3(0.02f, 0.02f, 0.02f));
-  btRigidBody* light = physics.add(&pebble, 0.01f, btVector3(0, 1, 0));
+  btRigidBody* light =
+      physics.add(pebble, 0.01f, btTransform(btQuaternion::getIdentity(), btVector3(0, 1, 0)));
   try {
     bridge.couple(light);
     FAIL() << "no error";
@@ -156,7 +106,8 @@ TEST(Bridge, RefusesMismatchedGravityLightBodiesAndDoubleCoupling) {
   }
   EXPECT_EQ(sand.bodyCount(), 0u);
   btBoxShape box(btVector3(0.1f, 0.1f, 0.1f));
-  btRigidBody* heavy = physics.add(&box, 5.0f, btVector3(0, 1, 0));
+  btRigidBody* heavy =
+      physics.add(box, 5.0f, btTransform(btQuaternion::getIdentity(), btVector3(0, 1, 0)));
   bridge.couple(heavy);
   EXPECT_THROW(bridge.couple(heavy), InvalidArgument);
   EXPECT_EQ(sand.bodyCount(), 1u);
@@ -200,12 +151,13 @@ BedResult boxOnSandBed(bool sleep) {
   for (const BodyState& b : sand.readBodies()) bedTop = std::max(bedTop, b.position.y);
   bedTop += 0.6124f * d + 0.5f * d;
 
-  Physics physics;
+  OwnedWorld physics;
   btBoxShape boxShape(btVector3(4.5f * d, 1.0f * d, 4.5f * d));
   const float density = 500.0f;  // wood
   const float mass = density * 9.0f * d * 2.0f * d * 9.0f * d;
-  btRigidBody* box = physics.add(&boxShape, mass, btVector3(0, bedTop + 1.6f * d, 0));
-  Bridge bridge(sand, physics.world());
+  btRigidBody* box = physics.add(
+      boxShape, mass, btTransform(btQuaternion::getIdentity(), btVector3(0, bedTop + 1.6f * d, 0)));
+  Bridge bridge(sand, physics.dynamics());
   bridge.couple(box);
 
   const float frame = 1.0f / 60.0f;
@@ -317,14 +269,15 @@ TEST(Bridge, SandThrownAtALightBoxHandsItTheMomentumItLoses) {
                                 .seed = 5});
   const float granuleMass = tetrahedronTemplate(d, settings.material.density).mass;
 
-  Physics physics;
-  physics.world().setGravity(btVector3(0, 0, 0));
+  OwnedWorld physics;
+  physics.dynamics().setGravity(btVector3(0, 0, 0));
   // A plate broadside to the stream, wide enough that every column of granules hits it, and as
   // heavy as 24 granules: a third of the sand's mass, so that it is thrown clearly.
   btBoxShape plateShape(btVector3(1.5f * d, 6.0f * d, 6.0f * d));
   const float mass = 24.0f * granuleMass;
-  btRigidBody* plate = physics.add(&plateShape, mass, btVector3(1.5f * d, 0, 0));
-  Bridge bridge(sand, physics.world());
+  btRigidBody* plate = physics.add(
+      plateShape, mass, btTransform(btQuaternion::getIdentity(), btVector3(1.5f * d, 0, 0)));
+  Bridge bridge(sand, physics.dynamics());
   bridge.couple(plate);
 
   const auto sandMomentum = [&] {
