@@ -28,11 +28,9 @@ constexpr float kMargin = 2.0f;
 // How far beyond the bounds a grain may roll on the floor before it counts as lost, d.
 constexpr float kRoam = 20.0f;
 // The speed guard is this multiple of the blade's speed (grains thrown off its face outrun it)
-// and at least kMinGuardSpeed, for the berm's settling drop. blade-speed stops at 5 m/s: a faster
-// blade needs a guard, and so a time step, that would make the scene crawl.
+// and at least kit::kMinGuardSpeed, for the berm's settling drop. blade-speed stops at 5 m/s: a
+// faster blade needs a guard, and so a time step, that would make the scene crawl.
 constexpr float kGuardPerBladeSpeed = 4.0f;
-constexpr float kMinGuardSpeed = 2.0f;
-constexpr float kStepsPerContact = 10.0f;
 // After the push the sand needs a moment to show whether it keeps moving, s.
 constexpr double kMinRestSeconds = 0.1;
 
@@ -100,8 +98,8 @@ WorldSettings Bulldozer::worldSettings() const {
       {.granules = kit::granuleCount(m_config.berm),
        .bodies = 1,
        .particles = bladeShape().centres.size(),
-       .maxSpeed = std::max(kMinGuardSpeed, kGuardPerBladeSpeed * m_config.bladeSpeed),
-       .stepsPerContact = kStepsPerContact});
+       .maxSpeed = std::max(kit::kMinGuardSpeed, kGuardPerBladeSpeed * m_config.bladeSpeed),
+       .stepsPerContact = kit::kGuardStepsPerContact});
 }
 
 void Bulldozer::build(World& world) {

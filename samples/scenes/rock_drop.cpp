@@ -21,17 +21,8 @@ namespace {
 
 using kit::kReach;
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
-// Gaps between the walls and the nearest lattice centres, and between the floor and the lowest
-// ones (the reach and the jitter, with room), and room above the rock when it is let go, d.
-constexpr float kWallGap = 1.4f;
-constexpr float kBedClearance = 1.4f;
+// Room above the rock when it is let go, d.
 constexpr float kHeadroom = 4.0f;
-// The speed guard: a fall from the rock's lowest point at the drop to the floor, with a margin for
-// rebounds and the rim speed of a spinning rock. At the guard, 10 substeps per contact (the
-// minimum is 8) halve the cost of the default 20, as slope-avalanche and sand-box-pour do.
-constexpr float kGuardMargin = 1.1f;
-constexpr float kMinGuardSpeed = 2.0f;
-constexpr float kStepsPerContact = 10.0f;
 // The moving rock is read back (a sync point) every kCheckSeconds of simulated time, s; it is at
 // rest after kCalmChecks calm checks in a row (one calm check can be the top of a bounce).
 constexpr double kCheckSeconds = 0.1;
@@ -150,13 +141,13 @@ const TriangleMesh& RockDrop::rockMesh() const {
 }
 
 Count3 RockDrop::bedCounts() const {
-  // The box's inner half width (kWallGap beyond the lattice's outer centres) holds everything the
-  // rock covers as it is let go, so that it lands on sand, not on a wall.
+  // The box's inner half width (kit::kLatticeGap beyond the lattice's outer centres) holds
+  // everything the rock covers as it is let go, so that it lands on sand, not on a wall.
   const SceneBounds& turned = loadedRock().drop;
   Count3 counts = m_config.bed;
   for (const auto& [axis, reach] : {std::pair{0, std::max(-turned.min.x, turned.max.x)},
                                     std::pair{2, std::max(-turned.min.z, turned.max.z)}}) {
-    const float needed = (reach + 0.5f * d()) / d() - kWallGap;  // lattice half width, d
+    const float needed = (reach + 0.5f * d()) / d() - kit::kLatticeGap;  // lattice half width, d
     const auto fitting = static_cast<std::uint32_t>(
         std::ceil(std::max(0.0f, 2.0f * needed / kDefaultGranuleSpacing - 1e-4f)) + 1.0f);
     counts[std::size_t(axis)] = std::max(counts[std::size_t(axis)], fitting);
@@ -166,14 +157,15 @@ Count3 RockDrop::bedCounts() const {
 
 float RockDrop::halfWidth(int axis) const {
   const float count = static_cast<float>(bedCounts()[std::size_t(axis)] - 1);
-  return (0.5f * count * kDefaultGranuleSpacing + kWallGap) * d();
+  return (0.5f * count * kDefaultGranuleSpacing + kit::kLatticeGap) * d();
 }
 
 float RockDrop::boxHeight() const {
   // The rock is let go above the settled bed, which is never higher than the lattice it started
   // as: that lattice's top is the bound.
   const float latticeTop =
-      (kBedClearance + static_cast<float>(m_config.bed[1] - 1) * kDefaultGranuleSpacing + kReach) *
+      (kit::kLatticeGap + static_cast<float>(m_config.bed[1] - 1) * kDefaultGranuleSpacing +
+       kReach) *
       d();
   const float radius = 0.5f * d();
   const SceneBounds& rock = loadedRock().drop;
@@ -184,14 +176,12 @@ float RockDrop::boxHeight() const {
 WorldSettings RockDrop::worldSettings() const {
   const LoadedRock& rock = loadedRock();
   const float lowestAtDrop = boxHeight() - kHeadroom * d() - rock.drop.max.y + rock.drop.min.y;
-  return kit::worldSettings(
-      name(), d(),
-      {.granules = kit::granuleCount(bedCounts()),
-       .bodies = 1,
-       .particles = rock.sampled.centres.size(),
-       .maxSpeed =
-           std::max(kMinGuardSpeed, kGuardMargin * std::sqrt(2.0f * kit::kGravity * lowestAtDrop)),
-       .stepsPerContact = kStepsPerContact});
+  return kit::worldSettings(name(), d(),
+                            {.granules = kit::granuleCount(bedCounts()),
+                             .bodies = 1,
+                             .particles = rock.sampled.centres.size(),
+                             .maxSpeed = kit::fallGuardSpeed(lowestAtDrop),  // to the floor
+                             .stepsPerContact = kit::kGuardStepsPerContact});
 }
 
 void RockDrop::build(World& world) {
@@ -205,8 +195,8 @@ void RockDrop::build(World& world) {
   world.addCollider(Box{.center = {0.0f, 0.5f * height, 0.0f},
                         .halfExtents = {halfWidth(0), 0.5f * height, halfWidth(2)},
                         .inside = true});
-  world.addGranules(kit::blockAbove(kBedClearance * d(), bedCounts(), kDefaultGranuleSpacing * d(),
-                                    m_config.seed));
+  world.addGranules(kit::blockAbove(kit::kLatticeGap * d(), bedCounts(),
+                                    kDefaultGranuleSpacing * d(), m_config.seed));
 }
 
 float RockDrop::bedTopOf(std::span<const ParticleState> particles) const {

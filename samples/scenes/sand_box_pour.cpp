@@ -14,11 +14,6 @@ namespace sandphys::scenes {
 namespace {
 
 using kit::kReach;
-// Height of the bed's lowest centres above the floor, d: the reach and the jitter.
-constexpr float kBedClearance = 1.4f;
-// Substeps per Hertz contact time at the guard speed: the guard is the worst impact, slower
-// contacts get more substeps, and 10 (the minimum is 8) halves the cost of the default 20.
-constexpr float kStepsPerContact = 10.0f;
 // Granules slower than this (m/s) belong to the pile: the falling ones leave the emitter at
 // kit::kMinPourSpeed or more and only speed up.
 constexpr float kRestSpeed = 0.3f;
@@ -56,14 +51,14 @@ WorldSettings SandBoxPour::worldSettings() const {
     const auto wide = [&](int i) { return span(i) + 2.0f * kit::kJitter + 2.0f * kReach; };
     check("the bed (block) along x or z", std::max(wide(0), wide(2)), "box-width", c.boxWidth);
     // A granule's room above the bed's top.
-    check("the bed (block) in height", kBedClearance + span(1) + kReach + kReach, "emitter-height",
-          c.pourHeight);
+    check("the bed (block) in height", kit::kLatticeGap + span(1) + kReach + kReach,
+          "emitter-height", c.pourHeight);
   }
   pour().checkSpeed(name(), "emitter-size");
   return kit::worldSettings(name(), d(),
                             {.granules = std::uint64_t(c.granules) + bedGranules(),
                              .maxSpeed = pour().guardSpeed(),
-                             .stepsPerContact = kStepsPerContact,
+                             .stepsPerContact = kit::kGuardStepsPerContact,
                              .youngsModulus = c.youngsModulus});
 }
 
@@ -77,14 +72,14 @@ void SandBoxPour::build(World& world) {
   const float bedHeight = bed ? kit::blockSpan(m_config.block[1], spacing) : 0.0f;
   if (bed) {
     // The seed is not the emitter's.
-    world.addGranules(kit::blockAbove(kBedClearance * d(), m_config.block, spacing,
+    world.addGranules(kit::blockAbove(kit::kLatticeGap * d(), m_config.block, spacing,
                                       m_config.seed * 1000003u + 1u));
   }
   // Calm means nothing while the bed collapses onto the floor (its top layer falls about its own
   // height) or the last granule falls from the emitter. The bed's wait is limited from its drop,
   // the pile's from the pour's end.
   const double g = length(world.settings().gravity);
-  const double bedLanding = bed ? 1.5 * fallTime(bedHeight + kBedClearance * d(), 0.0, g) : 0.0;
+  const double bedLanding = bed ? 1.5 * fallTime(bedHeight + kit::kLatticeGap * d(), 0.0, g) : 0.0;
   m_course = kit::PourCourse({.settleSpeed = m_config.settleSpeed,
                               .maxSettleSeconds = m_config.maxSettleSeconds - bedLanding,
                               .actAfter = bedLanding,

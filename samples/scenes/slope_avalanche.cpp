@@ -15,20 +15,8 @@ namespace sandphys::scenes {
 
 namespace {
 
-// Gap between a wall and the nearest lattice centres, d: the reach and the jitter, with room.
-constexpr float kWallGap = 1.4f;
 // Room above the block's top inside the container, d.
 constexpr float kHeadroom = 4.0f;
-
-// The speed guard is the speed of a frictionless slide from the block's top to the run-out
-// floor with this margin (rebounds, rim speed of spinning grains), and never below
-// kMinGuardSpeed.
-constexpr float kGuardMargin = 1.1f;
-constexpr float kMinGuardSpeed = 2.0f;
-// Substeps per Hertz contact time at the guard speed. The guard is the worst case, slower
-// contacts last longer and get more substeps; 10 (the minimum is 8) halves the cost of the
-// default 20, as the cylinder-pile settle test does.
-constexpr float kStepsPerContact = 10.0f;
 // After the release the sand needs a moment to pick up speed; before it, a calm world only means
 // "not started yet", s.
 constexpr double kMinRunSeconds = 0.25;
@@ -72,13 +60,15 @@ float SlopeAvalanche::columnLift() const {
 }
 
 float SlopeAvalanche::columnX(std::uint32_t i) const {
-  return -(kWallGap + static_cast<float>(i) * kDefaultGranuleSpacing) * d();
+  return -(kit::kLatticeGap + static_cast<float>(i) * kDefaultGranuleSpacing) * d();
 }
 
 SceneBounds SlopeAvalanche::bounds() const {
-  const float back = columnX(m_config.block[0] - 1) - kWallGap * d();
+  const float back = columnX(m_config.block[0] - 1) - kit::kLatticeGap * d();
   const float halfWidth =
-      (0.5f * static_cast<float>(m_config.block[2] - 1) * kDefaultGranuleSpacing + kWallGap) * d();
+      (0.5f * static_cast<float>(m_config.block[2] - 1) * kDefaultGranuleSpacing +
+       kit::kLatticeGap) *
+      d();
   const float layers = static_cast<float>(m_config.block[1] - 1) * kDefaultGranuleSpacing;
   const float tan = std::tan(angle());
   return {{back, -m_config.slopeLength * d() * tan, -halfWidth},
@@ -88,12 +78,11 @@ SceneBounds SlopeAvalanche::bounds() const {
 
 WorldSettings SlopeAvalanche::worldSettings() const {
   const SceneBounds box = bounds();
-  const float drop = box.max.y - box.min.y;
-  const float guard = kGuardMargin * std::sqrt(2.0f * kit::kGravity * drop);
+  // A slide from the block's top to the run-out floor.
   return kit::worldSettings(name(), d(),
                             {.granules = kit::granuleCount(m_config.block),
-                             .maxSpeed = std::max(kMinGuardSpeed, guard),
-                             .stepsPerContact = kStepsPerContact});
+                             .maxSpeed = kit::fallGuardSpeed(box.max.y - box.min.y),
+                             .stepsPerContact = kit::kGuardStepsPerContact});
 }
 
 void SlopeAvalanche::build(World& world) {

@@ -17,6 +17,10 @@ inline constexpr float kReach = static_cast<float>(kGranuleReach);
 /// spacing).
 inline const float kJitter = GranuleBlock{}.jitter * kDefaultGranuleSpacing;
 
+/// Gap between a wall or floor and the nearest centres of a block of granules, d: a granule's
+/// reach and jitter, with room.
+inline constexpr float kLatticeGap = 1.4f;
+
 /// Granules in a block of `counts`, in 64 bits so that a product of three counts cannot wrap.
 inline std::uint64_t granuleCount(const Count3& counts) {
   return static_cast<std::uint64_t>(counts[0]) * counts[1] * counts[2];

@@ -11,14 +11,18 @@ namespace sandphys::scenes::kit {
 
 namespace {
 
-constexpr float kGuardMargin = 1.25f;
-constexpr float kMinGuardSpeed = 2.0f;
+constexpr float kPourGuardMargin = 1.25f;
+constexpr float kFallGuardMargin = 1.1f;
 
 }  // namespace
 
 float pourGuardSpeed(float speed, float height, float g) {
   const float impact = std::sqrt(speed * speed + 2.0f * g * height);
-  return std::max(kMinGuardSpeed, kGuardMargin * impact);
+  return std::max(kMinGuardSpeed, kPourGuardMargin * impact);
+}
+
+float fallGuardSpeed(float height) {
+  return std::max(kMinGuardSpeed, kFallGuardMargin * std::sqrt(2.0f * kGravity * height));
 }
 
 void reserveExactly(WorldSettings& settings, std::string_view scene, std::uint64_t granules,

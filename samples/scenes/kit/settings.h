@@ -41,6 +41,17 @@ float granuleMass(const WorldSettings& settings);
 /// InvalidArgument naming `scene` when the capacities are more than a World can index.
 WorldSettings worldSettings(std::string_view scene, float d, const SettingsRule& rule);
 
+/// The lowest speed guard a scene sets, m/s: what its grains reach in settling drops.
+inline constexpr float kMinGuardSpeed = 2.0f;
+/// Substeps per Hertz contact time at the guard speed (SettingsRule::stepsPerContact) for scenes
+/// whose guard is a worst case that few contacts reach: slower contacts last longer and get more
+/// substeps, and 10 (the minimum is 8) halves the cost of the default 20.
+inline constexpr float kGuardStepsPerContact = 10.0f;
+
+/// Speed guard for a fall, or a frictionless slide, of `height` m under the default gravity, with
+/// a margin for rebounds and the rim speed of spinning bodies; at least kMinGuardSpeed.
+float fallGuardSpeed(float height);
+
 /// Speed guard (WorldSettings::maxSpeed) for grains that leave an emitter at `speed` (m/s) and
 /// fall `height` (m) under gravity `g` (m/s²): the impact with a margin for rebounds and the rim
 /// speed of spinning grains, and at least 2 m/s.
