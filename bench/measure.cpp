@@ -183,69 +183,54 @@ double loadAverage() {
   return load;
 }
 
-SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const MeasureOptions& options) {
-  SizeResult result;
-  result.plan = plan;
-  result.loadBefore = loadAverage();
+namespace {
 
-  const std::unique_ptr<BenchPile> pilePointer = makePile(options, plan.granules);
-  const BenchPile& pile = *pilePointer;
+// The pile's settings as the timing runs them: no timer queries, statistics when read, the
+// options' skin, sleep and reserve, and room for the rock and the sandbox script's bodies.
+WorldSettings timedSettings(const BenchPile& pile, const MeasureOptions& options,
+                            std::uint32_t rockParticles, const SandboxScript& sandbox) {
   const float d = pile.particleDiameter();
-  result.layout = pile.layout();
-
-  const Clock::time_point setupStart = Clock::now();
   WorldSettings settings = pile.settings();
-  settings.profileKernels = false;  // the timed substeps run without timer queries
-  settings.statsEachFrame = false;  // substep() is used; stats are read when needed
+  settings.profileKernels = false;
+  settings.statsEachFrame = false;
   if (options.reserveParticles > settings.maxParticles) {
     settings.maxParticles = options.reserveParticles;
     settings.maxBodies = std::max(settings.maxBodies, options.reserveParticles / 4u);
   }
   settings.listSkin = options.listSkin * d;
   settings.sleep.enabled = options.sleep;
-  const std::vector<Vec3> rock =
-      options.rockSpeed > 0.0f ? ballOffsets(kRockRadius, d) : std::vector<Vec3>{};
-  settings.maxBodies += options.rockSpeed > 0.0f ? 1u : 0u;
-  settings.maxParticles += std::uint32_t(rock.size());
-  const SandboxScript sandbox{};
+  settings.maxBodies += rockParticles > 0 ? 1u : 0u;
+  settings.maxParticles += rockParticles;
   if (options.sandboxSeconds > 0.0) {
     settings.maxBodies += sandboxBodies();
     settings.maxParticles += sandboxParticles(sandbox, d);
   }
-  World world(gpu, settings);
-  pile.build(world);
-  result.setupSeconds = secondsSince(setupStart);
-  result.granules = world.granulesSpawned();
-  result.particles = world.particleCount();
-  result.floorParticles = result.particles - 4 * result.granules;
-  result.particleCapacity = world.particleCapacity();
-  result.timeStep = world.timeStep();
-  result.contactTime = world.contactModel().contactTime;
-  result.listSkin = world.contactModel().listSkin;
-  result.gpuMemoryBytes = world.gpuMemoryBytes();
-  result.built = readPileState(world, pile, world.readStats());
-  world.resetPeakOverlap();  // the settled state's peak is the settling's
+  return settings;
+}
 
-  char tagText[24];
-  std::snprintf(tagText, sizeof tagText, "[%u]", result.granules);
-  const auto tag = [&] { return std::string(tagText); };
-  if (options.progress) {
-    char container[64] = "";
-    if (result.layout.boxSide > 0.0f) {
-      std::snprintf(container, sizeof container, " in a box of %.1f d x %.0f d",
-                    double(result.layout.boxSide), double(result.layout.wallHeight));
-    } else if (result.layout.wallRaised) {
-      std::snprintf(container, sizeof container, " (wall raised)");
-    }
-    std::fprintf(stderr,
-                 "%s built in %.1f s: %u granules in %u columns x %u layers (+%u), column top "
-                 "%.1f d%s; dt %.3g s\n",
-                 tag().c_str(), result.setupSeconds, result.granules, result.layout.columns,
-                 result.layout.fullLayers, result.layout.topLayerGranules,
-                 result.layout.columnTop / d, container, double(result.timeStep));
+void printBuilt(const std::string& tag, const SizeResult& result, float d) {
+  char container[64] = "";
+  if (result.layout.boxSide > 0.0f) {
+    std::snprintf(container, sizeof container, " in a box of %.1f d x %.0f d",
+                  double(result.layout.boxSide), double(result.layout.wallHeight));
+  } else if (result.layout.wallRaised) {
+    std::snprintf(container, sizeof container, " (wall raised)");
   }
+  std::fprintf(stderr,
+               "%s built in %.1f s: %u granules in %u columns x %u layers (+%u), column top "
+               "%.1f d%s; dt %.3g s\n",
+               tag.c_str(), result.setupSeconds, result.granules, result.layout.columns,
+               result.layout.fullLayers, result.layout.topLayerGranules,
+               result.layout.columnTop / d, container, double(result.timeStep));
+}
 
-  // Settle, or restore the pile an earlier run settled with the same options (--pile-cache).
+// Settles the pile, or restores the one an earlier run settled with the same options
+// (--pile-cache), then runs one substep more either way, so that both start timing from the same
+// state: llvmpipe compiles each kernel at its first dispatch, and a restored World builds every
+// list at its first substep; neither is timed. Returns the statistics then.
+WorldStats settleOrRestore(World& world, const BenchPile& pile, const SizePlan& plan,
+                           const MeasureOptions& options, const std::string& tag,
+                           SizeResult& result) {
   const Clock::time_point settleStart = Clock::now();
   std::string cacheKey;
   std::filesystem::path cacheFile;
@@ -264,22 +249,19 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
     result.settledFromWallSeconds = cached->settleWallSeconds;
     peakBefore = cached->peakOverlap;
     if (options.progress) {
-      std::fprintf(stderr, "%s settled pile restored from %s\n", tag().c_str(),
+      std::fprintf(stderr, "%s settled pile restored from %s\n", tag.c_str(),
                    cacheFile.string().c_str());
     }
   } else {
-    settle(world, plan, options, tag(), result);
+    settle(world, plan, options, tag, result);
     if (!cacheFile.empty() && !result.settleBudgetHit) {
-      peakBefore = world.readStats().maxOverlap / d;  // also waits for the GPU
+      peakBefore = world.readStats().maxOverlap / pile.particleDiameter();  // waits for the GPU
       saveSettledPile(
           cacheFile, cacheKey,
           {result.settleSteps, result.sleepWaitSteps, secondsSince(settleStart), peakBefore},
           world);
     }
   }
-  // One substep more, restored or not, so that both start timing from the same state: llvmpipe
-  // compiles each kernel at its first dispatch, and a restored World builds every list at its
-  // first substep; neither is timed.
   world.substep(1);
   ++result.settleSteps;
   const WorldStats settledStats = world.readStats();  // also waits for the GPU
@@ -288,40 +270,33 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   result.settled = readPileState(world, pile, settledStats);
   result.settled.maxOverlap = std::max(result.settled.maxOverlap, peakBefore);
   world.resetPeakOverlap();  // the end state's peak is the measured span's
-  // The pile as timing starts, for the Worlds of the kernel versions compared.
-  std::optional<WorldSnapshot> timingStart;
-  if (!options.compareShaders.empty()) timingStart = world.readSnapshot();
-  if (options.rockSpeed > 0.0f) {
-    const float side = result.layout.boxSide * d;
-    const Vec3 at{-0.5f * side + (kRockRadius + 2.0f) * d,
-                  float(result.settled.pileTop) * d + (kRockRadius + 0.5f) * d, 0.0f};
-    const float density = settings.material.density;
-    world.addBody(makeParticleTemplate(rock, d, density),
-                  {at,
-                   {},
-                   {options.rockSpeed, 0.0f, 0.0f},
-                   {0.0f, 0.0f, -options.rockSpeed / (kRockRadius * d)},
-                   Motion::Dynamic});
-    result.rockParticles = std::uint32_t(rock.size());
-  }
+  return settledStats;
+}
 
-  // LAMMPS runs the same pile after sandphys, from a deck of it as timing starts (a read-back).
-  const std::filesystem::path lammpsDeck =
-      std::filesystem::absolute(options.lammpsDir) /
-      (std::string(benchSceneName(options.scene)) + "-" + std::to_string(plan.granules));
-  // In rounds, LAMMPS runs a round's steps after each of sandphys's (the clocks stopped).
-  const std::uint32_t rounds = options.lammpsRanks.empty() ? 1u : options.lammpsRounds;
+// MeasureOptions::rockSpeed: the ball `rock` (offsets, m), set down on the settled pile by the
+// wall at x < 0, rolling towards +x.
+void addRock(World& world, const std::vector<Vec3>& rock, const MeasureOptions& options,
+             SizeResult& result, float d) {
+  const float side = result.layout.boxSide * d;
+  const Vec3 at{-0.5f * side + (kRockRadius + 2.0f) * d,
+                float(result.settled.pileTop) * d + (kRockRadius + 0.5f) * d, 0.0f};
+  world.addBody(makeParticleTemplate(rock, d, world.settings().material.density),
+                {at,
+                 {},
+                 {options.rockSpeed, 0.0f, 0.0f},
+                 {0.0f, 0.0f, -options.rockSpeed / (kRockRadius * d)},
+                 Motion::Dynamic});
+  result.rockParticles = std::uint32_t(rock.size());
+}
+
+// The timed substeps: whole chunks, timed from a synchronised start to a synchronised end, in
+// `rounds` rounds with `betweenRounds` run between them (the clocks stopped); or the sandbox
+// script's frames. Ends with a sync; returns the statistics then.
+template <class BetweenRounds>
+WorldStats timeSubsteps(World& world, const SizePlan& plan, const MeasureOptions& options,
+                        const SandboxScript& sandbox, std::uint32_t rounds, float d,
+                        const std::string& tag, BetweenRounds betweenRounds, SizeResult& result) {
   const std::uint32_t roundSteps = plan.steps / rounds;
-  if (!options.lammpsRanks.empty()) exportForLammps(world, lammpsDeck, roundSteps);
-  for (const int ranks : options.lammpsRanks) {
-    result.lammps.push_back({.ranks = ranks, .deck = lammpsDeck.string()});
-  }
-  const auto runLammpsRounds = [&] {
-    for (LammpsTiming& run : result.lammps) runLammpsRound(roundSteps, world.timeStep(), run);
-  };
-
-  // Measure: whole chunks of substeps, timed from a synchronised start to a synchronised end;
-  // or the sandbox script's frames.
   Clock::time_point start = Clock::now();
   double cpuStart = processCpuSeconds();
   Clock::time_point lastProgress = start;
@@ -347,36 +322,101 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
       result.roundWallSeconds.push_back(roundSeconds);
       result.wallSeconds += roundSeconds;
       result.cpuSeconds += processCpuSeconds() - cpuStart;
-      runLammpsRounds();
+      betweenRounds();
       start = Clock::now();
       cpuStart = processCpuSeconds();
       roundEnd += roundSteps;
     }
     if (options.progress && secondsSince(lastProgress) >= kProgressInterval) {
       lastProgress = Clock::now();
-      std::fprintf(stderr, "%s measuring: %u/%u substeps, %.0f s wall\n", tag().c_str(),
-                   result.steps, plan.steps, result.wallSeconds + secondsSince(start));
+      std::fprintf(stderr, "%s measuring: %u/%u substeps, %.0f s wall\n", tag.c_str(), result.steps,
+                   plan.steps, result.wallSeconds + secondsSince(start));
     }
   }
   const WorldStats endStats = world.readStats();  // the sync that ends the timed span
-  result.asleepAtEnd = endStats.granulesAsleep;
   const double lastSeconds = secondsSince(start);
   if (rounds > 1) result.roundWallSeconds.push_back(lastSeconds);
   result.wallSeconds += lastSeconds;
   result.cpuSeconds += processCpuSeconds() - cpuStart;
-  result.loadAfter = loadAverage();
+  return endStats;
+}
 
-  result.penetrationClamps = endStats.penetrationClamps - settledStats.penetrationClamps;
-  result.contactSlotOverflows = endStats.contactSlotOverflows - settledStats.contactSlotOverflows;
-  result.velocityClamps = endStats.velocityClamps - settledStats.velocityClamps;
-  result.listBuilds = endStats.listBuilds - settledStats.listBuilds;
-  result.stillGridBuilds = endStats.stillGridBuilds - settledStats.stillGridBuilds;
-  result.movingGridParticles = endStats.movingGridParticles;
-  result.listOverflows = endStats.neighbourListOverflows - settledStats.neighbourListOverflows;
+// What the World counted over the timed span, from the statistics at its start and its end.
+void countTimedSpan(const WorldStats& start, const WorldStats& end, SizeResult& result) {
+  result.asleepAtEnd = end.granulesAsleep;
+  result.penetrationClamps = end.penetrationClamps - start.penetrationClamps;
+  result.contactSlotOverflows = end.contactSlotOverflows - start.contactSlotOverflows;
+  result.velocityClamps = end.velocityClamps - start.velocityClamps;
+  result.listBuilds = end.listBuilds - start.listBuilds;
+  result.stillGridBuilds = end.stillGridBuilds - start.stillGridBuilds;
+  result.movingGridParticles = end.movingGridParticles;
+  result.listOverflows = end.neighbourListOverflows - start.neighbourListOverflows;
+}
+
+}  // namespace
+
+SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const MeasureOptions& options) {
+  SizeResult result;
+  result.plan = plan;
+  result.loadBefore = loadAverage();
+
+  const std::unique_ptr<BenchPile> pilePointer = makePile(options, plan.granules);
+  const BenchPile& pile = *pilePointer;
+  const float d = pile.particleDiameter();
+  result.layout = pile.layout();
+
+  const Clock::time_point setupStart = Clock::now();
+  const std::vector<Vec3> rock =
+      options.rockSpeed > 0.0f ? ballOffsets(kRockRadius, d) : std::vector<Vec3>{};
+  const SandboxScript sandbox{};
+  const WorldSettings settings = timedSettings(pile, options, std::uint32_t(rock.size()), sandbox);
+  World world(gpu, settings);
+  pile.build(world);
+  result.setupSeconds = secondsSince(setupStart);
+  result.granules = world.granulesSpawned();
+  result.particles = world.particleCount();
+  result.floorParticles = result.particles - 4 * result.granules;
+  result.particleCapacity = world.particleCapacity();
+  result.timeStep = world.timeStep();
+  result.contactTime = world.contactModel().contactTime;
+  result.listSkin = world.contactModel().listSkin;
+  result.gpuMemoryBytes = world.gpuMemoryBytes();
+  result.built = readPileState(world, pile, world.readStats());
+  world.resetPeakOverlap();  // the settled state's peak is the settling's
+
+  char tagText[24];  // snprintf: GCC 12 warns falsely (-Wrestrict) on "[" + to_string + "]"
+  std::snprintf(tagText, sizeof tagText, "[%u]", result.granules);
+  const std::string tag = tagText;
+  if (options.progress) printBuilt(tag, result, d);
+  const WorldStats settledStats = settleOrRestore(world, pile, plan, options, tag, result);
+  // The pile as timing starts, for the Worlds of the kernel versions compared.
+  std::optional<WorldSnapshot> timingStart;
+  if (!options.compareShaders.empty()) timingStart = world.readSnapshot();
+  if (options.rockSpeed > 0.0f) addRock(world, rock, options, result, d);
+
+  // LAMMPS runs the same pile after sandphys, from a deck of it as timing starts (a read-back);
+  // in rounds, a round's steps after each of sandphys's.
+  const std::filesystem::path lammpsDeck =
+      std::filesystem::absolute(options.lammpsDir) /
+      (std::string(benchSceneName(options.scene)) + "-" + std::to_string(plan.granules));
+  const std::uint32_t rounds = options.lammpsRanks.empty() ? 1u : options.lammpsRounds;
+  const std::uint32_t roundSteps = plan.steps / rounds;
+  if (!options.lammpsRanks.empty()) exportForLammps(world, lammpsDeck, roundSteps);
+  for (const int ranks : options.lammpsRanks) {
+    result.lammps.push_back({.ranks = ranks, .deck = lammpsDeck.string()});
+  }
+  const auto runLammpsRounds = [&] {
+    for (LammpsTiming& run : result.lammps) runLammpsRound(roundSteps, world.timeStep(), run);
+  };
+
+  const WorldStats endStats =
+      timeSubsteps(world, plan, options, sandbox, rounds, d, tag, runLammpsRounds, result);
+  result.loadAfter = loadAverage();
+  countTimedSpan(settledStats, endStats, result);
   result.measured = readPileState(world, pile, endStats);
   if (options.kernelTimes) result.kernels = profileKernels(world, options);
   if (options.progress) {
-    std::fprintf(stderr, "%s measured %u substeps in %.1f s: Cundall number %.3g\n", tag().c_str(),
+    std::fprintf(stderr, "%s measured %u substeps in %.1f s: Cundall number %.3g\n", tag.c_str(),
                  result.steps, result.wallSeconds, result.cundallNumber());
   }
   if (timingStart) {
@@ -388,7 +428,7 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
         .kernelTimes = options.kernelTimes};
     if (options.progress) {
       std::fprintf(stderr, "%s comparing %zu kernel versions: %u rounds of %u substeps each\n",
-                   tag().c_str(), comparePlan.folders.size(), comparePlan.rounds,
+                   tag.c_str(), comparePlan.folders.size(), comparePlan.rounds,
                    comparePlan.stepsPerRound);
     }
     result.shaderRuns = compareShaders(gpu, settings, pile, *timingStart, comparePlan);
@@ -396,13 +436,13 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   // After the timed span, so that drawing never shares the machine with the substeps measured.
   result.renders = measureRender(world, pile.bounds(), options.render);
   if (options.progress && !result.renders.empty()) {
-    std::fprintf(stderr, "%s rendered %dx%d at %zu quality presets\n", tag().c_str(),
+    std::fprintf(stderr, "%s rendered %dx%d at %zu quality presets\n", tag.c_str(),
                  options.render.width, options.render.height, result.renders.size());
   }
   runLammpsRounds();  // the last round, or the only one
   for (const LammpsTiming& run : result.lammps) {
     if (options.progress) {
-      std::fprintf(stderr, "%s LAMMPS on %d rank(s): %s\n", tag().c_str(), run.ranks,
+      std::fprintf(stderr, "%s LAMMPS on %d rank(s): %s\n", tag.c_str(), run.ranks,
                    run.failure.empty()
                        ? (std::to_string(run.millisecondsPerStep()) + " ms per step").c_str()
                        : run.failure.c_str());
