@@ -6,6 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "scenes/kit/checks.h"
+#include "scenes/kit/course.h"
+#include "scenes/kit/readback.h"
 #include "scenes/kit/settings.h"
 
 namespace sandphys::bench {
@@ -42,9 +45,10 @@ PileLayout layoutOf(const BoxPileConfig& config, std::uint32_t& columnsPerSide) 
   if (room < 0.0) {
     const double fewest = std::ceil(4096.0 * std::pow(2.0 * reach / d / config.sideAt4096, 2.0));
     throw InvalidArgument("box pile: " + std::to_string(config.granules) +
-                          " granules make a box of side " + scenes::numberText(side / d) +
-                          " d, too narrow for one granule (" + scenes::numberText(2.0 * reach / d) +
-                          " d); use at least " + scenes::numberText(fewest) + " granules");
+                          " granules make a box of side " + scenes::kit::numberText(side / d) +
+                          " d, too narrow for one granule (" +
+                          scenes::kit::numberText(2.0 * reach / d) + " d); use at least " +
+                          scenes::kit::numberText(fewest) + " granules");
   }
   columnsPerSide = static_cast<std::uint32_t>(std::floor(room / spacing)) + 1u;
   PileLayout layout;
@@ -102,7 +106,7 @@ std::uint32_t boxPileSettleSteps(const BoxPileConfig& config) {
   const PileLayout layout = layoutOf(config, columnsPerSide);
   // BoxPile keeps WorldSettings' default gravity.
   const double g = scenes::kit::kGravity;
-  const double seconds = kSettleFalls * scenes::fallTime(layout.columnTop, 0.0, g);
+  const double seconds = kSettleFalls * scenes::kit::fallTime(layout.columnTop, 0.0, g);
   return static_cast<std::uint32_t>(std::ceil(seconds / config.timeStep));
 }
 
@@ -120,9 +124,9 @@ BoxPile::BoxPile(const BoxPileConfig& config) : m_config(config) {
     static_cast<void>(ContactModel::fromSettings(s));
   } catch (const InvalidArgument& error) {
     throw InvalidArgument(
-        std::string("box pile (fixed time step ") + scenes::numberText(config.timeStep) + " s, E " +
-        scenes::numberText(config.material.youngsModulus) + " Pa, speed guard " +
-        scenes::numberText(s.maxSpeed) + " m/s): the World refuses it: " + error.what());
+        std::string("box pile (fixed time step ") + scenes::kit::numberText(config.timeStep) +
+        " s, E " + scenes::kit::numberText(config.material.youngsModulus) + " Pa, speed guard " +
+        scenes::kit::numberText(s.maxSpeed) + " m/s): the World refuses it: " + error.what());
   }
   m_granuleMass = tetrahedronTemplate(config.particleDiameter, config.material.density).mass;
 }
@@ -193,7 +197,7 @@ void BoxPile::build(World& world) const {
 }
 
 float BoxPile::pileTop(std::span<const BodyState> bodies) const {
-  return scenes::pileSurface(
+  return scenes::kit::pileSurface(
       bodies, [this](const Vec3& centre) { return contains(centre); }, m_granuleOuterRadius);
 }
 

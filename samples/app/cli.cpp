@@ -18,6 +18,7 @@
 
 #include "app/export.h"
 #include "scenes/registry.h"
+#include "scenes/scene_parameters.h"
 
 namespace sandphys::samples {
 

@@ -7,6 +7,7 @@
 
 #include "app/metrics.h"
 #include "scenes/registry.h"
+#include "scenes/scene_parameters.h"
 
 namespace sandphys::samples {
 

@@ -7,6 +7,8 @@
 #include <cstring>
 #include <system_error>
 
+#include "scenes/scene_parameters.h"
+
 namespace sandphys::samples {
 
 namespace {

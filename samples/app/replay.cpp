@@ -8,6 +8,7 @@
 
 #include "app/cli.h"
 #include "scenes/registry.h"
+#include "scenes/scene_parameters.h"
 
 namespace sandphys::samples {
 

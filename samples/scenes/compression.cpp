@@ -6,6 +6,8 @@
 #include <optional>
 #include <string>
 
+#include "scenes/kit/checks.h"
+#include "scenes/kit/course.h"
 #include "scenes/kit/geometry.h"
 #include "scenes/kit/readback.h"
 #include "scenes/kit/settings.h"
@@ -135,7 +137,7 @@ void Compression::build(World& world) {
   m_surfaces = {plungerSurface(m_plunger, plunger, face)};
   // Calm means nothing until the lattice has fallen onto the floor and slid a while.
   const double landing =
-      1.5 * fallTime(blockHeight + kClearance * d(), 0.0, length(world.settings().gravity));
+      1.5 * kit::fallTime(blockHeight + kClearance * d(), 0.0, length(world.settings().gravity));
   m_settle = {0.0, landing, landing + m_config.maxSettleSeconds};
 }
 
@@ -151,8 +153,8 @@ void Compression::enter(Phase phase, double simTime) {
 void Compression::update(World& world, const StepReport& report, double simTime) {
   if (m_phase == Phase::Done) return;
   if (m_phase == Phase::Settling) {
-    const bool calm = granulesCalm(report, static_cast<std::uint32_t>(granules()), m_granuleMass,
-                                   m_config.settleSpeed);
+    const bool calm = kit::granulesCalm(report, static_cast<std::uint32_t>(granules()),
+                                        m_granuleMass, m_config.settleSpeed);
     if (!m_settle.over(calm, simTime)) return;
     m_atRest = {simTime, world.readContacts(), world.readBodies()};
     float top = 0.0f;
@@ -203,7 +205,7 @@ std::string Compression::status() const {
                                               "loading",  "unloading", "done"};
   std::string text = kNames[static_cast<std::size_t>(m_phase)];
   if (m_phase == Phase::Loading || m_phase == Phase::Unloading) {
-    text += ": " + numberText(std::round(m_curve.back()[1] / 100.0) / 10.0) + " kPa";
+    text += ": " + kit::numberText(std::round(m_curve.back()[1] / 100.0) / 10.0) + " kPa";
   }
   return text;
 }

@@ -10,7 +10,9 @@
 #include <vector>
 
 #include "scenes/kit/checks.h"
+#include "scenes/kit/course.h"
 #include "scenes/kit/geometry.h"
+#include "scenes/kit/readback.h"
 #include "scenes/kit/settings.h"
 
 namespace sandphys::scenes {
@@ -136,7 +138,7 @@ void CylinderPile::dropBatch(World& world, float bottomLayerY, double simTime) {
 void CylinderPile::update(World& world, const StepReport& report, double simTime) {
   // The older batches are at rest: the world's kinetic energy is the newest batch's, per granule
   // of it (per granule of the whole pile, a large pile would call a batch settled too early).
-  const bool calm = granulesCalm(report, batchGranules(), m_granuleMass, m_config.settleSpeed);
+  const bool calm = kit::granulesCalm(report, batchGranules(), m_granuleMass, m_config.settleSpeed);
   if (finished() || !m_wait.over(calm, simTime)) return;
   m_settleTimes.push_back(simTime - m_wait.start);
   if (finished()) return;
@@ -155,7 +157,7 @@ bool CylinderPile::contains(const Vec3& centre) const {
 }
 
 float CylinderPile::pileTop(std::span<const BodyState> bodies) const {
-  return pileSurface(
+  return kit::pileSurface(
       bodies, [this](const Vec3& centre) { return contains(centre); }, m_granuleOuterRadius);
 }
 

@@ -71,7 +71,7 @@ std::vector<GranuleBlock> Hourglass::fillRows() const {
   const float gap = kReach + kJitterReach + kit::kFillClearance;
   kit::FillBlocks fill(m_config.granules, m_config.seed);
   for (std::uint32_t layer = 0; fill.left() > 0; ++layer) {
-    const float h = gap + static_cast<float>(layer) * kShiftedLayerHeight;
+    const float h = gap + static_cast<float>(layer) * kit::kShiftedLayerHeight;
     // Largest distance of a centre from the axis at height h above the outlet.
     const float rho = 0.5f * m_config.outlet + h * tanAngle - gap / cosAngle;
     if (rho < 0.0f) continue;  // still too narrow here; halfAngle > 0 ends this
@@ -243,7 +243,7 @@ std::vector<SceneMetric> Hourglass::metrics(std::span<const BodyState> bodies) c
   double fillHeight = 0.0;
   double fillWidth = 0.0;
   if (!m_packingAtRelease.empty()) {
-    fillHeight = pileSurface(
+    fillHeight = kit::pileSurface(
                      m_packingAtRelease, [](const Vec3&) { return true; }, kReach * d()) -
                  outletY();
     fillWidth = 2.0 * (outletRadius() + fillHeight * tanHalfAngle());

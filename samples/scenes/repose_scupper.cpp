@@ -79,7 +79,7 @@ std::vector<GranuleBlock> ReposeScupper::fillBlocks() const {
   const float bottom = (m_config.ledge + kReach + kJitter + kit::kFillClearance) * d();
   for (std::uint32_t i = 0; fill.left() > 0; ++i) {
     const std::uint32_t count = std::min(fill.left(), perLayer);
-    const float y = bottom + static_cast<float>(i) * kShiftedLayerHeight * d();
+    const float y = bottom + static_cast<float>(i) * kit::kShiftedLayerHeight * d();
     // Layers alternate a quarter spacing either side of the centre along x and z: half a spacing
     // apart, each clear of the walls by the same room.
     const float shift = (i % 2 == 1 ? 0.25f : -0.25f) * spacing;

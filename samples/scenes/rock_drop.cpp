@@ -11,6 +11,7 @@
 
 #include "scenes/eigen_conversions.h"
 #include "scenes/kit/checks.h"
+#include "scenes/kit/course.h"
 #include "scenes/kit/geometry.h"
 #include "scenes/kit/readback.h"
 #include "scenes/kit/settings.h"
@@ -217,7 +218,7 @@ float RockDrop::bedTopOf(std::span<const ParticleState> particles) const {
   std::vector<float> tops;
   for (const auto& [key, top] : columns) tops.push_back(top);
   // A bed too small to have an inside away from the walls: its highest grain is its top.
-  return tops.empty() ? highest : percentile(tops, 0.5);
+  return tops.empty() ? highest : kit::percentile(tops, 0.5);
 }
 
 void RockDrop::drop(World& world, double simTime) {
@@ -233,9 +234,9 @@ void RockDrop::drop(World& world, double simTime) {
   m_course.endAct(simTime);
   // The first check after the fall onto the bed: before it the rock is in the air (and calm at
   // the very start).
-  m_run.nextCheck = simTime +
-                    fallTime(m_config.dropHeight * d(), 0.0, length(world.settings().gravity)) +
-                    kCheckSeconds;
+  m_run.nextCheck =
+      simTime + kit::fallTime(m_config.dropHeight * d(), 0.0, length(world.settings().gravity)) +
+      kCheckSeconds;
 }
 
 void RockDrop::update(World& world, const StepReport& report, double simTime) {
@@ -267,8 +268,8 @@ std::string RockDrop::status() const {
   if (!dropped()) return "bed settling";
   if (!m_run.finished) return "rock moving";
   const double restedAfter = std::round((m_run.restedAt - droppedAt()) * 100.0) / 100.0;
-  if (atRest()) return "rock at rest " + numberText(restedAfter) + " s after the drop";
-  return "rock still moving " + numberText(m_config.maxRestSeconds) + " s after the drop";
+  if (atRest()) return "rock at rest " + kit::numberText(restedAfter) + " s after the drop";
+  return "rock still moving " + kit::numberText(m_config.maxRestSeconds) + " s after the drop";
 }
 
 std::vector<SceneBody> RockDrop::bodies(const World& world) const {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "scenes/kit/checks.h"
+#include "scenes/kit/course.h"
 #include "scenes/kit/geometry.h"
 #include "scenes/kit/pour.h"
 #include "scenes/kit/readback.h"
@@ -79,7 +80,8 @@ void SandBoxPour::build(World& world) {
   // height) or the last granule falls from the emitter. The bed's wait is limited from its drop,
   // the pile's from the pour's end.
   const double g = length(world.settings().gravity);
-  const double bedLanding = bed ? 1.5 * fallTime(bedHeight + kit::kLatticeGap * d(), 0.0, g) : 0.0;
+  const double bedLanding =
+      bed ? 1.5 * kit::fallTime(bedHeight + kit::kLatticeGap * d(), 0.0, g) : 0.0;
   m_course = kit::PourCourse({.settleSpeed = m_config.settleSpeed,
                               .maxSettleSeconds = m_config.maxSettleSeconds - bedLanding,
                               .actAfter = bedLanding,
@@ -109,7 +111,8 @@ std::array<float, 2> SandBoxPour::pileExtent(std::span<const BodyState> bodies) 
     }
   }
   if (heights.empty()) return {0.0f, 0.0f};
-  return {percentile(heights, 0.99) + kReach * d(), percentile(radii, 0.99) + kReach * d()};
+  return {kit::percentile(heights, 0.99) + kReach * d(),
+          kit::percentile(radii, 0.99) + kReach * d()};
 }
 
 std::vector<SceneMetric> SandBoxPour::metrics(std::span<const BodyState> bodies) const {

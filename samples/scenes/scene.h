@@ -2,7 +2,6 @@
 
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -215,70 +214,10 @@ std::optional<SceneBounds> contentsOf(const Scene& scene, const World& world);
 /// Scene::update, until the scene finishes or the world has simulated `maxSeconds` s in all.
 /// Returns Scene::finished.
 bool runUntilFinished(Scene& scene, World& world, float frameDt, double maxSeconds);
-/// Whether `granules` granules of mass `granuleMass` (kg) are calm after the step that gave
-/// `report`: the world's kinetic energy (from the step's stats) per granule is below that of one
-/// granule moving at `settleSpeed` (m/s). False without per-frame stats (a scene's time limits
-/// apply then) or without granules.
-bool granulesCalm(const StepReport& report, std::uint32_t granules, float granuleMass,
-                  float settleSpeed);
-
-/// Time a body needs to fall `height` (m; none when <= 0) starting at `speed` (m/s, downward)
-/// under gravity `g` (m/s²), s.
-double fallTime(double height, double speed, double g);
-/// Granules in one layer of a square emitter of half extent `halfExtent` (m) for particles of
-/// diameter `particleDiameter` (m) (emitterLayerSlots).
-std::uint32_t emitterLayerGranules(float halfExtent, float particleDiameter);
-/// The Young's modulus (Pa) a scene's World gets for a configured `youngsModulus`: that value
-/// when > 0; for 0 (auto) the one at which two granules meeting head-on at the scene's speed
-/// guard overlap by kScenePeakOverlap (youngsModulusForPeakOverlap), so that no grain passes
-/// through anything and the largest overlap stays under 0.3 d. The stiffer the sand, the shorter
-/// the time step (t_n ∝ E^-2/5): a scene pays for its speed guard in substeps.
-float sceneYoungsModulus(const WorldSettings& settings, float youngsModulus = 0.0f);
-/// The closed-form peak overlap, in particle diameters, that an auto Young's modulus allows
-/// (undamped: real impacts are slower than the guard and damped).
-inline constexpr float kScenePeakOverlap = 0.3f;
-/// Help of the scenes' "youngs-modulus" parameter (sceneYoungsModulus).
-inline constexpr const char* kYoungsModulusHelp =
-    "Young's modulus of the grains, Pa (0: auto, stiff enough that two grains meeting at the "
-    "scene's speed guard overlap by 0.3 d)";
 
 /// The name of a contact law on the command line and in recordings: "hertz-mindlin" or "paper".
 std::string_view contactLawName(ContactLaw law);
 /// The law named `name` (contactLawName), or nothing.
 std::optional<ContactLaw> contactLawFromName(std::string_view name);
-
-/// Short text of a number for messages ("2.5", "0.1", "1e+06").
-std::string numberText(double value);
-
-/// Height between two layers of a loose starting lattice of granules (hourglass, repose-scupper),
-/// d. Odd layers are shifted by half the lattice spacing along x and z, so a granule sits over the
-/// gap between four below it: centres of neighbouring layers are then sqrt(2 (1.2 d)² + v²) apart,
-/// which for v = 1.85 d leaves 2.225 d (the distance at which two granules of any orientation
-/// cannot touch) after both move by their largest jitter of 0.072 d along each axis. A denser
-/// start than the 2.4 d cubic lattice settles sooner.
-inline constexpr float kShiftedLayerHeight = 1.85f;
-
-/// The value below which `fraction` (in [0, 1]) of `values` lie; `values` must not be empty and
-/// is reordered.
-float percentile(std::vector<float>& values, double fraction);
-
-/// Height (m) of the top surface of the granules in `bodies` that are alive and for whose centre
-/// `inside` holds: the 99th percentile of their centre heights plus `outerRadius`, so that a few
-/// bouncing granules do not count; 0 when there are none.
-float pileSurface(std::span<const BodyState> bodies, const std::function<bool(const Vec3&)>& inside,
-                  float outerRadius);
-
-/// Sets the parameter named `name` of `scene` from text ("12", "0.5", "8,8,4" or "8 8 4").
-/// Throws InvalidArgument naming the parameter, the value and the valid range when the name is
-/// unknown, the text does not parse or the value is out of range.
-void setSceneParameter(Scene& scene, std::string_view name, std::string_view text);
-
-/// Shrinks `scene` to the size the tests and the goldens run it at, seconds on llvmpipe: every
-/// block of granules ("batch", "block", "berm", "bed") 4 × 2 × 4, "granules" 32 and "layers" 2.
-/// The scene's geometry stays as it is.
-void useTestSize(Scene& scene);
-
-/// The current value of a parameter as text, in the form setSceneParameter accepts.
-std::string formatSceneParameter(const SceneParameter& parameter);
 
 }  // namespace sandphys::scenes

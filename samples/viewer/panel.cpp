@@ -11,6 +11,7 @@
 #include <type_traits>
 
 #include "sandphys/settings_fields.h"
+#include "scenes/scene_parameters.h"
 
 #include "viewer/panel_widgets.h"
 

@@ -17,6 +17,7 @@
 #include "render/offscreen_target.h"
 #include "render/renderer.h"
 #include "scenes/registry.h"
+#include "scenes/scene_parameters.h"
 #include "support/test_world.h"
 
 namespace sandphys::testing {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "scenes/kit/pour.h"
 #include "scenes/sand_box_pour.h"
 #include "support/scene_metric.h"
 #include "support/test_world.h"
@@ -48,7 +49,7 @@ float pourUntilSettled(std::uint32_t granules) {
   const float d = pour.config().particleDiameter;
   const double rate = pour.config().rate;
   const double budget = granules;
-  const double layer = emitterLayerGranules(0.5f * pour.config().outlet * d, d);
+  const double layer = kit::emitterLayerGranules(0.5f * pour.config().outlet * d, d);
   EXPECT_EQ(layer, 25.0);  // 5 x 5 slots across 10 d at 2.4 d
   while (!pour.finished() && world.simulatedTime() < 2.0) {
     const StepReport report = world.step(kFrame);

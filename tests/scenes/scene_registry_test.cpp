@@ -9,6 +9,7 @@
 #include "scenes/box_drop.h"
 #include "scenes/cylinder_pile.h"
 #include "scenes/registry.h"
+#include "scenes/scene_parameters.h"
 
 namespace sandphys::scenes {
 namespace {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "scenes/registry.h"
+#include "scenes/scene_parameters.h"
 #include "support/every_scene.h"
 
 namespace sandphys::scenes {

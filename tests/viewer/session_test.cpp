@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "scenes/registry.h"
+#include "scenes/scene_parameters.h"
 #include "support/test_world.h"
 #include "viewer/session.h"
 

@@ -17,6 +17,7 @@
 
 #include "runner/process.h"
 #include "scenes/registry.h"
+#include "scenes/scene_parameters.h"
 #include "support/every_scene.h"
 
 namespace sandphys {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <concepts>
+#include <sstream>
 #include <string>
 #include <string_view>
 
@@ -9,6 +10,13 @@
 #include "scenes/scene.h"
 
 namespace sandphys::scenes::kit {
+
+/// Short text of a number for messages ("2.5", "0.1", "1e+06").
+inline std::string numberText(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
 
 namespace detail {
 inline void appendPart(std::string& text, std::string_view part) {

@@ -1,5 +1,8 @@
 #include "scenes/kit/course.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "scenes/scene.h"
 
 namespace sandphys::scenes::kit {
@@ -33,6 +36,16 @@ void Course::endAct(double simTime) {
   if (m_phase != Phase::Acting) return;
   m_phase = Phase::Resting;
   m_actEnd = simTime;
+}
+
+bool granulesCalm(const StepReport& report, std::uint32_t granules, float granuleMass,
+                  float settleSpeed) {
+  const double settleEnergy = 0.5 * granuleMass * settleSpeed * settleSpeed;
+  return report.hasStats && granules > 0 && report.stats.kineticEnergy / granules < settleEnergy;
+}
+
+double fallTime(double height, double speed, double g) {
+  return (std::sqrt(speed * speed + 2.0 * g * std::max(height, 0.0)) - speed) / g;
 }
 
 }  // namespace sandphys::scenes::kit

@@ -75,4 +75,14 @@ class Course {
   bool m_calm = false;
 };
 
+/// Whether `granules` granules of mass `granuleMass` (kg) are calm after the step that gave
+/// `report`: the world's kinetic energy (from the step's stats) per granule is below that of one
+/// granule moving at `settleSpeed` (m/s). False without per-frame stats (a scene's time limits
+/// apply then) or without granules.
+bool granulesCalm(const StepReport& report, std::uint32_t granules, float granuleMass,
+                  float settleSpeed);
+/// Time a body needs to fall `height` (m; none when <= 0) starting at `speed` (m/s, downward)
+/// under gravity `g` (m/s²), s.
+double fallTime(double height, double speed, double g);
+
 }  // namespace sandphys::scenes::kit

@@ -75,4 +75,12 @@ Course gateCourse(const Config& c, const WorldSettings& settings, double minRest
                 granuleMass(settings));
 }
 
+/// Height between two layers of a loose starting lattice of granules (hourglass, repose-scupper),
+/// d. Odd layers are shifted by half the lattice spacing along x and z, so a granule sits over the
+/// gap between four below it: centres of neighbouring layers are then sqrt(2 (1.2 d)² + v²) apart,
+/// which for v = 1.85 d leaves 2.225 d (the distance at which two granules of any orientation
+/// cannot touch) after both move by their largest jitter of 0.072 d along each axis. A denser
+/// start than the 2.4 d cubic lattice settles sooner.
+inline constexpr float kShiftedLayerHeight = 1.85f;
+
 }  // namespace sandphys::scenes::kit

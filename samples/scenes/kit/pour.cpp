@@ -84,4 +84,9 @@ std::string PourCourse::status() const {
   return calm() ? "settled" : "stopped";
 }
 
+std::uint32_t emitterLayerGranules(float halfExtent, float particleDiameter) {
+  return static_cast<std::uint32_t>(emitterLayerSlots(
+      EmitterSettings{.halfExtentX = halfExtent, .halfExtentZ = halfExtent}, particleDiameter));
+}
+
 }  // namespace sandphys::scenes::kit

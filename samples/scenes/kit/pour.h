@@ -122,4 +122,8 @@ class PourScene : public SceneWith<Config> {
   PourCourse m_course;
 };
 
+/// Granules in one layer of a square emitter of half extent `halfExtent` (m) for particles of
+/// diameter `particleDiameter` (m) (emitterLayerSlots).
+std::uint32_t emitterLayerGranules(float halfExtent, float particleDiameter);
+
 }  // namespace sandphys::scenes::kit

@@ -55,4 +55,22 @@ double meanDisplacement(const Reference& reference, std::span<const BodyState> b
   return count ? sum / static_cast<double>(count) : 0.0;
 }
 
+float percentile(std::vector<float>& values, double fraction) {
+  const auto rank = static_cast<std::size_t>(fraction * static_cast<double>(values.size() - 1));
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(rank),
+                   values.end());
+  return values[rank];
+}
+
+float pileSurface(std::span<const BodyState> bodies, const std::function<bool(const Vec3&)>& inside,
+                  float outerRadius) {
+  std::vector<float> heights;
+  heights.reserve(bodies.size());
+  for (const BodyState& body : bodies) {
+    if (body.alive && body.granule && inside(body.position)) heights.push_back(body.position.y);
+  }
+  if (heights.empty()) return 0.0f;
+  return percentile(heights, 0.99) + outerRadius;
+}
+
 }  // namespace sandphys::scenes::kit

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <ranges>
 #include <span>
@@ -51,5 +52,14 @@ SceneBody sceneBody(std::string name, const BodyState& state, Vec3 up = {0.0f, 1
 /// where they were in `reference`; 0 when none was there.
 double meanDisplacement(const Reference& reference, std::span<const BodyState> bodies,
                         const Vec3& direction);
+
+/// The value below which `fraction` (in [0, 1]) of `values` lie; `values` must not be empty and
+/// is reordered.
+float percentile(std::vector<float>& values, double fraction);
+/// Height (m) of the top surface of the granules in `bodies` that are alive and for whose centre
+/// `inside` holds: the 99th percentile of their centre heights plus `outerRadius`, so that a few
+/// bouncing granules do not count; 0 when there are none.
+float pileSurface(std::span<const BodyState> bodies, const std::function<bool(const Vec3&)>& inside,
+                  float outerRadius);
 
 }  // namespace sandphys::scenes::kit

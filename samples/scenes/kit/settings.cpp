@@ -56,4 +56,10 @@ WorldSettings worldSettings(std::string_view scene, float d, const SettingsRule&
   return settings;
 }
 
+float sceneYoungsModulus(const WorldSettings& settings, float youngsModulus) {
+  if (youngsModulus > 0.0f) return youngsModulus;
+  return static_cast<float>(
+      youngsModulusForPeakOverlap(settings, kScenePeakOverlap * settings.particleDiameter));
+}
+
 }  // namespace sandphys::scenes::kit
