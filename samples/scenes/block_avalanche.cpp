@@ -51,22 +51,22 @@ struct BlockAvalanche::Blocks {
     Vec3 start;
   };
 
-  bullet::OwnedWorld bullet;
+  bullet::OwnedWorld physics;
   std::vector<Block> blocks;
   std::unique_ptr<bullet::Bridge> bridge;
   BlockAvalancheConfig config;  // as at build()
 
   Blocks(float floorY, const BlockAvalancheConfig& blockConfig, const Vec3& gravity)
-      : bullet(gravity), config(blockConfig) {
-    bullet.add(std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), floorY), 0.0f,
-               btTransform::getIdentity(), config.blockFriction);
+      : physics(gravity), config(blockConfig) {
+    physics.add(std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), floorY), 0.0f,
+                btTransform::getIdentity(), config.blockFriction);
   }
 
   void addBlock(std::string name, const btVector3& half, const btVector3& centre) {
     const float mass = config.density * 8.0f * float(half.x() * half.y() * half.z());
     btRigidBody* body =
-        bullet.add(std::make_unique<btBoxShape>(half), mass,
-                   btTransform(btQuaternion::getIdentity(), centre), config.blockFriction);
+        physics.add(std::make_unique<btBoxShape>(half), mass,
+                    btTransform(btQuaternion::getIdentity(), centre), config.blockFriction);
     blocks.push_back({std::move(name), body, bullet::toSand(centre)});
   }
 };
@@ -100,7 +100,7 @@ void BlockAvalanche::build(World& world) {
   const float lowX = foot + m_blocksConfig.blockDistance * d + low.x();
   m_blocks->addBlock("low-block", low, btVector3(lowX, floorY + low.y(), 0.0f));
   m_blocks->addBlock("plank", plank, btVector3(lowX, floorY + 2.0f * low.y() + plank.y(), 0.0f));
-  m_blocks->bridge = std::make_unique<bullet::Bridge>(world, m_blocks->bullet.dynamics());
+  m_blocks->bridge = std::make_unique<bullet::Bridge>(world, m_blocks->physics.dynamics());
   m_surfaces.clear();
   for (Blocks::Block& block : m_blocks->blocks) m_blocks->bridge->couple(block.body);
   for (const bullet::Bridge::Coupled& c : m_blocks->bridge->coupled()) {

@@ -54,7 +54,7 @@ float fallGuardSpeed(float height);
 
 /// Speed guard (WorldSettings::maxSpeed) for grains that leave an emitter at `speed` (m/s) and
 /// fall `height` (m) under gravity `g` (m/s²): the impact with a margin for rebounds and the rim
-/// speed of spinning grains, and at least 2 m/s.
+/// speed of spinning grains, and at least kMinGuardSpeed.
 float pourGuardSpeed(float speed, float height, float g);
 
 /// Gravity of a World with default settings, m/s², for the scenes' speed guards.
