@@ -15,9 +15,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // A small box pile, briefly settled, timed for 100 substeps and then run in LAMMPS.
-const std::string kBench = std::string(SANDPHYS_BENCH_EXE) +
-                           " --scene box --sizes 256 --settle-steps 2000 --steps 100"
-                           " --no-kernel-times --quiet --lammps-ranks 1";
+const std::string kBench = smallBoxBench(2000, 100) + " --no-kernel-times --lammps-ranks 1";
 
 class LammpsSideBySide : public ::testing::Test {
  protected:

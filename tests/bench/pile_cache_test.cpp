@@ -15,9 +15,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // A small box pile, briefly settled: what the cache keeps does not depend on how settled it is.
-const std::string kBench = std::string(SANDPHYS_BENCH_EXE) +
-                           " --scene box --sizes 256 --settle-steps 4000 --steps 100"
-                           " --kernel-steps 10 --quiet";
+const std::string kBench = smallBoxBench(4000, 100) + " --kernel-steps 10";
 
 class PileCache : public ::testing::Test {
  protected:

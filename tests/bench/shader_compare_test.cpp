@@ -17,9 +17,7 @@ namespace fs = std::filesystem;
 
 // A small box pile, settled into contact, timed for 40 substeps and then run under each version
 // (the kernel times are asked for by the test that checks them).
-const std::string kPile = std::string(SANDPHYS_BENCH_EXE) +
-                          " --scene box --sizes 256 --settle-steps 2000 --steps 40 --quiet"
-                          " --compare-rounds 2";
+const std::string kPile = smallBoxBench(2000, 40) + " --compare-rounds 2";
 const std::string kBench = kPile + " --no-kernel-times --compare-shaders ";
 
 class CompareShaders : public ::testing::Test {
