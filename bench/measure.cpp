@@ -348,6 +348,7 @@ void countTimedSpan(const WorldStats& start, const WorldStats& end, SizeResult& 
   result.contactSlotOverflows = end.contactSlotOverflows - start.contactSlotOverflows;
   result.velocityClamps = end.velocityClamps - start.velocityClamps;
   result.listBuilds = end.listBuilds - start.listBuilds;
+  result.listNearMarkings = end.listNearMarkings - start.listNearMarkings;
   result.stillGridBuilds = end.stillGridBuilds - start.stillGridBuilds;
   result.movingGridParticles = end.movingGridParticles;
   result.listOverflows = end.neighbourListOverflows - start.neighbourListOverflows;
@@ -380,6 +381,7 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   result.timeStep = world.timeStep();
   result.contactTime = world.contactModel().contactTime;
   result.listSkin = world.contactModel().listSkin;
+  result.listNearSkin = world.contactModel().listNearSkin;
   result.gpuMemoryBytes = world.gpuMemoryBytes();
   result.built = readPileState(world, pile, world.readStats());
   world.resetPeakOverlap();  // the settled state's peak is the settling's

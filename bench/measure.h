@@ -110,8 +110,10 @@ struct SizeResult {
   /// Hertz contact time t_n at the speed guard (ContactModel::contactTime), s: the World
   /// refuses a time step above t_n / kMinStepsPerContact.
   float contactTime = 0.0f;
-  /// Skin of the neighbour lists (ContactModel::listSkin), m.
+  /// Skin of the neighbour lists (ContactModel::listSkin) and its near skin
+  /// (ContactModel::listNearSkin), m.
   float listSkin = 0.0f;
+  float listNearSkin = 0.0f;
   double setupSeconds = 0.0;  ///< World creation (kernel compilation) and build, wall s
   std::uint64_t gpuMemoryBytes = 0;
 
@@ -151,6 +153,7 @@ struct SizeResult {
   std::uint64_t contactSlotOverflows = 0;  ///< during the measurement (HertzMindlin)
   std::uint64_t velocityClamps = 0;        ///< during the measurement
   std::uint64_t listBuilds = 0;            ///< neighbour-list builds during the measurement
+  std::uint64_t listNearMarkings = 0;      ///< markings of the lists' near part, the same span
   std::uint64_t listOverflows = 0;         ///< particles over a list's capacity at those builds
   std::vector<KernelStep> kernels;         ///< empty without kernel times
   std::vector<RenderTiming> renders;       ///< one per quality preset; empty without --render

@@ -146,6 +146,8 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
       {"list_builds_per_1000_substeps", size.listBuildsPer1000Steps()},
       {"list_overflows", size.listOverflows},
       {"list_skin_d", size.listSkin / d},
+      {"list_near_skin_d", size.listNearSkin / d},
+      {"list_near_markings", size.listNearMarkings},
       {"sleep_wait_substeps", size.sleepWaitSteps},
       {"granules_asleep_at_start", size.asleepAtStart},
       {"granules_asleep_at_end", size.asleepAtEnd},
@@ -558,11 +560,14 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
   }
   for (const SizeResult& s : report.sizes) {
     std::fprintf(out,
-                 "  %u granules: neighbour-list skin %.3g d; %llu list builds and %llu particles "
-                 "over a list's capacity at them in the %u timed substeps\n",
+                 "  %u granules: neighbour-list skin %.3g d, near skin %.3g d; %llu list builds "
+                 "and %llu particles over a list's capacity at them, %llu markings of the near "
+                 "part, in the %u timed substeps\n",
                  s.granules, double(s.listSkin / particleDiameter(measure)),
+                 double(s.listNearSkin / particleDiameter(measure)),
                  static_cast<unsigned long long>(s.listBuilds),
-                 static_cast<unsigned long long>(s.listOverflows), s.steps);
+                 static_cast<unsigned long long>(s.listOverflows),
+                 static_cast<unsigned long long>(s.listNearMarkings), s.steps);
   }
   for (const SizeResult& s : report.sizes) {
     if (s.settledFrom.empty()) continue;

@@ -7,7 +7,8 @@
 // lists were built, so the sum is bit-identical run to run and whatever the skin.
 //
 // The loop over the list only marks the entries in contact (closer than a diameter), a bit each;
-// the law is then evaluated for the marked entries in order. In SIMD lanes whose lists differ,
+// the law is then evaluated for the marked entries in order. Without sleep the loop tests only the
+// entries marked near (SCANS_NEAR, common/neighbour_list.glsl); the search's pass tests them all. In SIMD lanes whose lists differ,
 // the law's arithmetic then runs once per contact rather than once per candidate any lane has in
 // contact, and no array is indexed by a count that differs between lanes.
 //
@@ -87,6 +88,10 @@ layout(local_size_x = WORKGROUP_SIZE) in;
 
 NEIGHBOUR_LIST_TEXTURE
 LIST_ORIGIN_TEXTURE
+#if !defined(SLEEPING) && !defined(SEARCHES_GRID)
+#define SCANS_NEAR
+LIST_NEAR_TEXTURE
+#endif
 CELL_START_TEXTURE
 CELL_PARTICLES_TEXTURE
 PARTICLE_POSITION_TEXTURE
@@ -687,9 +692,18 @@ void main() {
   // evaluated once per contact, from one place in the code.
   uint inList = min(listed, uint(NEIGHBOUR_LIST_CAPACITY));
   uint inContact = 0u;
+#ifdef SCANS_NEAR
+  // Only the entries marked near can touch (common/neighbour_list.glsl).
+  for (uint near = floatBitsToUint(texelFetch(listNearTexture, int(i)).w); near != 0u;
+       near &= near - 1u) {
+    uint k = uint(findLSB(near));
+    if (touches(self, texelFetch(neighbourListTexture, listEntry(i, k)).x)) inContact |= 1u << k;
+  }
+#else
   for (uint k = 0u; k < inList; ++k) {
     if (touches(self, texelFetch(neighbourListTexture, listEntry(i, k)).x)) inContact |= 1u << k;
   }
+#endif
 #ifdef SEARCHES_GRID
   bool beyond = listed > uint(NEIGHBOUR_LIST_CAPACITY);
 #ifdef SLEEPING

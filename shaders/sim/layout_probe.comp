@@ -21,8 +21,8 @@ layout(std430, binding = 43) readonly buffer ListCapacityProbe { uint listCapaci
 layout(std430, binding = 44) readonly buffer ListDispatchProbe { uint listDispatchProbe[COUNTER_LIST_DISPATCH]; };
 layout(std430, binding = 45) readonly buffer ListPassesProbe { uvec4 listPassesProbe[LIST_BUILD_PASSES]; };
 layout(std430, binding = 46) readonly buffer ListPassProbe { uvec4 listPassProbe[PASS_LIST_BUILD + 1u]; };
-// The counters of sleep's two grids that the CPU reads, and the one it writes for the pair
-// counts: each member starts at its counter.
+// The counters of sleep's two grids that the CPU reads, the one it writes for the pair counts
+// and the lists' near markings it reads: each member starts at its counter.
 layout(std430, binding = 49) readonly buffer GridCountersProbe {
   uint beforeStillBuildsProbe[COUNTER_STILL_BUILDS];
   uint stillBuildsProbe[COUNTER_GRID_ACTIVE - COUNTER_STILL_BUILDS];
@@ -30,6 +30,8 @@ layout(std430, binding = 49) readonly buffer GridCountersProbe {
   uint gridRecentProbe;
   uint beforeRecountPairsProbe[COUNTER_RECOUNT_PAIRS - COUNTER_GRID_RECENT - 1];
   uint recountPairsProbe;
+  uint beforeNearMarkingsProbe[COUNTER_NEAR_MARKINGS - COUNTER_RECOUNT_PAIRS - 1];
+  uint nearMarkingsProbe;
 };
 // The active passes' commands (sleep).
 layout(std430, binding = 47) readonly buffer ActiveDispatchProbe { uint activeDispatchProbe[COUNTER_ACTIVE_DISPATCH]; };
@@ -45,6 +47,7 @@ void main() {
   sum.y += float(listCapacityProbe[0] + listDispatchProbe[0] + listPassProbe[0].x);
   sum.z += float(activeDispatchProbe[0] + activePassesProbe[0].x);
   sum.w += float(beforeStillBuildsProbe[0] + stillBuildsProbe[0] + gridActiveProbe[0] + gridRecentProbe + recountPairsProbe);
+  sum.w += float(beforeNearMarkingsProbe[0] + nearMarkingsProbe);
   sum += sinks[0].lo + sinks[0].hi;
   sum += vec4(statsPartials[0].counts) + statsPartials[0].sums + vec4(statsPartials[0].sleep);
   sum += contactList[0] + vec4(float(contactListCount + contactListCapacity + pad0 + pad1));

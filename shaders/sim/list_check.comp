@@ -1,7 +1,7 @@
 #version 450
 // First pass of every substep without sleep, one thread: whether the neighbour lists are built
-// before the contacts (common/list_decision.glsl); and the commands of the passes whose lists are
-// filled again cleared (clearRunningCommands).
+// before the contacts, and their near part marked (common/list_decision.glsl); and the commands
+// of the passes whose lists are filled again cleared (clearRunningCommands).
 #include "common/layout.glsl"
 
 layout(local_size_x = 1) in;

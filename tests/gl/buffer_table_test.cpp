@@ -124,8 +124,9 @@ TEST(BufferTable, EveryBufferIsDeclaredAtItsBindingWithItsStrideAndView) {
 
 // What only sleeping sand uses (its lists of what a substep computes, the builds of each list and
 // body, the spin and calm count beside each particle) takes the smallest buffer in a World without
-// sleep, and the capacity in one with it: five buffers.
-TEST(BufferTable, SleepBuffersTakeMemoryOnlyInASleepingWorld) {
+// sleep, and the capacity in one with it: five buffers. The lists' near marks, which only a World
+// without sleep uses, the other way round.
+TEST(BufferTable, SleepBuffersTakeMemoryOnlyInASleepingWorldAndNearMarksOnlyInAnAwakeOne) {
   unsigned checked = 0;
   for (const bool sleep : {false, true}) {
     WorldSettings settings = testing::smallSettings(128);
@@ -137,9 +138,11 @@ TEST(BufferTable, SleepBuffersTakeMemoryOnlyInASleepingWorld) {
       std::size_t units = 0;
       if (spec.sizedBy == SizedBy::SleepBodies) units = w.bodyCapacity;
       if (spec.sizedBy == SizedBy::SleepParticles) units = w.particleCapacity;
+      const bool awakeOnly = spec.sizedBy == SizedBy::AwakeLists;
+      if (awakeOnly) units = w.particleCapacity;
       if (units == 0) continue;
       SCOPED_TRACE(std::string(spec.array) + (sleep ? ", sleep" : ", no sleep"));
-      if (sleep) {
+      if (sleep != awakeOnly) {
         EXPECT_EQ(w.buffers[Binding(b)].size(), units * spec.unitBytes());
       } else {
         EXPECT_LE(w.buffers[Binding(b)].size(), 16u);  // gl::Buffer's smallest
@@ -147,7 +150,7 @@ TEST(BufferTable, SleepBuffersTakeMemoryOnlyInASleepingWorld) {
       ++checked;
     }
   }
-  EXPECT_EQ(checked, 10u);
+  EXPECT_EQ(checked, 12u);
 }
 
 }  // namespace

@@ -86,6 +86,8 @@ TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
       {"wallShearStiffness", offsetof(SimParams, wallShearStiffness)},
       {"listReachSquared", offsetof(SimParams, listReachSquared)},
       {"listMoveSquared", offsetof(SimParams, listMoveSquared)},
+      {"nearReachSquared", offsetof(SimParams, nearReachSquared)},
+      {"nearMoveSquared", offsetof(SimParams, nearMoveSquared)},
       {"listStride", offsetof(SimParams, listStride)},
       {"sleepLinearSpeed", offsetof(SimParams, sleepLinearSpeed)},
       {"sleepAngularSpeed", offsetof(SimParams, sleepAngularSpeed)},
@@ -132,12 +134,13 @@ TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
             GLint(4 * kNeighbourListCapacity));
   EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "ListDispatchProbe"),
             GLint(4 * kCounterListDispatch));
-  // The counters of sleep's two grids that the CPU reads, and the one it writes to have every
-  // pair counted, each member of the probe at its word.
+  // The counters of sleep's two grids that the CPU reads, the one it writes to have every pair
+  // counted and the near markings it reads, each member of the probe at its word.
   const Member gridCounters[] = {{"stillBuildsProbe[0]", 4 * kCounterStillBuilds},
                                  {"gridActiveProbe[0]", 4 * kCounterGridActive},
                                  {"gridRecentProbe", 4 * kCounterGridRecent},
-                                 {"recountPairsProbe", 4 * kCounterRecountPairs}};
+                                 {"recountPairsProbe", 4 * kCounterRecountPairs},
+                                 {"nearMarkingsProbe", 4 * kCounterNearMarkings}};
   for (const Member& m : gridCounters) {
     EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, m.name), GLint(m.offset)) << m.name;
   }

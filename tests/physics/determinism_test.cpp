@@ -117,6 +117,29 @@ TEST(Determinism, TheListSkinDoesNotChangeTheResult) {
   EXPECT_GT(runs[2].stats.neighbourListOverflows, 0u) << "the grid's share is not exercised";
 }
 
+// Without sleep the contacts passes test only the entries of a list marked near (within d + near
+// skin when last marked; list_near.comp), marked again once some particle has moved half the near
+// skin. Every bit of the state is that of every particle testing every candidate in the grid:
+// through a fall, with a skin roomy enough that the near part is marked many times between builds.
+TEST(Determinism, ContactsFromTheListsNearPartAreThoseOfEveryParticleSearched) {
+  WorldSettings s = testing::smallSettings();
+  s.listSkin = 0.4f * s.particleDiameter;
+  testing::TestWorld some(s), every(s);
+  testing::searchEveryParticle(*every);
+  for (testing::TestWorld* w : {&some, &every}) {
+    buildPile(**w);
+    (*w)->substep(1500);
+  }
+  const WorldStats stats = some->readStats();
+  std::printf("[ near ] near skin %.3g d: %llu markings, %llu builds in 1500 substeps\n",
+              some->contactModel().listNearSkin / s.particleDiameter,
+              static_cast<unsigned long long>(stats.listNearMarkings),
+              static_cast<unsigned long long>(stats.listBuilds));
+  EXPECT_GT(stats.listNearMarkings, 3 * stats.listBuilds) << "markings between builds";
+  EXPECT_GT(stats.contacts, 30u);
+  EXPECT_EQ(some->readStateHash(), every->readStateHash());
+}
+
 // The pair counts of the damping are taken again only for granules whose contact slots changed
 // (common/contact_pairs.glsl), and for all after the CPU changed the bodies. They and every bit of
 // the state are those of taking them for every granule in every substep: through the pile's

@@ -37,6 +37,8 @@ struct ContactModel {
   float contactTime = 0.0f;  ///< t_n at maxSpeed for a grain-grain impact, s
   /// Skin of the neighbour lists, m (WorldSettings::listSkin, or the rule stated there).
   float listSkin = 0.0f;
+  /// Near skin of the lists, m: kListNearSkinFraction · listSkin (settings.h).
+  float listNearSkin = 0.0f;
 
   /// Builds and validates the model; throws InvalidArgument naming the field, value and limit.
   static ContactModel fromSettings(const WorldSettings& settings);

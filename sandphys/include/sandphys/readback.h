@@ -87,6 +87,9 @@ struct WorldStats {
   /// Builds of the neighbour lists so far (total): on the GPU's decision, when a particle has
   /// moved half the skin (WorldSettings::listSkin), a granule died or bodies were added.
   std::uint64_t listBuilds = 0;
+  /// Markings of the lists' near part so far (total; 0 with WorldSettings::sleep): after each
+  /// build, and when a particle has moved half the near skin (ContactModel::listNearSkin).
+  std::uint64_t listNearMarkings = 0;
   /// Particles that had more partners within d + skin than a neighbour list holds at a build
   /// (total over builds). Their further partners are found in the grid each substep: exact, only
   /// slower.

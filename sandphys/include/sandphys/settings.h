@@ -155,5 +155,10 @@ inline constexpr float kMaxPositionSpacing = 0.01f;
 inline constexpr float kListSkinSubsteps = 10.0f;
 inline constexpr float kMinListSkin = 0.05f;
 inline constexpr float kMaxListSkin = 0.5f;
+/// The near skin of the lists (ContactModel::listNearSkin), as a fraction of the skin. Without
+/// sleep the contacts passes test only the entries of a list that were within d + near skin
+/// when it was last marked, and it is marked again once some particle has moved half the near
+/// skin: a cheaper scan in a resting pile, for a marking that costs about one scan.
+inline constexpr float kListNearSkinFraction = 0.25f;
 
 }  // namespace sandphys

@@ -252,6 +252,7 @@ ContactModel ContactModel::fromSettings(const WorldSettings& s) {
     const double travel = 2.0 * kListSkinSubsteps * s.maxSpeed * m.timeStep;
     m.listSkin = static_cast<float>(std::clamp(travel, kMinListSkin * d, kMaxListSkin * d));
   }
+  m.listNearSkin = kListNearSkinFraction * m.listSkin;
   m.tangentialDamping = s.material.tangentialDamping > 0.0f
                             ? s.material.tangentialDamping
                             : static_cast<float>(0.25 * mass / m.timeStep);

@@ -18,12 +18,14 @@ namespace sandphys::detail {
 /// particles, so nothing is kept when they grow.
 /// History: the particles when the contact law keeps contact state (HertzMindlin), else one unit;
 /// SleepBodies, SleepParticles: the bodies, the particles with sleep, else one unit.
+/// AwakeLists: the particles without sleep, else one unit, rebuilt from the lists.
 enum class SizedBy {
   Bodies,
   Particles,
   SleepBodies,
   SleepParticles,
   Lists,
+  AwakeLists,
   History,
   Table,
   TablePlusOne,

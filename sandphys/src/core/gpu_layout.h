@@ -34,7 +34,9 @@ inline constexpr std::uint32_t kCounterGridActive = 11;
 inline constexpr std::uint32_t kCounterGridRecent = 12;
 /// Non-zero while the CPU asks integrate_bodies.comp to take every granule's pair counts.
 inline constexpr std::uint32_t kCounterRecountPairs = 14;
-inline constexpr std::uint32_t kCounterListDispatch = 24;
+/// Markings of the lists' near part (list_near.comp), without sleep.
+inline constexpr std::uint32_t kCounterNearMarkings = 24;
+inline constexpr std::uint32_t kCounterListDispatch = 28;
 /// COUNTER_LIST_REQUESTED values (layout.glsl): the CPU asks for every list.
 inline constexpr std::uint32_t kListRequestAll = 1;
 /// The passes of a list build, each dispatched from its own indirect command (list_check.comp).
@@ -47,6 +49,7 @@ enum ListBuildPass : std::uint32_t {
   kPassGridScatter,
   kPassGridSort,
   kPassListBuild,
+  kPassListNear,  // not of the build: the lists' near part marked again (list_near.comp)
   kListBuildPasses,
 };
 inline constexpr std::uint32_t kCounterActiveDispatch = kCounterListDispatch + 4 * kListBuildPasses;
@@ -175,6 +178,8 @@ struct alignas(16) SimParams {
   float wallShearStiffness;
   float listReachSquared;
   float listMoveSquared;
+  float nearReachSquared;
+  float nearMoveSquared;
   std::uint32_t listStride;
   float sleepLinearSpeed;
   float sleepAngularSpeed;
@@ -189,6 +194,6 @@ static_assert(sizeof(GpuSink) == 32);
 static_assert(sizeof(GpuContactRecord) == 80);
 static_assert(sizeof(GpuStatsPartial) == 48);
 static_assert(sizeof(Vec3) == 12);  // std140 packs dt right after gravity
-static_assert(sizeof(SimParams) == 144);
+static_assert(sizeof(SimParams) == 160);
 
 }  // namespace sandphys::detail

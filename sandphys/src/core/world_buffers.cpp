@@ -72,6 +72,9 @@ void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::
       case SizedBy::Lists:
         count = particles;
         break;
+      case SizedBy::AwakeLists:
+        count = sleeping ? 1 : particles;
+        break;
       case SizedBy::History:
         count = history ? particles : 1;
         keep = history ? particlesInUse : 0;
@@ -104,7 +107,7 @@ void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::
     } else if (bytes > buffer.size()) {
       if (spec.sizedBy == SizedBy::Table || spec.sizedBy == SizedBy::TablePlusOne ||
           spec.sizedBy == SizedBy::ScanBlocks || spec.sizedBy == SizedBy::GridParticles ||
-          spec.sizedBy == SizedBy::Lists) {
+          spec.sizedBy == SizedBy::Lists || spec.sizedBy == SizedBy::AwakeLists) {
         buffer = gl::Buffer(bytes, spec.array);  // rebuilt from the particles: nothing to keep
       } else {
         buffer.grow(bytes, keep * spec.unitBytes());
@@ -163,6 +166,7 @@ void WorldKernels::compile(ContactLaw law, bool sleeping, bool searchEvery) {
   const std::vector<std::string> every =
       searchEvery ? std::vector<std::string>{"SEARCH_EVERY 1"} : std::vector<std::string>{};
   listBuild = compile("sim/list_build.comp", every);
+  if (!sleeping) listNear = compile("sim/list_near.comp");
   contacts = compile("sim/contacts.comp", every);
   contactList = compile("sim/contacts.comp", {"CONTACT_LIST 1"});
   contactsSearch = compile("sim/contacts.comp", {"SEARCHING 1"});
@@ -181,12 +185,30 @@ void WorldKernels::compile(ContactLaw law, bool sleeping, bool searchEvery) {
 }
 
 void WorldKernels::release() {
-  for (GLuint p : {bodiesToParticles, listCheck,         gridExtent,       gridCount,
-                   scanBlocks,        scanBlockSums,     scanAdd,          gridScatter,
-                   gridSort,          listBuild,         contacts,         contactList,
-                   contactsSearch,    contactsColliders, integrateBodies,  integrateLargeBodies,
-                   countPairs,        statsReduce,       resetPeakOverlap, stateHash,
-                   spawnCheck,        wakeRegion,        collectActive}) {
+  for (GLuint p : {bodiesToParticles,
+                   listCheck,
+                   gridExtent,
+                   gridCount,
+                   scanBlocks,
+                   scanBlockSums,
+                   scanAdd,
+                   gridScatter,
+                   gridSort,
+                   listBuild,
+                   listNear,
+                   contacts,
+                   contactList,
+                   contactsSearch,
+                   contactsColliders,
+                   integrateBodies,
+                   integrateLargeBodies,
+                   countPairs,
+                   statsReduce,
+                   resetPeakOverlap,
+                   stateHash,
+                   spawnCheck,
+                   wakeRegion,
+                   collectActive}) {
     if (p) glDeleteProgram(p);
   }
   *this = {};

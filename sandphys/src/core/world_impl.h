@@ -58,6 +58,7 @@ struct WorldKernels {
   GLuint gridSort = 0;
   GLuint listCheck = 0;
   GLuint listBuild = 0;
+  GLuint listNear = 0;  // without sleep
   GLuint contacts = 0;
   GLuint contactList = 0;
   GLuint contactsSearch = 0;  // contacts.comp over the particles it left to the grid search

@@ -22,10 +22,14 @@ void World::Impl::uploadParams() {
   p.particleDiameter = settings.particleDiameter;
   p.inverseCellSize = 1.0f / reach;
   p.maxOverlap = model.maxOverlap;
-  // A build is asked for a hair before a particle has moved half the skin, so that rounding
-  // cannot bring an unlisted pair into contact.
+  // A build (a marking of the near part) is asked for a hair before a particle has moved half the
+  // skin (near skin), so that rounding cannot bring an unlisted (unmarked) pair into contact.
   p.listReachSquared = reach * reach;
   p.listMoveSquared = 0.98f * 0.25f * skin * skin;
+  const float nearSkin = model.listNearSkin;
+  const float nearReach = settings.particleDiameter + nearSkin;
+  p.nearReachSquared = nearReach * nearReach;
+  p.nearMoveSquared = 0.98f * 0.25f * nearSkin * nearSkin;
   // Entries follow the particles in use (every change of their number asks for a build), so
   // that a World with room to spare lays its lists out as a full one does.
   p.listStride = particleCount;
@@ -153,6 +157,11 @@ void World::Impl::prepareContacts() {
   // granule died, the CPU asked).
   dispatch(kernels.listCheck, "list_check", 1, 1);
   buildLists();
+  // 2b. Without sleep, the lists' near part marked again: after a build, or once a particle moved
+  // half the near skin (list_check decides that too).
+  if (kernels.listNear) {
+    dispatchIndirect(kernels.listNear, "list_near", listDispatchOffset(kPassListNear));
+  }
 }
 
 void World::Impl::searchContacts() {
@@ -298,6 +307,7 @@ WorldStats World::Impl::reduceStats() {
   s.granulesNotBorn = counters[kCounterSpawnTaken];
   s.gridBuckets = table.size;
   s.listBuilds = counters[kCounterListBuilds];
+  s.listNearMarkings = counters[kCounterNearMarkings];
   s.neighbourListOverflows = counters[kCounterListOverflows];
   if (sleep.enabled) {
     s.stillGridBuilds = counters[kCounterStillBuilds];

@@ -95,9 +95,15 @@ struct SinkBox {
 // common/list_decision.glsl).
 #define COUNTER_COLLIDERS_LISTED 21
 #define COUNTER_SEARCH_LISTED 22
+// Without sleep: non-zero when the near part of the lists is marked again before the next
+// contacts (a particle moved more than half the near skin since it was last marked;
+// list_check.comp reads and clears it).
+#define COUNTER_NEAR_REQUESTED 23
+// Without sleep: markings of the lists' near part so far (list_near.comp).
+#define COUNTER_NEAR_MARKINGS 24
 // From this uint on: the indirect dispatch commands of the list build, one per pass below (4
 // uints each: groups x, y, z and padding), zero groups when no build is due.
-#define COUNTER_LIST_DISPATCH 24
+#define COUNTER_LIST_DISPATCH 28
 #define PASS_GRID_EXTENT 0u
 #define PASS_GRID_COUNT 1u
 #define PASS_SCAN_BLOCKS 2u
@@ -106,7 +112,10 @@ struct SinkBox {
 #define PASS_GRID_SCATTER 5u
 #define PASS_GRID_SORT 6u
 #define PASS_LIST_BUILD 7u
-#define LIST_BUILD_PASSES 8
+// Not a pass of the build: the marking of the lists' near part (list_near.comp), after a build
+// or when a particle moved half the near skin.
+#define PASS_LIST_NEAR 8u
+#define LIST_BUILD_PASSES 9
 // After those, the indirect commands of the passes over lists: under SLEEPING the contacts and
 // integrate_bodies passes over the active lists (ACTIVE_PARTICLES, ACTIVE_BODIES), the count_pairs
 // pass over the granules due (PAIRS_DUE), and the contacts passes over the particles that search
@@ -177,6 +186,9 @@ layout(std140, binding = 0) uniform SimParams {
   float listReachSquared;      // (d + skin)^2 (m^2): a pair closer than this is listed
   // A hair under (skin / 2)^2 (m^2): a particle that moved this far asks for a build.
   float listMoveSquared;
+  float nearReachSquared;      // (d + near skin)^2 (m^2): a listed pair closer than this is near
+  // A hair under (near skin / 2)^2 (m^2): a particle that moved this far asks for a marking.
+  float nearMoveSquared;
   uint listStride;             // of a neighbour-list entry: the particles in use
   float sleepLinearSpeed;      // SLEEPING: speed thresholds (m/s, rad/s)
   float sleepAngularSpeed;

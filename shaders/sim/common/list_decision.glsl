@@ -7,6 +7,8 @@
 // list (COUNTER_LIST_ALL tells list_build.comp which), unless `everyList`, and sorts them and the
 // `recentParticles` into the moving grid; the still grid is built only when stillGridDue (or
 // `everyList`: then the moving grid takes no particle). common/grid.glsl has the two grids.
+// Without sleep it also writes the group counts of list_near.comp, full after a build or when a
+// particle moved half the near skin since the last marking, and clears that request.
 uint groupsFor(uint threads) {
   return (threads + WORKGROUP_SIZE - 1u) / WORKGROUP_SIZE;
 }
@@ -124,5 +126,13 @@ bool decideListBuild(bool everyList, uint activeParticles, uint recentParticles)
   setGroups(PASS_GRID_SCATTER, gridGroups);
   setGroups(PASS_GRID_SORT, sortGroups);
   setGroups(PASS_LIST_BUILD, listGroups);
+#ifndef SLEEPING
+  // The near part of the lists, marked again after a build or once some particle moved half the
+  // near skin since the last marking.
+  bool nearDue = due || counters[COUNTER_NEAR_REQUESTED] != 0u;
+  counters[COUNTER_NEAR_REQUESTED] = 0u;
+  if (nearDue) counters[COUNTER_NEAR_MARKINGS] += 1u;
+  setGroups(PASS_LIST_NEAR, nearDue ? groupsFor(params.particleCount) : 0u);
+#endif
   return due;
 }

@@ -1,8 +1,14 @@
-// Neighbour lists (gpu_buffers.def, NEIGHBOUR_LIST, LIST_ORIGIN): each particle that needs forces
+// Neighbour lists (gpu_buffers.def, NEIGHBOUR_LIST, LIST_ORIGIN, LIST_NEAR): each particle that needs forces
 // lists the particles of other bodies closer than d + skin at the last build, ascending by id. A
 // particle's contacts are then evaluated in partner-id order whenever the lists were built: the
 // skin and the moments of the builds change no bit of the result, and the lists are a cache that
 // snapshots need not carry. The lists are built from the grid of the build (common/grid.glsl).
+//
+// Without sleep, listNear.w marks with bit k the entries k that were within d + near skin of the
+// particle when list_near.comp last marked them, from where it stood then (listNear.xyz): it marks
+// them after each build and once some particle has moved half the near skin since, so an
+// unmarked entry cannot touch the particle before the next marking, and the contacts passes that
+// take partners from the list test only the marked ones.
 
 // Entry k of particle i's list in neighbourList.
 int listEntry(uint particle, uint k) {

@@ -2,7 +2,8 @@
 // the body's pose is at hand (after its integration, or by bodies_to_particles.comp when the CPU
 // set it), so that the next contacts read one fetch per partner. Every writer uses this function,
 // `precise`, so that a particle's state is the same bits whichever pass wrote it. The includer
-// declares PARTICLE_LOCAL_TEXTURE, LIST_ORIGIN_TEXTURE, PARTICLE_POSITION, PARTICLE_VELOCITY,
+// declares PARTICLE_LOCAL_TEXTURE, LIST_ORIGIN_TEXTURE (and without sleep LIST_NEAR_TEXTURE),
+// PARTICLE_POSITION, PARTICLE_VELOCITY,
 // COUNTERS and, under HertzMindlin with SLEEPING, PARTICLE_SPIN (and includes quaternion.glsl).
 
 // Particle `k` of body `body` (`local`: its particleLocal entry) at the body's centre `centre`,
@@ -24,4 +25,9 @@ void storeParticle(uint k, vec4 local, uint body, vec3 centre, vec4 q, vec3 v, v
   // The same value from every writer: no atomic needed.
   if (dot(moved, moved) > params.listMoveSquared)
     counters[COUNTER_LIST_REQUESTED] = LIST_REQUEST_MOVED;
+#ifndef SLEEPING
+  // The same for the near part of the lists (list_near.comp).
+  vec3 movedNear = position - texelFetch(listNearTexture, int(k)).xyz;
+  if (dot(movedNear, movedNear) > params.nearMoveSquared) counters[COUNTER_NEAR_REQUESTED] = 1u;
+#endif
 }
