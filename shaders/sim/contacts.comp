@@ -7,10 +7,10 @@
 // lists were built, so the sum is bit-identical run to run and whatever the skin.
 //
 // The loop over the list only marks the entries in contact (closer than a diameter), a bit each;
-// the law is then evaluated for the marked entries in order. Without sleep the loop tests only the
-// entries marked near (SCANS_NEAR, common/neighbour_list.glsl); the search's pass tests them all. In SIMD lanes whose lists differ,
+// the law is then evaluated for the marked entries in order. In SIMD lanes whose lists differ,
 // the law's arithmetic then runs once per contact rather than once per candidate any lane has in
-// contact, and no array is indexed by a count that differs between lanes.
+// contact, and no array is indexed by a count that differs between lanes. Without sleep the loop
+// tests only the entries marked near (SCANS_NEAR); the search's pass tests them all.
 //
 // The law is chosen when the kernel is compiled: PAPER_LAW selects the paper's (eq. 9, 10;
 // contactForce in common/contact_law.glsl), otherwise Hertz-Mindlin with history (hertzMindlin,
@@ -52,6 +52,11 @@ layout(local_size_x = WORKGROUP_SIZE) in;
 #if defined(SEARCHING) || defined(CONTACT_LIST)
 #define SEARCHES_GRID
 #endif
+// The compilations that test only the entries of a list marked near (common/neighbour_list.glsl):
+// without sleep, the passes that take partners from the lists alone.
+#if !defined(SLEEPING) && !defined(SEARCHES_GRID)
+#define SCANS_NEAR
+#endif
 // The pass every particle (with sleep, every active one) runs, which leaves some to the others.
 #if !defined(SEARCHES_GRID) && !defined(COLLIDERS_PASS)
 #define EVERY_PARTICLE_PASS
@@ -88,8 +93,7 @@ layout(local_size_x = WORKGROUP_SIZE) in;
 
 NEIGHBOUR_LIST_TEXTURE
 LIST_ORIGIN_TEXTURE
-#if !defined(SLEEPING) && !defined(SEARCHES_GRID)
-#define SCANS_NEAR
+#ifdef SCANS_NEAR
 LIST_NEAR_TEXTURE
 #endif
 CELL_START_TEXTURE

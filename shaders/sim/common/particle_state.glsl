@@ -3,14 +3,15 @@
 // set it), so that the next contacts read one fetch per partner. Every writer uses this function,
 // `precise`, so that a particle's state is the same bits whichever pass wrote it. The includer
 // declares PARTICLE_LOCAL_TEXTURE, LIST_ORIGIN_TEXTURE (and without sleep LIST_NEAR_TEXTURE),
-// PARTICLE_POSITION, PARTICLE_VELOCITY,
-// COUNTERS and, under HertzMindlin with SLEEPING, PARTICLE_SPIN (and includes quaternion.glsl).
+// PARTICLE_POSITION, PARTICLE_VELOCITY, COUNTERS and, under HertzMindlin with SLEEPING,
+// PARTICLE_SPIN (and includes quaternion.glsl).
 
 // Particle `k` of body `body` (`local`: its particleLocal entry) at the body's centre `centre`,
 // orientation `q`, velocity `v` and spin `omega`, whose calm count is `calm` (layout.glsl; 0
 // without SLEEPING). Asks for a list build when the particle has
 // moved more than half the skin since the last one: two particles that were not listed, farther
-// apart than d + skin, cannot touch before.
+// apart than d + skin, cannot touch before; and without sleep for a marking of the lists' near
+// part in the same way.
 void storeParticle(uint k, vec4 local, uint body, vec3 centre, vec4 q, vec3 v, vec3 omega,
                    uint calm) {
   precise vec3 offset = quatRotate(q, local.xyz);
