@@ -8,6 +8,8 @@
 #include <variant>
 #include <vector>
 
+#include "scenes/kit/checks.h"
+#include "scenes/kit/settings.h"
 #include "scenes/scene.h"
 
 namespace sandphys::scenes::kit {
@@ -74,15 +76,14 @@ template <class C>
 Param<C> restitutionParam(float C::*member) {
   return {"restitution", member, "", 0.01, 1.0, "coefficient of restitution of every impact"};
 }
+/// The help of "youngs-modulus", with the overlap an auto modulus allows (settings.h).
+inline const std::string kYoungsModulusHelp =
+    "Young's modulus of the grains (0: auto, stiff enough that two grains meeting at the scene's "
+    "speed guard overlap by " +
+    numberText(kScenePeakOverlap) + " d)";
 template <class C>
 Param<C> youngsModulusParam(float C::*member) {
-  return {"youngs-modulus",
-          member,
-          "Pa",
-          0.0,
-          1e12,
-          "Young's modulus of the grains (0: auto, stiff enough that two grains "
-          "meeting at the scene's speed guard overlap by 0.3 d)"};
+  return {"youngs-modulus", member, "Pa", 0.0, 1e12, kYoungsModulusHelp};
 }
 template <class C>
 Param<C> stepsPerContactParam(float C::*member) {

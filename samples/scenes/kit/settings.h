@@ -63,7 +63,7 @@ inline const float kGravity = length(WorldSettings{}.gravity);
 /// The Young's modulus (Pa) a scene's World gets for a configured `youngsModulus`: that value
 /// when > 0; for 0 (auto) the one at which two granules meeting head-on at the scene's speed
 /// guard overlap by kScenePeakOverlap (youngsModulusForPeakOverlap), so that no grain passes
-/// through anything and the largest overlap stays under 0.3 d. The stiffer the sand, the shorter
+/// through anything. The stiffer the sand, the shorter
 /// the time step (t_n ∝ E^-2/5): a scene pays for its speed guard in substeps.
 float sceneYoungsModulus(const WorldSettings& settings, float youngsModulus = 0.0f);
 /// The closed-form peak overlap, in particle diameters, that an auto Young's modulus allows
