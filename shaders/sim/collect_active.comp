@@ -137,8 +137,10 @@ void main() {
       writeCommand(ACTIVE_PASS_BODIES, atomicExchange(counters[COUNTER_ACTIVE_BODIES], 0u));
       counters[COUNTER_ACTIVE_GROUPS_DONE] = 0u;
       // What list_check.comp does without sleep.
-      clearRunningCommands(decideListBuild(
-          false, particles, atomicExchange(counters[COUNTER_RECENT_PARTICLES], 0u)));
+      // (Sleep leaves the lists' near part unmarked.)
+      clearRunningCommands(decideListBuild(false, particles,
+                                           atomicExchange(counters[COUNTER_RECENT_PARTICLES], 0u)),
+                           false);
     }
   }
 }

@@ -23,10 +23,11 @@
 // its own, this kernel compiled with SEARCHING over the particles listed in searchDue: a search
 // that one lane of a batch runs would hold up the others, and its code stays out of the pass that
 // every particle runs (docs/architecture.md, "Why each pass is its own"). So does the collider
-// code: a particle whose list's build found a collider within half its skin (LIST_NEAR_COLLIDER) is
-// left to this kernel compiled with COLLIDERS_PASS over the particles listed in collidersDue; the
-// others touch no collider until the next build. Without sleep the build lists both kinds
-// (list_build.comp); under SLEEPING this pass lists those it leaves to the search.
+// code: a particle that the last marking of its list's near part found within half the near skin
+// of a collider (LIST_NEAR_COLLIDER) is left to this kernel compiled with COLLIDERS_PASS over the
+// particles listed in collidersDue; the others touch no collider until the next marking. Without
+// sleep list_build.comp and list_near.comp list them; under SLEEPING this pass lists those it
+// leaves to the search.
 //
 // Under SLEEPING (layout.glsl, "Sleep") it runs over the particles collect_active.comp listed,
 // and each also finds the smallest calm count among its partners (and, awake, marks the sleeping
@@ -634,8 +635,7 @@ void main() {
   self.velocity = texelFetch(particleVelocityTexture, int(i));
   self.body = floatBitsToUint(self.position.w);
   self.id = i;
-  uint listWord = floatBitsToUint(texelFetch(listOriginTexture, int(i)).w);
-  uint listed = listCount(listWord);
+  uint listed = floatBitsToUint(texelFetch(listOriginTexture, int(i)).w);
   // Static particles (rough floors) never move: nobody needs their force. Their neighbours still
   // see them, since they are in the neighbours' lists. Particles of dead bodies touch nothing.
   if (self.velocity.w < 0.0 || listed == LIST_DEAD) {
@@ -661,7 +661,7 @@ void main() {
 #ifdef EVERY_PARTICLE_PASS
   // Partners beyond the list's capacity, or a list the last build passed over (it was built while
   // the particle slept, and may miss what came near since): found in the grid, by the other pass.
-  bool searches = listOverflows(listWord);
+  bool searches = listOverflows(listed);
 #ifdef SLEEPING
   searches = searches || listBuilt[i] != counters[COUNTER_LIST_BUILDS] || manySlots;
 #endif
@@ -672,8 +672,11 @@ void main() {
     return;  // without sleep the build listed it (list_build.comp)
   }
 #endif
+#ifdef SCANS_NEAR
+  uint marks = floatBitsToUint(texelFetch(listNearTexture, int(i)).w);
+#endif
 #ifdef LEAVES_COLLIDERS
-  if (listNearCollider(listWord)) return;  // listed by the build for contacts_colliders
+  if (marksNearCollider(marks)) return;  // listed by list_near.comp for contacts_colliders
 #ifndef PAPER_LAW
   if (manySlots) {
     collidersDue[appendToPass(ACTIVE_PASS_COLLIDERS)] = i;  // in any order: each result is its own
@@ -698,8 +701,7 @@ void main() {
   uint inContact = 0u;
 #ifdef SCANS_NEAR
   // Only the entries marked near can touch (common/neighbour_list.glsl).
-  for (uint near = floatBitsToUint(texelFetch(listNearTexture, int(i)).w); near != 0u;
-       near &= near - 1u) {
+  for (uint near = nearEntries(marks); near != 0u; near &= near - 1u) {
     uint k = uint(findLSB(near));
     if (touches(self, texelFetch(neighbourListTexture, listEntry(i, k)).x)) inContact |= 1u << k;
   }

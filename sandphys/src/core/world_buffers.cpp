@@ -162,11 +162,12 @@ void WorldKernels::compile(ContactLaw law, bool sleeping, bool searchEvery) {
   scanAdd = compile("sim/scan_add.comp");
   gridScatter = compile("sim/grid_scatter.comp");
   gridSort = compile("sim/grid_sort.comp");
-  // Without sleep the build lists the particles the contacts pass leaves to the search.
+  // Without sleep the build and the near marking list the particles the contacts pass leaves to
+  // the search and to the collider pass.
   const std::vector<std::string> every =
       searchEvery ? std::vector<std::string>{"SEARCH_EVERY 1"} : std::vector<std::string>{};
   listBuild = compile("sim/list_build.comp", every);
-  if (!sleeping) listNear = compile("sim/list_near.comp");
+  if (!sleeping) listNear = compile("sim/list_near.comp", every);
   contacts = compile("sim/contacts.comp", every);
   contactList = compile("sim/contacts.comp", {"CONTACT_LIST 1"});
   contactsSearch = compile("sim/contacts.comp", {"SEARCHING 1"});

@@ -28,8 +28,8 @@
 #define NEIGHBOUR_LIST_CAPACITY 16
 // listOrigin.w of a particle whose body was dead at the last build.
 #define LIST_DEAD 0xffffffffu
-// Set in listOrigin.w beside the count when the build found a collider near the particle
-// (common/neighbour_list.glsl).
+// Set in listNear.w beside the marked entries when list_near.comp found a collider near the
+// particle (common/neighbour_list.glsl).
 #define LIST_NEAR_COLLIDER 0x80000000u
 // Buckets per workgroup of the block scan.
 #define SCAN_BLOCK 1024u

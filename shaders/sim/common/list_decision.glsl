@@ -40,20 +40,21 @@ uint appendToPass(uint pass) {
 // The commands of the passes whose lists appendToPass fills, set for the substep by its first
 // pass: count_pairs.comp's (integrate_bodies.comp fills its list as the substep runs; a substep
 // with no granule to advance runs none), and contacts_search's and contacts_colliders', over the
-// particles the contacts passes leave to them. Without sleep list_build.comp lists those for the
-// substeps until the next build (`built`: one is due in this substep, and empties them), and in
-// each substep after the build's the contacts pass adds to contacts_colliders' the particles with
+// particles the contacts passes leave to them. Without sleep list_build.comp lists the search's
+// for the substeps until the next build (`built`: one is due in this substep, and empties them)
+// and list_near.comp the colliders' until the next marking of the lists' near part (`marked`,
+// likewise), and in each substep the contacts pass adds to contacts_colliders' the particles with
 // more slots in use than it loads, and contacts_colliders to the search's those with more than it
 // loads; under SLEEPING contacts.comp fills the search's as the substep runs. Every other list
 // starts empty.
-void clearRunningCommands(bool built) {
+void clearRunningCommands(bool built, bool marked) {
   for (uint pass = ACTIVE_PASS_PAIRS; pass <= ACTIVE_PASS_COLLIDERS; ++pass) {
     uint length = 0u;
 #ifndef SLEEPING
     if (pass == ACTIVE_PASS_SEARCH || pass == ACTIVE_PASS_COLLIDERS) {
-      uint listed =
-          pass == ACTIVE_PASS_SEARCH ? COUNTER_SEARCH_LISTED : COUNTER_COLLIDERS_LISTED;
-      if (built) counters[listed] = 0u;
+      bool search = pass == ACTIVE_PASS_SEARCH;
+      uint listed = search ? COUNTER_SEARCH_LISTED : COUNTER_COLLIDERS_LISTED;
+      if (search ? built : marked) counters[listed] = 0u;
       length = counters[listed];
     }
 #endif
@@ -65,6 +66,11 @@ void clearRunningCommands(bool built) {
 
 void setGroups(uint pass, uint groups) {
   writeGroups(uint(COUNTER_LIST_DISPATCH) + 4u * pass, groups);
+}
+
+// Whether this substep marks the lists' near part, once decideListBuild has decided.
+bool nearMarkingDue() {
+  return counters[uint(COUNTER_LIST_DISPATCH) + 4u * PASS_LIST_NEAR] != 0u;
 }
 
 #ifdef SLEEPING

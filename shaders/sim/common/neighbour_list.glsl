@@ -8,34 +8,33 @@
 // particle when list_near.comp last marked them, from where it stood then (listNear.xyz): it marks
 // them after each build and once some particle has moved half the near skin since, so an
 // unmarked entry cannot touch the particle before the next marking, and the contacts passes that
-// take partners from the list test only the marked ones.
+// take partners from the list test only the marked ones. It holds LIST_NEAR_COLLIDER too when the
+// surface of some collider was within half the near skin of the particle's surface; no collider
+// moves until the next marking (a changed collider asks for a build), so one without the bit
+// touches no collider: the contacts pass that every particle runs leaves the collider code to the
+// pass over the few with it.
 
 // Entry k of particle i's list in neighbourList.
 int listEntry(uint particle, uint k) {
   return int(k * params.listStride + particle);
 }
 
-// listOrigin.w holds, beside the count of partners the build found, LIST_NEAR_COLLIDER when the
-// surface of some collider was within half the skin of the particle's surface (list_build.comp,
-// without sleep), or is LIST_DEAD. Until the next build a particle moves less than half the skin
-// and no collider moves (a changed collider asks for a build), so one without the bit touches no
-// collider: the contacts pass that every particle runs leaves the collider code to the pass over
-// the few with it.
-uint listCount(uint listed) {
-  return listed == LIST_DEAD ? LIST_DEAD : listed & ~LIST_NEAR_COLLIDER;
+// The entries of a list marked near in listNear.w `marks`, a bit each.
+uint nearEntries(uint marks) {
+  return marks & ((1u << NEIGHBOUR_LIST_CAPACITY) - 1u);
 }
 
-bool listNearCollider(uint listed) {
-  return listed != LIST_DEAD && (listed & LIST_NEAR_COLLIDER) != 0u;
+bool marksNearCollider(uint marks) {
+  return (marks & LIST_NEAR_COLLIDER) != 0u;
 }
 
-// Whether a live particle with listOrigin.w `listed` finds its partners in the grid (the pass over
-// searchDue) rather than in its list: it had more than the list holds (in a test's SEARCH_EVERY
-// compilation, every particle). Without sleep list_build.comp lists such particles from this.
+// Whether a live particle with listOrigin.w `listed` (the partners the build found) finds its
+// partners in the grid (the pass over searchDue) rather than in its list: it had more than the
+// list holds (in a test's SEARCH_EVERY compilation, every particle). Without sleep list_build.comp lists such particles from this.
 bool listOverflows(uint listed) {
 #ifdef SEARCH_EVERY
   return true;  // a test's: every particle searched, to the same bits (searchEveryParticle)
 #else
-  return listCount(listed) > uint(NEIGHBOUR_LIST_CAPACITY);
+  return listed > uint(NEIGHBOUR_LIST_CAPACITY);
 #endif
 }
