@@ -697,7 +697,6 @@ void main() {
   // The partners in contact, in id order: the list's, then those beyond its capacity (from the
   // grid). The list is scanned first for the entries in contact (a bit each); the law is then
   // evaluated once per contact, from one place in the code.
-  uint inList = min(listed, uint(NEIGHBOUR_LIST_CAPACITY));
   uint inContact = 0u;
 #ifdef SCANS_NEAR
   // Only the entries marked near can touch (common/neighbour_list.glsl).
@@ -706,6 +705,7 @@ void main() {
     if (touches(self, texelFetch(neighbourListTexture, listEntry(i, k)).x)) inContact |= 1u << k;
   }
 #else
+  uint inList = min(listed, uint(NEIGHBOUR_LIST_CAPACITY));
   for (uint k = 0u; k < inList; ++k) {
     if (touches(self, texelFetch(neighbourListTexture, listEntry(i, k)).x)) inContact |= 1u << k;
   }

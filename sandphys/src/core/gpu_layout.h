@@ -20,8 +20,8 @@ inline constexpr unsigned kStatsWorkgroups = 32;  // fixed: the reduction order 
 // counters[] (layout.glsl, COUNTER_*): rare events, the neighbour lists' control and, from
 // kCounterListDispatch on, the indirect commands of the list build's passes, then those of the
 // passes over lists (the active lists, with sleep; the granules due for their pair counts; the
-// particles left to the grid search). Words 5-9, 13 and 15-21 are the GPU's alone
-// (layout.glsl).
+// particles left to the grid search). Words 5-9, 13, 15-23 and 25-27 are the GPU's alone or
+// unused (layout.glsl).
 inline constexpr std::uint32_t kCounterKilled = 0;
 inline constexpr std::uint32_t kCounterSpawnTaken = 1;
 inline constexpr std::uint32_t kCounterListRequested = 2;

@@ -24,12 +24,12 @@ void World::Impl::uploadParams() {
   p.maxOverlap = model.maxOverlap;
   // A build (a marking of the near part) is asked for a hair before a particle has moved half the
   // skin (near skin), so that rounding cannot bring an unlisted (unmarked) pair into contact.
+  const auto halfSkinSquared = [](float s) { return 0.98f * 0.25f * s * s; };
   p.listReachSquared = reach * reach;
-  p.listMoveSquared = 0.98f * 0.25f * skin * skin;
-  const float nearSkin = model.listNearSkin;
-  const float nearReach = settings.particleDiameter + nearSkin;
+  p.listMoveSquared = halfSkinSquared(skin);
+  const float nearReach = settings.particleDiameter + model.listNearSkin;
   p.nearReachSquared = nearReach * nearReach;
-  p.nearMoveSquared = 0.98f * 0.25f * nearSkin * nearSkin;
+  p.nearMoveSquared = halfSkinSquared(model.listNearSkin);
   // Entries follow the particles in use (every change of their number asks for a build), so
   // that a World with room to spare lays its lists out as a full one does.
   p.listStride = particleCount;

@@ -1,8 +1,8 @@
-// Neighbour lists (gpu_buffers.def, NEIGHBOUR_LIST, LIST_ORIGIN, LIST_NEAR): each particle that needs forces
-// lists the particles of other bodies closer than d + skin at the last build, ascending by id. A
-// particle's contacts are then evaluated in partner-id order whenever the lists were built: the
-// skin and the moments of the builds change no bit of the result, and the lists are a cache that
-// snapshots need not carry. The lists are built from the grid of the build (common/grid.glsl).
+// Neighbour lists (gpu_buffers.def, NEIGHBOUR_LIST, LIST_ORIGIN, LIST_NEAR): each particle that
+// needs forces lists the particles of other bodies closer than d + skin at the last build,
+// ascending by id. A particle's contacts are then evaluated in partner-id order whenever the lists
+// were built: the skin and the moments of the builds change no bit of the result, and the lists
+// are a cache that snapshots need not carry. The lists are built from the grid of the build (common/grid.glsl).
 //
 // Without sleep, listNear.w marks with bit k the entries k that were within d + near skin of the
 // particle when list_near.comp last marked them, from where it stood then (listNear.xyz): it marks
@@ -30,7 +30,8 @@ bool marksNearCollider(uint marks) {
 
 // Whether a live particle with listOrigin.w `listed` (the partners the build found) finds its
 // partners in the grid (the pass over searchDue) rather than in its list: it had more than the
-// list holds (in a test's SEARCH_EVERY compilation, every particle). Without sleep list_build.comp lists such particles from this.
+// list holds (in a test's SEARCH_EVERY compilation, every particle). Without sleep
+// list_build.comp lists such particles from this.
 bool listOverflows(uint listed) {
 #ifdef SEARCH_EVERY
   return true;  // a test's: every particle searched, to the same bits (searchEveryParticle)
