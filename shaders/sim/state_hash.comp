@@ -4,7 +4,8 @@
 // over the slots. Integer sums do not depend on the order the threads ran in, so the hash is the
 // same on every run; src/recording/state_hash.cpp computes the same function on the CPU. Under
 // ContactLaw::HertzMindlin every particle's contact slots and pair counts (the history a
-// contact carries across substeps) are absorbed the same way, seeded with the particle's index.
+// contact carries across substeps) are absorbed the same way, seeded with the particle's index;
+// and with SLEEPING every particle's last computed force and torque, which a sleeper carries.
 #include "common/layout.glsl"
 
 #define HASH_THREADS 256
@@ -21,6 +22,10 @@ CONTACT_SLOTS_0(readonly)
 CONTACT_SLOTS_1(readonly)
 CONTACT_SLOTS_2(readonly)
 CONTACT_PAIRS(readonly)
+PARTICLE_TORQUE(readonly)
+#endif
+#ifdef SLEEPING
+PARTICLE_FORCE(readonly)
 #endif
 
 shared uvec2 sharedSums[HASH_THREADS];
@@ -79,6 +84,18 @@ void main() {
     }
     uvec4 pairs = contactPairs[i];
     h = absorb(absorb(absorb(absorb(h, pairs.x), pairs.y), pairs.z), pairs.w);
+    sum += h;
+  }
+#endif
+#ifdef SLEEPING
+  for (uint i = gl_GlobalInvocationID.x; i < params.particleCount; i += stride) {
+    uvec2 h = uvec2(fmix(i ^ 0xa4093822u), fmix(i ^ 0x299f31d0u));
+    h = absorb4(h, particleForce[i]);
+#ifdef PAPER_LAW
+    h = absorb4(h, vec4(0.0));  // StoredForces::torque: none under the paper's law
+#else
+    h = absorb4(h, particleTorque[i]);
+#endif
     sum += h;
   }
 #endif

@@ -357,6 +357,39 @@ TEST(Sleep, SnapshotCarriesTheSleepState) {
   EXPECT_GT(a->readStats().granulesAsleep, 0u);
 }
 
+// A sleeper keeps the forces of the substep that last computed it, and the balance check of one
+// that something awake touches sums them: a snapshot of a pile half asleep carries them, so a
+// restored World goes on bit for bit (without them its touched sleepers saw no force, only
+// gravity, and woke the whole pile).
+TEST(Sleep, ARestoredHalfSleepingPileGoesOnBitForBit) {
+  testing::TestWorld a(sleepySettings());
+  buildPile(*a);
+  std::uint32_t asleep = 0;
+  while (a->simulatedTime() < 1.5 && asleep < kGranules / 3) {
+    a.simulate(0.05);
+    asleep = a->readStats().granulesAsleep;
+  }
+  ASSERT_GE(asleep, kGranules / 3);
+  ASSERT_LT(asleep, kGranules) << "the pile slept before a snapshot caught it half asleep";
+  const WorldSnapshot middle = a->readSnapshot();
+  ASSERT_EQ(middle.forces.size(), middle.contacts.size());
+  EXPECT_EQ(a->readStateHash(), stateHash(middle));
+  testing::TestWorld b(sleepySettings());
+  buildPile(*b);
+  b->restoreSnapshot(middle);
+  EXPECT_FALSE(firstDifference(middle, b->readSnapshot()).has_value());
+  for (int k = 0; k < 4; ++k) {
+    a->substep(50);
+    b->substep(50);
+    const auto difference = firstDifference(a->readSnapshot(), b->readSnapshot());
+    ASSERT_FALSE(difference.has_value())
+        << "after " << 50 * (k + 1) << " substeps, " << difference->describe();
+  }
+  EXPECT_EQ(a->readStateHash(), b->readStateHash());
+  EXPECT_EQ(a->readStats().granulesAsleep, b->readStats().granulesAsleep);
+  EXPECT_GE(b->readStats().granulesAsleep, asleep);
+}
+
 // A sleeping particle is not computed, so it reports the contacts it counted last: a World that
 // restores a sleeping pile counts those its contact history holds, as the World that saved it.
 TEST(Sleep, ARestoredSleepingPileCountsTheContactsItSleepsWith) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <bit>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -35,6 +36,14 @@ WorldSnapshot snapshotOf(std::uint64_t frame, std::uint32_t bodies) {
     b.angularVelocity = {1e-30f, 2.0f, -7.5f};
     b.alive = i % 3 != 0;
     s.bodies.push_back(b);
+  }
+  // With sleep the particles' last forces come along (w: integer words).
+  for (std::uint32_t i = 0; i < 2 * bodies; ++i) {
+    StoredForces f;
+    f.force = {std::bit_cast<std::uint32_t>(-0.0f), std::bit_cast<std::uint32_t>(float(i)),
+               std::bit_cast<std::uint32_t>(1e-30f), std::uint32_t(frame + i)};
+    f.torque = {std::bit_cast<std::uint32_t>(0.5f * float(i)), 0u, 1u, i % 2};
+    s.forces.push_back(f);
   }
   return s;
 }
@@ -144,13 +153,13 @@ TEST(RecordingFile, KeepsThePrincipalOrientationInTheGpusWordOrder) {
   }
   const std::vector<char> bytes = bytesOf(file);
   // The file header (16 bytes), the SETS record (8-byte record header, a count of 0), the SNAP
-  // record's header and its 32 bytes of frame, steps, time and counts, then its zstd frame.
+  // record's header and its 36 bytes of frame, steps, time and counts, then its zstd frame.
   constexpr std::size_t kSnapshotAt = 16 + 12;
-  constexpr std::size_t kFrameAt = kSnapshotAt + 8 + 32;
+  constexpr std::size_t kFrameAt = kSnapshotAt + 8 + 36;
   std::uint32_t payload = 0;
   std::memcpy(&payload, bytes.data() + kSnapshotAt + 4, sizeof payload);
   std::array<float, 14> body{};  // position, orientation, velocity, spin, status
-  ASSERT_EQ(ZSTD_decompress(body.data(), sizeof body, bytes.data() + kFrameAt, payload - 32),
+  ASSERT_EQ(ZSTD_decompress(body.data(), sizeof body, bytes.data() + kFrameAt, payload - 36),
             sizeof body);
   EXPECT_EQ(body[3], 0.25f);   // x
   EXPECT_EQ(body[4], 0.5f);    // y
@@ -184,6 +193,25 @@ TEST(RecordingFile, ANegativeZeroOrOneBitIsADifferenceNamedWithBothValues) {
   b.bodies.pop_back();
   ASSERT_TRUE(firstDifference(a, b));
   EXPECT_EQ(firstDifference(a, b)->field, "body count");
+
+  b = a;
+  b.forces[5].torque[3] ^= 1u;
+  ASSERT_TRUE(firstDifference(a, b));
+  EXPECT_EQ(firstDifference(a, b)->body, 5u);
+  EXPECT_EQ(firstDifference(a, b)->field, "torque.w");
+  EXPECT_EQ(firstDifference(a, b)->describe(), "particle 5 torque.w: recorded 1, replayed 0");
+  EXPECT_NE(stateHash(a), stateHash(b));
+
+  b = a;
+  b.forces[0].force[0] = 0u;  // was -0.0f
+  ASSERT_TRUE(firstDifference(a, b));
+  EXPECT_EQ(firstDifference(a, b)->field, "force.x");
+  EXPECT_NE(stateHash(a), stateHash(b));
+
+  b = a;
+  b.forces.pop_back();
+  ASSERT_TRUE(firstDifference(a, b));
+  EXPECT_EQ(firstDifference(a, b)->field, "forces count");
 }
 
 TEST(RecordingFile, AMissingFileIsNamed) {

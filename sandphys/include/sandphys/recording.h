@@ -40,7 +40,7 @@ struct RecordedFrame {
 };
 
 /// Version of the recording format this build writes and reads (docs/recording.md).
-inline constexpr std::uint32_t kRecordingVersion = 2;
+inline constexpr std::uint32_t kRecordingVersion = 3;
 
 /// A recording as read back: the application's description of the run (scene, parameters,
 /// flags, as key and value text in the order written), every frame, and the snapshots in frame

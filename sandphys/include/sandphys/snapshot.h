@@ -52,6 +52,16 @@ struct StoredContacts {
   std::array<std::uint32_t, 4> pairs{};
 };
 
+/// One particle's contact force and torque from the last substep that computed them, exactly as
+/// the GPU stores them (x, y, z as float bits, and the w words the kernels keep beside them). With
+/// sleep a sleeping particle is not computed and these carry over from substep to substep: the
+/// balance check of a sleeper that something awake touches sums them (docs/architecture.md,
+/// "Sleep"). The torque is 0 under ContactLaw::PaperViscous, which has none.
+struct StoredForces {
+  std::array<std::uint32_t, 4> force{};
+  std::array<std::uint32_t, 4> torque{};
+};
+
 /// Every body slot in use at one moment (World::readSnapshot, a sync point).
 struct WorldSnapshot {
   std::uint64_t frame = 0;     ///< frames run when it was taken (the caller's count; 0 = built)
@@ -68,6 +78,9 @@ struct WorldSnapshot {
   /// Under ContactLaw::HertzMindlin, every particle slot in use; empty under PaperViscous (whose
   /// contacts keep nothing).
   std::vector<StoredContacts> contacts;
+  /// With sleep (WorldSettings::sleep), every particle slot in use; empty without, where every
+  /// substep computes every particle's force before it is used.
+  std::vector<StoredForces> forces;
 };
 
 /// The hash World::readStateHash computes on the GPU, computed here on the CPU from the same bits
@@ -79,7 +92,8 @@ std::uint64_t stateHash(const WorldSnapshot& snapshot);
 /// "calm"); field "body count" when the
 /// number of slots differs (body is then the smaller count). Then the contact history: the
 /// lowest particle (subject Particle), "contact slot K spring.x" ... "contact slot K key",
-/// "contact pairs W", or "particle count". Also for inputs (below).
+/// "contact pairs W", or "particle count"; then the forces: "force.x" ... "torque.w", or "forces
+/// count". Also for inputs (below).
 struct StateDifference {
   enum class Subject { Body, Particle };
   std::uint32_t body = 0;  ///< body slot, or particle index when subject is Particle

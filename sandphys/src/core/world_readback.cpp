@@ -87,6 +87,9 @@ WorldSnapshot World::readSnapshot() const {
     b.calm = std::bit_cast<std::uint32_t>(v.w);
   }
   if (w.keepsHistory()) snapshot.contacts = downloadContacts(w.buffers, w.particleCount);
+  if (w.sleep.enabled) {
+    snapshot.forces = downloadForces(w.buffers, w.particleCount, w.keepsHistory());
+  }
   return snapshot;
 }
 

@@ -29,6 +29,13 @@ void World::restoreSnapshot(const WorldSnapshot& snapshot) {
           "must be " + std::to_string(expected) +
               (w.keepsHistory() ? " (the particles of its bodies, under ContactLaw::HertzMindlin)"
                                 : " (ContactLaw::PaperViscous keeps no contact history)"));
+  // With sleep a sleeper's forces are not computed again: a touched one's balance sums them.
+  const std::size_t forces = w.sleep.enabled ? particles : 0u;
+  require(snapshot.forces.size() == forces, "WorldSnapshot.forces.size()",
+          double(snapshot.forces.size()),
+          "must be " + std::to_string(forces) +
+              (w.sleep.enabled ? " (the particles of its bodies, with sleep)"
+                               : " (a World without sleep computes every force afresh)"));
   w.gpu->makeCurrent();
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   // Only the snapshot's fields change: each vec4's w (mass, inverse mass and the like) and the
@@ -60,6 +67,7 @@ void World::restoreSnapshot(const WorldSnapshot& snapshot) {
   w.buffers[kBodyAngularVelocity].upload(0, count * sizeof(GpuVec4), spin.data());
   w.buffers[kBodyInfo].upload(0, count * sizeof(GpuUVec4), info.data());
   if (w.keepsHistory()) uploadContacts(w.buffers, snapshot.contacts, w.particleCount);
+  uploadForces(w.buffers, snapshot.forces, w.keepsHistory());
   gl::check("World::restoreSnapshot");
   w.steps = snapshot.steps;
   w.simTime = snapshot.simulatedTime;

@@ -38,6 +38,8 @@ constexpr std::size_t kEndPayloadBytes = 32;
 constexpr std::size_t kSnapshotBodyBytes = 14 * 4;
 constexpr std::size_t kSnapshotContactBytes = sizeof(StoredContacts);
 static_assert(sizeof(StoredContacts) == (4 * kContactSlots + 4) * 4);
+constexpr std::size_t kSnapshotForceBytes = sizeof(StoredForces);
+static_assert(sizeof(StoredForces) == 8 * 4);
 // Fast and still about halves float state; recordings are written while a scene runs.
 constexpr int kZstdLevel = 3;
 
@@ -189,24 +191,28 @@ WorldSnapshot readSnapshot(Reader& in, const std::string& context) {
   snapshot.simulatedTime = in.get<double>();
   const std::uint32_t bodies = in.get<std::uint32_t>();
   const std::uint32_t particles = in.get<std::uint32_t>();
+  const std::uint32_t forces = in.get<std::uint32_t>();
   // No World holds more (its particle limit, and a body has at least one particle): a larger
   // count is damage, refused before anything is allocated for it.
-  if (bodies > kMaxParticleCapacity || particles > kMaxParticleCapacity) {
-    throw RecordingError(
-        context + " is malformed: the snapshot of frame " + std::to_string(snapshot.frame) +
-        " claims " + std::to_string(bodies) + " bodies and " + std::to_string(particles) +
-        " particles, more than a World holds (" + std::to_string(kMaxParticleCapacity) + ")");
+  if (bodies > kMaxParticleCapacity || particles > kMaxParticleCapacity ||
+      forces > kMaxParticleCapacity) {
+    throw RecordingError(context + " is malformed: the snapshot of frame " +
+                         std::to_string(snapshot.frame) + " claims " + std::to_string(bodies) +
+                         " bodies, " + std::to_string(particles) + " particles' contacts and " +
+                         std::to_string(forces) + " particles' forces, more than a World holds (" +
+                         std::to_string(kMaxParticleCapacity) + ")");
   }
   const std::size_t compressedSize = in.remaining();
   const std::uint8_t* compressed = in.take(compressedSize);
-  const std::size_t rawSize =
-      std::size_t(bodies) * kSnapshotBodyBytes + std::size_t(particles) * kSnapshotContactBytes;
+  const std::size_t rawSize = std::size_t(bodies) * kSnapshotBodyBytes +
+                              std::size_t(particles) * kSnapshotContactBytes +
+                              std::size_t(forces) * kSnapshotForceBytes;
   const unsigned long long contentSize = ZSTD_getFrameContentSize(compressed, compressedSize);
   if (contentSize != rawSize) {
-    throw RecordingError(context + " is malformed: the snapshot of frame " +
-                         std::to_string(snapshot.frame) + " does not hold " +
-                         std::to_string(bodies) + " bodies and the contacts of " +
-                         std::to_string(particles) + " particles");
+    throw RecordingError(
+        context + " is malformed: the snapshot of frame " + std::to_string(snapshot.frame) +
+        " does not hold " + std::to_string(bodies) + " bodies, the contacts of " +
+        std::to_string(particles) + " particles and the forces of " + std::to_string(forces));
   }
   std::vector<std::uint8_t> raw(rawSize);
   const std::size_t result = ZSTD_decompress(raw.data(), raw.size(), compressed, compressedSize);
@@ -234,6 +240,11 @@ WorldSnapshot readSnapshot(Reader& in, const std::string& context) {
       for (std::uint32_t& word : slot) word = body.get<std::uint32_t>();
     }
     for (std::uint32_t& word : c.pairs) word = body.get<std::uint32_t>();
+  }
+  snapshot.forces.resize(forces);
+  for (StoredForces& f : snapshot.forces) {
+    for (std::uint32_t& word : f.force) word = body.get<std::uint32_t>();
+    for (std::uint32_t& word : f.torque) word = body.get<std::uint32_t>();
   }
   return snapshot;
 }
@@ -328,12 +339,18 @@ void RecordingWriter::addSnapshot(const WorldSnapshot& snapshot) {
     }
     for (std::uint32_t word : c.pairs) raw.put(word);
   }
-  // The reader (readSnapshot) takes the body and contact counts for the layout of these bytes.
+  for (const StoredForces& f : snapshot.forces) {
+    for (std::uint32_t word : f.force) raw.put(word);
+    for (std::uint32_t word : f.torque) raw.put(word);
+  }
+  // The reader (readSnapshot) takes the three counts for the layout of these bytes.
   SANDPHYS_ASSERT(raw.data().size() == snapshot.bodies.size() * kSnapshotBodyBytes +
-                                           snapshot.contacts.size() * kSnapshotContactBytes,
+                                           snapshot.contacts.size() * kSnapshotContactBytes +
+                                           snapshot.forces.size() * kSnapshotForceBytes,
                   std::to_string(raw.data().size()) + " snapshot bytes for " +
-                      std::to_string(snapshot.bodies.size()) + " bodies and " +
-                      std::to_string(snapshot.contacts.size()) + " particles");
+                      std::to_string(snapshot.bodies.size()) + " bodies, " +
+                      std::to_string(snapshot.contacts.size()) + " particles' contacts and " +
+                      std::to_string(snapshot.forces.size()) + " particles' forces");
   std::vector<std::uint8_t> compressed(ZSTD_compressBound(raw.data().size()));
   const std::size_t size = ZSTD_compress(compressed.data(), compressed.size(), raw.data().data(),
                                          raw.data().size(), kZstdLevel);
@@ -347,6 +364,7 @@ void RecordingWriter::addSnapshot(const WorldSnapshot& snapshot) {
   out.put(snapshot.simulatedTime);
   out.put(std::uint32_t(snapshot.bodies.size()));
   out.put(std::uint32_t(snapshot.contacts.size()));
+  out.put(std::uint32_t(snapshot.forces.size()));
   out.putRaw(compressed.data(), size);
   writeRecord(kSnapshotTag, out.data());
   ++m_snapshots;

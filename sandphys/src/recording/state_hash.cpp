@@ -120,6 +120,14 @@ std::uint64_t stateHash(const WorldSnapshot& snapshot) {
     low += h.x;
     high += h.y;
   }
+  for (std::uint32_t i = 0; i < snapshot.forces.size(); ++i) {
+    const StoredForces& f = snapshot.forces[i];
+    Lanes h{fmix(i ^ 0xa4093822u), fmix(i ^ 0x299f31d0u)};
+    for (std::uint32_t word : f.force) h = absorb(h, word);
+    for (std::uint32_t word : f.torque) h = absorb(h, word);
+    low += h.x;
+    high += h.y;
+  }
   return (std::uint64_t(high) << 32) | low;
 }
 
@@ -187,6 +195,32 @@ std::optional<StateDifference> firstDifference(const WorldSnapshot& recorded,
     return StateDifference{std::uint32_t(particles),           "particle count",
                            double(recorded.contacts.size()),   double(replayed.contacts.size()),
                            StateDifference::Subject::Particle, true};
+  }
+  // Forces (sleep): named by particle and word; the w words are integers.
+  const std::size_t loaded = std::min(recorded.forces.size(), replayed.forces.size());
+  for (std::size_t i = 0; i < loaded; ++i) {
+    for (const bool torque : {false, true}) {
+      const auto& a = torque ? recorded.forces[i].torque : recorded.forces[i].force;
+      const auto& b = torque ? replayed.forces[i].torque : replayed.forces[i].force;
+      for (std::uint32_t w = 0; w < 4; ++w) {
+        if (a[w] == b[w]) continue;
+        const bool isFloat = w < 3;
+        return StateDifference{std::uint32_t(i),
+                               std::string(torque ? "torque." : "force.") + "xyzw"[w],
+                               isFloat ? double(std::bit_cast<float>(a[w])) : double(a[w]),
+                               isFloat ? double(std::bit_cast<float>(b[w])) : double(b[w]),
+                               StateDifference::Subject::Particle,
+                               !isFloat};
+      }
+    }
+  }
+  if (recorded.forces.size() != replayed.forces.size()) {
+    return StateDifference{std::uint32_t(loaded),
+                           "forces count",
+                           double(recorded.forces.size()),
+                           double(replayed.forces.size()),
+                           StateDifference::Subject::Particle,
+                           true};
   }
   return std::nullopt;
 }
