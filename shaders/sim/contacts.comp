@@ -739,33 +739,44 @@ void main() {
   uint found = 0u;
   uint seen = 0u;
   if (firstHitsEarly) seen = findHits(self, radius, movable, 0u, found);
+#ifdef SEARCHES_GRID
+  uint last = beyond && inList > 0u ? texelFetch(neighbourListTexture, listEntry(i, inList - 1u)).x
+                                     : NO_PARTNER;
+#endif
 #if defined(SLEEPING) && !defined(CONTACT_LIST)
   if (self.calm >= params.sleepSubsteps) {
     uint calm = CALM_UNBOUNDED;
+    uint touching = uint(bitCount(inContact));
     for (uint bits = inContact; bits != 0u; bits &= bits - 1u) {
       uint partner = texelFetch(neighbourListTexture, listEntry(i, uint(findLSB(bits)))).x;
       calm = min(calm, floatBitsToUint(texelFetch(particleSpinTexture, int(partner)).w));
     }
+#ifdef SEARCHES_GRID
+    // And the partners beyond the list (all of them, for a list the last build passed over):
+    // whether a sleeper's contacts stay frozen must not follow what its list holds, which follows
+    // the builds (a restored World builds every list afresh).
+    for (uint partner = beyond ? nextPartnerAfter(self, last) : NO_PARTNER;
+         partner != NO_PARTNER; partner = nextPartnerAfter(self, partner)) {
+      calm = min(calm, floatBitsToUint(texelFetch(particleSpinTexture, int(partner)).w));
+      ++touching;
+    }
+#endif
     for (uint h = 0u; h < found; ++h) {
       vec4 hit;
       uint collider, face;
       takeHit(h, hit, collider, face);
       if (colliderMoves(colliders[collider])) calm = 0u;
     }
-    // Beyond the list or the first batch of surfaces, the contacts are not all known here (they
-    // are compared once counted, below).
-    uint contacts = min(uint(bitCount(inContact)) + seen, uint(CONTACT_SLOTS));
-    if (!beyond && contacts != min(previousPairs.w, uint(CONTACT_SLOTS))) calm = 0u;
-    if (!beyond && seen == found && calm >= params.sleepSubsteps) {
+    // Beyond the first batch of surfaces the contacts are not all known here (they are compared
+    // once counted, below).
+    uint contacts = min(touching + seen, uint(CONTACT_SLOTS));
+    if (contacts != min(previousPairs.w, uint(CONTACT_SLOTS))) calm = 0u;
+    if (seen == found && calm >= params.sleepSubsteps) {
       particleForce[i].w = uintBitsToFloat(calm);  // the force stays the last computed
       return;
     }
     neighbourCalm = min(neighbourCalm, calm);
   }
-#endif
-#ifdef SEARCHES_GRID
-  uint last = beyond && inList > 0u ? texelFetch(neighbourListTexture, listEntry(i, inList - 1u)).x
-                                     : NO_PARTNER;
 #endif
   for (;;) {
     uint partner = NO_PARTNER;

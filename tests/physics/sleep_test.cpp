@@ -390,6 +390,41 @@ TEST(Sleep, ARestoredHalfSleepingPileGoesOnBitForBit) {
   EXPECT_GE(b->readStats().granulesAsleep, asleep);
 }
 
+// A granule dropped on the sleeping pile wakes part of it, and builds pass over the sleepers' lists;
+// a touched sleeper whose list a build passed over finds its partners in the grid. Whether its
+// contacts stay frozen must not depend on that (a restored World builds every list afresh): a
+// World restored at any moment of the impact goes on bit for bit.
+TEST(Sleep, ARestoreDuringAnImpactGoesOnBitForBit) {
+  testing::TestWorld a(sleepySettings());
+  buildPile(*a);
+  ASSERT_GT(sleepAll(a, 2.0), 0.0);
+  const float d = a->settings().particleDiameter;
+  float pileTop = 0.0f;
+  for (const BodyState& body : a->readBodies()) pileTop = std::max(pileTop, body.position.y);
+  const Vec3 dropAt{0.07f, pileTop + 3.0f * d, 0.07f};
+  a.addGranule(dropAt, {}, {0, -0.2f, 0});
+  std::uint32_t fewest = kGranules;
+  for (int moment = 0; moment < 5; ++moment) {
+    a.simulate(0.03);
+    const WorldSnapshot then = a->readSnapshot();
+    testing::TestWorld b(sleepySettings());
+    buildPile(*b);
+    b.addGranule(dropAt, {}, {0, -0.2f, 0});
+    b->restoreSnapshot(then);
+    for (int k = 0; k < 150; k += 10) {
+      a->substep(10);
+      b->substep(10);
+      const auto difference = firstDifference(a->readSnapshot(), b->readSnapshot());
+      ASSERT_FALSE(difference.has_value())
+          << "restored at " << then.simulatedTime << " s, after " << k + 10 << " substeps: "
+          << difference->describe();
+    }
+    fewest = std::min(fewest, a->readStats().granulesAsleep);
+  }
+  EXPECT_LT(fewest, kGranules);  // the impact woke some
+  EXPECT_GT(fewest, 0u);
+}
+
 // A sleeping particle is not computed, so it reports the contacts it counted last: a World that
 // restores a sleeping pile counts those its contact history holds, as the World that saved it.
 TEST(Sleep, ARestoredSleepingPileCountsTheContactsItSleepsWith) {
