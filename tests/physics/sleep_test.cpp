@@ -390,9 +390,9 @@ TEST(Sleep, ARestoredHalfSleepingPileGoesOnBitForBit) {
   EXPECT_GE(b->readStats().granulesAsleep, asleep);
 }
 
-// A granule dropped on the sleeping pile wakes part of it, and builds pass over the sleepers' lists;
-// a touched sleeper whose list a build passed over finds its partners in the grid. Whether its
-// contacts stay frozen must not depend on that (a restored World builds every list afresh): a
+// A granule dropped on the sleeping pile wakes part of it, and builds pass over the sleepers'
+// lists; a touched sleeper whose list a build passed over finds its partners in the grid. Whether
+// its contacts stay frozen must not depend on that (a restored World builds every list afresh): a
 // World restored at any moment of the impact goes on bit for bit.
 TEST(Sleep, ARestoreDuringAnImpactGoesOnBitForBit) {
   testing::TestWorld a(sleepySettings());
@@ -415,9 +415,8 @@ TEST(Sleep, ARestoreDuringAnImpactGoesOnBitForBit) {
       a->substep(10);
       b->substep(10);
       const auto difference = firstDifference(a->readSnapshot(), b->readSnapshot());
-      ASSERT_FALSE(difference.has_value())
-          << "restored at " << then.simulatedTime << " s, after " << k + 10 << " substeps: "
-          << difference->describe();
+      ASSERT_FALSE(difference.has_value()) << "restored at " << then.simulatedTime << " s, after "
+                                           << k + 10 << " substeps: " << difference->describe();
     }
     fewest = std::min(fewest, a->readStats().granulesAsleep);
   }
