@@ -42,7 +42,8 @@ WorldSnapshot snapshotOf(std::uint64_t frame, std::uint32_t bodies) {
     StoredForces f;
     f.force = {std::bit_cast<std::uint32_t>(-0.0f), std::bit_cast<std::uint32_t>(float(i)),
                std::bit_cast<std::uint32_t>(1e-30f), std::uint32_t(frame + i)};
-    f.torque = {std::bit_cast<std::uint32_t>(0.5f * float(i)), 0u, 1u, i % 2};
+    f.torque = {std::bit_cast<std::uint32_t>(0.5f * float(i)), 0u, 1u,
+                std::bit_cast<std::uint32_t>(float(i % 2))};
     s.forces.push_back(f);
   }
   return s;
@@ -195,11 +196,18 @@ TEST(RecordingFile, ANegativeZeroOrOneBitIsADifferenceNamedWithBothValues) {
   EXPECT_EQ(firstDifference(a, b)->field, "body count");
 
   b = a;
-  b.forces[5].torque[3] ^= 1u;
+  b.forces[5].force[3] += 1u;
   ASSERT_TRUE(firstDifference(a, b));
   EXPECT_EQ(firstDifference(a, b)->body, 5u);
+  EXPECT_EQ(firstDifference(a, b)->field, "force.w");
+  EXPECT_EQ(firstDifference(a, b)->describe(), "particle 5 force.w: recorded 8, replayed 9");
+  EXPECT_NE(stateHash(a), stateHash(b));
+
+  b = a;
+  b.forces[5].torque[3] = 0u;  // was 1.0f: the slots changed
+  ASSERT_TRUE(firstDifference(a, b));
   EXPECT_EQ(firstDifference(a, b)->field, "torque.w");
-  EXPECT_EQ(firstDifference(a, b)->describe(), "particle 5 torque.w: recorded 1, replayed 0");
+  EXPECT_NE(firstDifference(a, b)->describe().find("0x3f800000"), std::string::npos);
   EXPECT_NE(stateHash(a), stateHash(b));
 
   b = a;

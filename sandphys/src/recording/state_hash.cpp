@@ -196,7 +196,7 @@ std::optional<StateDifference> firstDifference(const WorldSnapshot& recorded,
                            double(recorded.contacts.size()),   double(replayed.contacts.size()),
                            StateDifference::Subject::Particle, true};
   }
-  // Forces (sleep): named by particle and word; the w words are integers.
+  // Forces (sleep): named by particle and word; the force's w is an integer (a calm count).
   const std::size_t loaded = std::min(recorded.forces.size(), replayed.forces.size());
   for (std::size_t i = 0; i < loaded; ++i) {
     for (const bool torque : {false, true}) {
@@ -204,7 +204,7 @@ std::optional<StateDifference> firstDifference(const WorldSnapshot& recorded,
       const auto& b = torque ? replayed.forces[i].torque : replayed.forces[i].force;
       for (std::uint32_t w = 0; w < 4; ++w) {
         if (a[w] == b[w]) continue;
-        const bool isFloat = w < 3;
+        const bool isFloat = w < 3 || torque;
         return StateDifference{std::uint32_t(i),
                                std::string(torque ? "torque." : "force.") + "xyzw"[w],
                                isFloat ? double(std::bit_cast<float>(a[w])) : double(a[w]),
