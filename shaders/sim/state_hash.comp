@@ -91,11 +91,7 @@ void main() {
   for (uint i = gl_GlobalInvocationID.x; i < params.particleCount; i += stride) {
     uvec2 h = uvec2(fmix(i ^ 0xa4093822u), fmix(i ^ 0x299f31d0u));
     h = absorb4(h, particleForce[i]);
-#ifdef PAPER_LAW
-    h = absorb4(h, vec4(0.0));  // StoredForces::torque: none under the paper's law
-#else
-    h = absorb4(h, particleTorque[i]);
-#endif
+    h = absorb4(h, particleTorque[i]);  // sleep comes with ContactLaw::HertzMindlin only
     sum += h;
   }
 #endif

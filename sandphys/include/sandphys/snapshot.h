@@ -56,7 +56,7 @@ struct StoredContacts {
 /// the GPU stores them (x, y, z as float bits, and the w words the kernels keep beside them). With
 /// sleep a sleeping particle is not computed and these carry over from substep to substep: the
 /// balance check of a sleeper that something awake touches sums them (docs/architecture.md,
-/// "Sleep"). The torque is 0 under ContactLaw::PaperViscous, which has none.
+/// "Sleep").
 struct StoredForces {
   std::array<std::uint32_t, 4> force{};
   std::array<std::uint32_t, 4> torque{};

@@ -72,25 +72,22 @@ void uploadContacts(WorldBuffers& buffers, const std::vector<StoredContacts>& co
   buffers[kParticleStats].upload(0, stats.size() * sizeof(GpuUVec4), stats.data());
 }
 
-std::vector<StoredForces> downloadForces(const WorldBuffers& buffers, std::uint32_t particles,
-                                         bool torques) {
+std::vector<StoredForces> downloadForces(const WorldBuffers& buffers, std::uint32_t particles) {
   std::vector<StoredForces> out(particles);
   if (particles == 0) return out;
   std::vector<SlotWords> words(particles);
   buffers[kParticleForce].download(0, words.size() * sizeof(SlotWords), words.data());
   for (std::uint32_t i = 0; i < particles; ++i) out[i].force = words[i];
-  if (!torques) return out;
   buffers[kParticleTorque].download(0, words.size() * sizeof(SlotWords), words.data());
   for (std::uint32_t i = 0; i < particles; ++i) out[i].torque = words[i];
   return out;
 }
 
-void uploadForces(WorldBuffers& buffers, const std::vector<StoredForces>& forces, bool torques) {
+void uploadForces(WorldBuffers& buffers, const std::vector<StoredForces>& forces) {
   if (forces.empty()) return;
   std::vector<SlotWords> words(forces.size());
   for (std::size_t i = 0; i < forces.size(); ++i) words[i] = forces[i].force;
   buffers[kParticleForce].upload(0, words.size() * sizeof(SlotWords), words.data());
-  if (!torques) return;
   for (std::size_t i = 0; i < forces.size(); ++i) words[i] = forces[i].torque;
   buffers[kParticleTorque].upload(0, words.size() * sizeof(SlotWords), words.data());
 }

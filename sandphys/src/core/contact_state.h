@@ -18,12 +18,11 @@ std::vector<StoredContacts> downloadContacts(const WorldBuffers& buffers, std::u
 void uploadContacts(WorldBuffers& buffers, const std::vector<StoredContacts>& contacts,
                     std::uint32_t particles);
 
-/// The last computed force and torque of the first `particles` particles (particleForce, and
-/// particleTorque when `torques`: under HertzMindlin; else 0). Sync point.
-std::vector<StoredForces> downloadForces(const WorldBuffers& buffers, std::uint32_t particles,
-                                         bool torques);
+/// The last computed force and torque of the first `particles` particles (particleForce,
+/// particleTorque; sleep comes with ContactLaw::HertzMindlin only). Sync point.
+std::vector<StoredForces> downloadForces(const WorldBuffers& buffers, std::uint32_t particles);
 
-/// Puts `forces` back into the first forces.size() particles (the torques when `torques`).
-void uploadForces(WorldBuffers& buffers, const std::vector<StoredForces>& forces, bool torques);
+/// Puts `forces` back into the first forces.size() particles.
+void uploadForces(WorldBuffers& buffers, const std::vector<StoredForces>& forces);
 
 }  // namespace sandphys::detail

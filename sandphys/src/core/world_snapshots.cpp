@@ -67,7 +67,7 @@ void World::restoreSnapshot(const WorldSnapshot& snapshot) {
   w.buffers[kBodyAngularVelocity].upload(0, count * sizeof(GpuVec4), spin.data());
   w.buffers[kBodyInfo].upload(0, count * sizeof(GpuUVec4), info.data());
   if (w.keepsHistory()) uploadContacts(w.buffers, snapshot.contacts, w.particleCount);
-  uploadForces(w.buffers, snapshot.forces, w.keepsHistory());
+  uploadForces(w.buffers, snapshot.forces);
   gl::check("World::restoreSnapshot");
   w.steps = snapshot.steps;
   w.simTime = snapshot.simulatedTime;
