@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <limits>
 
@@ -194,32 +195,33 @@ TEST(RecordingFile, ANegativeZeroOrOneBitIsADifferenceNamedWithBothValues) {
   b.bodies.pop_back();
   ASSERT_TRUE(firstDifference(a, b));
   EXPECT_EQ(firstDifference(a, b)->field, "body count");
+}
 
-  b = a;
-  b.forces[5].force[3] += 1u;
-  ASSERT_TRUE(firstDifference(a, b));
-  EXPECT_EQ(firstDifference(a, b)->body, 5u);
-  EXPECT_EQ(firstDifference(a, b)->field, "force.w");
-  EXPECT_EQ(firstDifference(a, b)->describe(), "particle 5 force.w: recorded 8, replayed 9");
+// The difference `change` makes to `a`, which changes its state hash as well.
+StateDifference differenceAfter(const WorldSnapshot& a,
+                                const std::function<void(WorldSnapshot&)>& change) {
+  WorldSnapshot b = a;
+  change(b);
   EXPECT_NE(stateHash(a), stateHash(b));
+  const std::optional<StateDifference> difference = firstDifference(a, b);
+  EXPECT_TRUE(difference);
+  return difference.value_or(StateDifference{});
+}
 
-  b = a;
-  b.forces[5].torque[3] = 0u;  // was 1.0f: the slots changed
-  ASSERT_TRUE(firstDifference(a, b));
-  EXPECT_EQ(firstDifference(a, b)->field, "torque.w");
-  EXPECT_NE(firstDifference(a, b)->describe().find("0x3f800000"), std::string::npos);
-  EXPECT_NE(stateHash(a), stateHash(b));
-
-  b = a;
-  b.forces[0].force[0] = 0u;  // was -0.0f
-  ASSERT_TRUE(firstDifference(a, b));
-  EXPECT_EQ(firstDifference(a, b)->field, "force.x");
-  EXPECT_NE(stateHash(a), stateHash(b));
-
-  b = a;
-  b.forces.pop_back();
-  ASSERT_TRUE(firstDifference(a, b));
-  EXPECT_EQ(firstDifference(a, b)->field, "forces count");
+TEST(RecordingFile, AChangedForceIsADifferenceNamedByParticleAndWord) {
+  const WorldSnapshot a = snapshotOf(3, 4);
+  const StateDifference calm = differenceAfter(a, [](WorldSnapshot& b) { b.forces[5].force[3]++; });
+  EXPECT_EQ(calm.describe(), "particle 5 force.w: recorded 8, replayed 9");
+  // Was 1.0f: the slots changed.
+  const StateDifference slots =
+      differenceAfter(a, [](WorldSnapshot& b) { b.forces[5].torque[3] = 0u; });
+  EXPECT_EQ(slots.field, "torque.w");
+  EXPECT_NE(slots.describe().find("0x3f800000"), std::string::npos) << slots.describe();
+  // Was -0.0f.
+  EXPECT_EQ(differenceAfter(a, [](WorldSnapshot& b) { b.forces[0].force[0] = 0u; }).field,
+            "force.x");
+  EXPECT_EQ(differenceAfter(a, [](WorldSnapshot& b) { b.forces.pop_back(); }).field,
+            "forces count");
 }
 
 TEST(RecordingFile, AMissingFileIsNamed) {
