@@ -22,10 +22,11 @@ CONTACT_SLOTS_0(readonly)
 CONTACT_SLOTS_1(readonly)
 CONTACT_SLOTS_2(readonly)
 CONTACT_PAIRS(readonly)
-PARTICLE_TORQUE(readonly)
 #endif
+// Sleep comes with ContactLaw::HertzMindlin only.
 #ifdef SLEEPING
 PARTICLE_FORCE(readonly)
+PARTICLE_TORQUE(readonly)
 #endif
 
 shared uvec2 sharedSums[HASH_THREADS];
@@ -91,7 +92,7 @@ void main() {
   for (uint i = gl_GlobalInvocationID.x; i < params.particleCount; i += stride) {
     uvec2 h = uvec2(fmix(i ^ 0xa4093822u), fmix(i ^ 0x299f31d0u));
     h = absorb4(h, particleForce[i]);
-    h = absorb4(h, particleTorque[i]);  // sleep comes with ContactLaw::HertzMindlin only
+    h = absorb4(h, particleTorque[i]);
     sum += h;
   }
 #endif

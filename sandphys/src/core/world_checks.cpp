@@ -105,8 +105,8 @@ void requireRestorable(const WorldSnapshot& snapshot) {
   }
   for (std::size_t p = 0; p < snapshot.forces.size(); ++p) {
     const StoredForces& f = snapshot.forces[p];
+    const std::string name = "WorldSnapshot.forces[" + std::to_string(p) + "].";
     for (int axis = 0; axis < 3; ++axis) {
-      const std::string name = "WorldSnapshot.forces[" + std::to_string(p) + "].";
       const std::string word(1, "xyz"[axis]);
       requireFinite(name + "force." + word, std::bit_cast<float>(f.force[axis]));
       requireFinite(name + "torque." + word, std::bit_cast<float>(f.torque[axis]));

@@ -209,10 +209,11 @@ WorldSnapshot readSnapshot(Reader& in, const std::string& context) {
                               std::size_t(forces) * kSnapshotForceBytes;
   const unsigned long long contentSize = ZSTD_getFrameContentSize(compressed, compressedSize);
   if (contentSize != rawSize) {
-    throw RecordingError(
-        context + " is malformed: the snapshot of frame " + std::to_string(snapshot.frame) +
-        " does not hold " + std::to_string(bodies) + " bodies, the contacts of " +
-        std::to_string(particles) + " particles and the forces of " + std::to_string(forces));
+    throw RecordingError(context + " is malformed: the snapshot of frame " +
+                         std::to_string(snapshot.frame) + " does not hold " +
+                         std::to_string(bodies) + " bodies, the contacts of " +
+                         std::to_string(particles) + " particles and the forces of " +
+                         std::to_string(forces) + " particles");
   }
   std::vector<std::uint8_t> raw(rawSize);
   const std::size_t result = ZSTD_decompress(raw.data(), raw.size(), compressed, compressedSize);

@@ -2,7 +2,8 @@
 // needs forces lists the particles of other bodies closer than d + skin at the last build,
 // ascending by id. A particle's contacts are then evaluated in partner-id order whenever the lists
 // were built: the skin and the moments of the builds change no bit of the result, and the lists
-// are a cache that snapshots need not carry. The lists are built from the grid of the build (common/grid.glsl).
+// are a cache that snapshots need not carry. The lists are built from the grid of the build
+// (common/grid.glsl).
 //
 // Without sleep, listNear.w marks with bit k the entries k that were within d + near skin of the
 // particle when list_near.comp last marked them, from where it stood then (listNear.xyz): it marks
