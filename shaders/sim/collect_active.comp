@@ -4,14 +4,18 @@
 // A body is active when it is alive, not static, and awake or touched by something awake in the
 // last substep (its count is calmTouched(), which this pass takes back to plain asleep); an active
 // granule goes into activeBodies (integrate_bodies.comp), the particles of every active body into
-// activeParticles (contacts.comp). Each workgroup packs its entries in body order (a scan in
-// shared memory) and takes its place in the lists with one atomic add; the last workgroup to
+// activeParticles (contacts.comp). Each thread takes the places of its chunk's entries in the
+// lists with one atomic add per list, if it has any: the lists are in any order, a chunk's
+// entries together in body order (each entry's result is its own); the last workgroup to
 // finish writes the two passes' indirect commands, clears the totals for the next substep (and
 // the commands of clearRunningCommands) and decides on the list build. When a build is due it
 // stamps the bodies that go into its moving grid (BODY_GRID_BUILD): the computed ones and, unless
 // the still grid is built again, the recent sleepers, whose particles it lists from the end of
 // activeParticles (common/grid.glsl).
-// So the passes that follow cost what the awake sand costs, and nothing is read back.
+// So the passes that follow cost what the awake sand costs, and nothing is read back. A chunk
+// whose last scan listed nothing is marked quiet (QUIET_CHUNKS) and passed over until something
+// may have changed it, but at a build that lists the recent sleepers: so this pass, too, costs
+// about what the awake sand costs.
 #include "common/layout.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
@@ -22,17 +26,13 @@ BODY_VELOCITY(writeonly)
 ACTIVE_BODIES(writeonly)
 ACTIVE_PARTICLES(writeonly)
 BODY_GRID_BUILD(coherent)
+QUIET_CHUNKS(restrict)
 COUNTERS(coherent)
 #include "common/list_decision.glsl"
 
-// Bodies per thread, consecutive: a workgroup lists WORKGROUP_SIZE * COLLECT_CHUNK bodies with one
-// scan in shared memory, whose barriers are what this pass costs on a CPU.
-#define COLLECT_CHUNK 32u
-
-shared uint bodyOffsets[WORKGROUP_SIZE];
-shared uint particleOffsets[WORKGROUP_SIZE];
-shared uint bodyBase;
-shared uint particleBase;
+// A thread lists a chunk of COLLECT_CHUNK consecutive bodies (layout.glsl). Its places come
+// from atomics rather than a scan in shared memory, whose barriers llvmpipe runs as coroutine
+// switches: they cost more than the atomics, and a quiet chunk needs neither.
 
 // The command of `pass` for `entries` threads of WORKGROUP_SIZE, spilling into y as
 // World::Impl::dispatch does; the fourth uint holds `entries`.
@@ -69,6 +69,9 @@ void main() {
   uint bodies = 0u;
   uint particles = 0u;
   uint recents = 0u;
+  // The thread's chunk, unless it is quiet (the recent sleepers in it are not).
+  uint chunk = threadIndex();
+  if (first < end && !recentDue && quietChunks[chunk] != 0u) end = first;
   for (uint b = first; b < end; ++b) {
     uvec4 info;
     uint calm;
@@ -80,33 +83,14 @@ void main() {
       recents += info.y;
     }
   }
+  if (first < end) quietChunks[chunk] = bodies + particles == 0u ? 1u : 0u;
   // The recent sleepers' particles only sort into the grid, where their order does not matter:
   // a place for each thread's, in any order.
   uint nextRecent =
       recents == 0u ? 0u : atomicAdd(counters[COUNTER_RECENT_PARTICLES], recents);
-  bodyOffsets[local] = bodies;
-  particleOffsets[local] = particles;
-  barrier();
-  // Inclusive scan of the threads' counts (Hillis-Steele).
-  for (uint width = 1u; width < uint(WORKGROUP_SIZE); width <<= 1u) {
-    uint b = bodyOffsets[local];
-    uint p = particleOffsets[local];
-    if (local >= width) {
-      b += bodyOffsets[local - width];
-      p += particleOffsets[local - width];
-    }
-    barrier();
-    bodyOffsets[local] = b;
-    particleOffsets[local] = p;
-    barrier();
-  }
-  if (local == uint(WORKGROUP_SIZE) - 1u) {
-    bodyBase = atomicAdd(counters[COUNTER_ACTIVE_BODIES], bodyOffsets[local]);
-    particleBase = atomicAdd(counters[COUNTER_ACTIVE_PARTICLES], particleOffsets[local]);
-  }
-  barrier();
-  uint nextBody = bodyBase + bodyOffsets[local] - bodies;
-  uint nextParticle = particleBase + particleOffsets[local] - particles;
+  uint nextBody = bodies == 0u ? 0u : atomicAdd(counters[COUNTER_ACTIVE_BODIES], bodies);
+  uint nextParticle =
+      particles == 0u ? 0u : atomicAdd(counters[COUNTER_ACTIVE_PARTICLES], particles);
   for (uint b = first; b < end && bodies + particles + recents > 0u; ++b) {
     uvec4 info;
     uint calm;

@@ -124,6 +124,7 @@ CONTACT_SLOTS_2(readonly)
 #ifdef SLEEPING
 ACTIVE_PARTICLES(readonly)
 BODY_VELOCITY(writeonly)
+QUIET_CHUNKS(writeonly)
 #endif
 PARTICLE_FORCE(writeonly)
 PARTICLE_STATS(coherent)
@@ -365,7 +366,9 @@ void pairContact(Particle self, uint otherId) {
 #ifndef CONTACT_LIST
   // Marks a sleeping partner for the next substep (every toucher writes the same value).
   if (self.calm < params.sleepSubsteps && otherCalm == params.sleepSubsteps) {
-    bodyVelocity[floatBitsToUint(other.w)].w = uintBitsToFloat(calmTouched());
+    uint otherBody = floatBitsToUint(other.w);
+    bodyVelocity[otherBody].w = uintBitsToFloat(calmTouched());
+    quietChunks[otherBody / COLLECT_CHUNK] = 0u;  // collect_active.comp scans its chunk again
   }
 #endif
 #endif

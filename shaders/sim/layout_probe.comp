@@ -33,8 +33,13 @@ layout(std430, binding = 49) readonly buffer GridCountersProbe {
   uint beforeNearMarkingsProbe[COUNTER_NEAR_MARKINGS - COUNTER_RECOUNT_PAIRS - 1];
   uint nearMarkingsProbe;
 };
-// The active passes' commands (sleep).
-layout(std430, binding = 47) readonly buffer ActiveDispatchProbe { uint activeDispatchProbe[COUNTER_ACTIVE_DISPATCH]; };
+// The active passes' commands and collect_active.comp's chunk (sleep): each member starts at
+// its count.
+layout(std430, binding = 47) readonly buffer ActiveDispatchProbe {
+  uint activeDispatchProbe[COUNTER_ACTIVE_DISPATCH];
+  uint collectChunkProbe[COLLECT_CHUNK];
+  uint sleepProbeEnd;
+};
 layout(std430, binding = 48) readonly buffer ActivePassesProbe { uvec4 activePassesProbe[ACTIVE_PASS_COLLIDERS + 1u]; };
 
 void main() {
@@ -45,7 +50,8 @@ void main() {
   sum += slotsProbe[0] + slotGroupProbe[0] + slotGroupsProbe[0];
   sum += vec4(listPassesProbe[0]);
   sum.y += float(listCapacityProbe[0] + listDispatchProbe[0] + listPassProbe[0].x);
-  sum.z += float(activeDispatchProbe[0] + activePassesProbe[0].x);
+  sum.z += float(activeDispatchProbe[0] + activePassesProbe[0].x + collectChunkProbe[0] +
+                 sleepProbeEnd);
   sum.w += float(beforeStillBuildsProbe[0] + stillBuildsProbe[0] + gridActiveProbe[0] + gridRecentProbe + recountPairsProbe);
   sum.w += float(beforeNearMarkingsProbe[0] + nearMarkingsProbe);
   sum += sinks[0].lo + sinks[0].hi;

@@ -123,9 +123,9 @@ TEST(BufferTable, EveryBufferIsDeclaredAtItsBindingWithItsStrideAndView) {
 }
 
 // What only sleeping sand uses (its lists of what a substep computes, the builds of each list and
-// body, the spin and calm count beside each particle) takes the smallest buffer in a World without
-// sleep, and the capacity in one with it: five buffers. The lists' near marks, which only a World
-// without sleep uses, the other way round.
+// body, the quiet chunks, the spin and calm count beside each particle) takes the smallest buffer
+// in a World without sleep, and the capacity in one with it: six buffers. The lists' near marks,
+// which only a World without sleep uses, the other way round.
 TEST(BufferTable, SleepBuffersTakeMemoryOnlyInASleepingWorldAndNearMarksOnlyInAnAwakeOne) {
   unsigned checked = 0;
   for (const bool sleep : {false, true}) {
@@ -138,6 +138,9 @@ TEST(BufferTable, SleepBuffersTakeMemoryOnlyInASleepingWorldAndNearMarksOnlyInAn
       std::size_t units = 0;
       if (spec.sizedBy == SizedBy::SleepBodies) units = w.bodyCapacity;
       if (spec.sizedBy == SizedBy::SleepParticles) units = w.particleCapacity;
+      if (spec.sizedBy == SizedBy::SleepChunks) {
+        units = (w.bodyCapacity + kCollectChunk - 1) / kCollectChunk;
+      }
       const bool awakeOnly = spec.sizedBy == SizedBy::AwakeLists;
       if (awakeOnly) units = w.particleCapacity;
       if (units == 0) continue;
@@ -150,7 +153,7 @@ TEST(BufferTable, SleepBuffersTakeMemoryOnlyInASleepingWorldAndNearMarksOnlyInAn
       ++checked;
     }
   }
-  EXPECT_EQ(checked, 12u);
+  EXPECT_EQ(checked, 14u);
 }
 
 }  // namespace

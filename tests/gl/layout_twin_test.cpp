@@ -148,8 +148,10 @@ TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
             GLint(16 * kListBuildPasses));
   EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "ListPassProbe"),
             GLint(16 * (kPassListBuild + 1)));
-  EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "ActiveDispatchProbe"),
+  EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, "collectChunkProbe[0]"),
             GLint(4 * kCounterActiveDispatch));
+  EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, "sleepProbeEnd"),
+            GLint(4 * (kCounterActiveDispatch + kCollectChunk)));
   EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "ActivePassesProbe"),
             GLint(16 * kActivePasses));
   glDeleteProgram(program);

@@ -502,6 +502,73 @@ TEST(Sleep, AColumnCutAtItsFootRunsOutAsWithoutSleep) {
   EXPECT_NEAR(asleep.runOut, awake.runOut, 2.0 * d);
 }
 
+// collect_active.comp passes over a chunk of bodies it found quiet (none computed) until
+// something may have changed it: an awake particle touching a sleeper in it, the CPU adding or
+// setting bodies, World::wake, a collider moved. Each of these, done to the sleeping pile, gives
+// the bits of a World that scans every chunk in every substep.
+TEST(Sleep, PassingOverQuietChunksChangesNoBit) {
+  const float d = sleepySettings().particleDiameter;
+  testing::TestWorld pile(sleepySettings());
+  buildPile(*pile);
+  ASSERT_GT(sleepAll(pile, 2.0), 0.0);
+  const WorldSnapshot slept = pile->readSnapshot();
+  const std::vector<BodyState> bodies = pile->readBodies();
+  // The highest granule on the side away from where the granule is dropped.
+  const BodyState top = *std::ranges::max_element(
+      bodies, {}, [](const BodyState& s) { return s.position.x < 0.0f ? s.position.y : -1.0f; });
+  // Lifted by less than half the list skin, so that no list build (which scans every chunk)
+  // follows.
+  const BodyDesc lifted{.position = top.position + Vec3{0.0f, 0.05f * d, 0.0f},
+                        .orientation = top.orientation};
+  pile->setBodyState(top.id, lifted);
+  pile.simulate(0.02);
+  const WorldSnapshot stirred = pile->readSnapshot();
+  // The sleeping pile, once the chunks are found quiet again: the event, done to both Worlds,
+  // then `seconds` compared every 25 ms.
+  const auto compare = [&](const char* event, double seconds, const auto& doTo) {
+    testing::TestWorld a(sleepySettings());
+    testing::TestWorld b(sleepySettings());
+    testing::scanEveryChunk(*b);
+    for (testing::TestWorld* w : {&a, &b}) {
+      buildPile(**w);
+      (*w)->restoreSnapshot(slept);
+      w->simulate(0.005);
+      doTo(*w);
+    }
+    std::uint32_t fewest = kGranules;
+    for (double t = 0.025; t < seconds + 1e-9; t += 0.025) {
+      a.simulate(0.025);
+      b.simulate(0.025);
+      const auto difference = firstDifference(a->readSnapshot(), b->readSnapshot());
+      ASSERT_FALSE(difference.has_value())
+          << event << ", " << t << " s after: " << difference->describe();
+      fewest = std::min(fewest, a->readStats().granulesAsleep);
+    }
+    std::printf("%s: at least %u of %u granules stayed asleep\n", event, fewest, kGranules);
+    EXPECT_LT(fewest, kGranules) << event << " woke nothing";
+  };
+  // The granule lands after about 60 ms, on sleepers in quiet chunks.
+  compare("a granule dropped on the pile", 0.1, [&](testing::TestWorld& w) {
+    w.addGranule({0.07f, top.position.y + 3.0f * d, 0.07f}, {}, {0, -0.2f, 0});
+  });
+  compare("the highest sleeper lifted", 0.05,
+          [&](testing::TestWorld& w) { w->setBodyState(top.id, lifted); });
+  compare("a state restored with that sleeper awake", 0.05,
+          [&](testing::TestWorld& w) { w->restoreSnapshot(stirred); });
+  compare("a corner woken", 0.05, [&](testing::TestWorld& w) {
+    w->wake({-1, -1, 0.05f}, {-0.05f, 1, 1});
+  });
+  compare("a paddle let down onto the pile", 0.05, [&](testing::TestWorld& w) {
+    const Box paddle{.center = {-0.05f, top.position.y + 2.5f * d, 0.0f},
+                     .halfExtents = {0.04f, 0.5f * d, 0.08f}};
+    const ColliderId id = w->addCollider(paddle);
+    w.simulate(0.005);
+    Box lowered = paddle;
+    lowered.center.y -= 1.5f * d;
+    w->setCollider(id, lowered);
+  });
+}
+
 TEST(Sleep, AKinematicBodySetAtRestEveryFrameLeavesTheSandAsleep) {
   // What an engine bridge does with a body that rests: it sets the same pose, at rest, every
   // frame. The sand that settled around it must sleep and stay asleep.

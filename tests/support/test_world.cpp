@@ -30,6 +30,10 @@ void flipVelocityBit(World& world, std::uint32_t body, int axis) {
   velocity.upload(offset, sizeof bits, &bits);
 }
 
+void scanEveryChunk(World& world) {
+  detail::WorldAccess::impl(world).scanEveryChunk = true;
+}
+
 void countEveryPair(World& world) {
   detail::WorldAccess::impl(world).countEveryPair = true;
 }

@@ -23,6 +23,11 @@ void flipVelocityBit(World& world, std::uint32_t body, int axis);
 /// still grid empty (World::Impl::oneGrid): the oracle of its two grids.
 void useOneGrid(World& world);
 
+/// Makes collect_active.comp of a sleeping `world` scan every chunk of bodies in every substep
+/// (World::Impl::scanEveryChunk), not only those something may have changed since it found them
+/// quiet: the oracle of the latter.
+void scanEveryChunk(World& world);
+
 /// Makes every substep of `world` take every granule's pair counts (World::Impl::countEveryPair),
 /// not only those whose contact slots changed: the oracle of the latter.
 void countEveryPair(World& world);

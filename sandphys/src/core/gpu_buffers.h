@@ -17,13 +17,15 @@ namespace sandphys::detail {
 /// ScanBlocks, GridParticles: one of each per grid, two under sleep) are rebuilt from the
 /// particles, so nothing is kept when they grow.
 /// History: the particles when the contact law keeps contact state (HertzMindlin), else one unit;
-/// SleepBodies, SleepParticles: the bodies, the particles with sleep, else one unit.
+/// SleepBodies, SleepParticles: the bodies, the particles with sleep, else one unit; SleepChunks:
+/// collect_active.comp's chunks of kCollectChunk bodies with sleep, else one unit.
 /// AwakeLists: the particles without sleep, else one unit, rebuilt from the lists.
 enum class SizedBy {
   Bodies,
   Particles,
   SleepBodies,
   SleepParticles,
+  SleepChunks,
   Lists,
   AwakeLists,
   History,

@@ -71,7 +71,8 @@ inline constexpr std::uint32_t kCounterCount = kCounterActiveDispatch + 4 * kAct
 inline constexpr std::uint32_t listDispatchOffset(ListBuildPass pass) {
   return 4 * (kCounterListDispatch + 4 * pass);
 }
-/// Bodies per thread of collect_active.comp (COLLECT_CHUNK there).
+/// Bodies per thread of collect_active.comp, a chunk of QuietChunks each (COLLECT_CHUNK in
+/// layout.glsl).
 inline constexpr std::uint32_t kCollectChunk = 32;
 /// Byte offset of an active pass's indirect command in the counters buffer.
 inline constexpr std::uint32_t activeDispatchOffset(ActivePass pass) {

@@ -69,6 +69,10 @@ void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::
         count = sleeping ? particles : 1;
         keep = sleeping ? particlesInUse : 0;
         break;
+      case SizedBy::SleepChunks:
+        // A cache, taken back to "scan" whenever bodies change (World::Impl::prepareBodies).
+        count = sleeping ? (std::size_t(bodies) + kCollectChunk - 1) / kCollectChunk : 1;
+        break;
       case SizedBy::Lists:
         count = particles;
         break;

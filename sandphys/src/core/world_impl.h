@@ -158,6 +158,12 @@ struct World::Impl {
   // still grid empty (a test's oracle of the two grids: the lists and so the results are the
   // same bit for bit). Set paramsDirty after changing it.
   bool oneGrid = false;
+  // With sleep: what collect_active.comp knows of quiet chunks (QuietChunks) may be out of date:
+  // the CPU changed bodies or parameters since. The next substep scans every chunk again.
+  bool quietStale = true;
+  // With sleep: every substep scans every chunk (a test's oracle of passing over the quiet ones:
+  // the active lists, and so the results, are the same bit for bit).
+  bool scanEveryChunk = false;
   // Particles whose state must be written from their bodies before the next contacts (bodies
   // added, set or restored by the CPU): [dirtyBegin, dirtyEnd).
   std::uint32_t dirtyBegin = 0;

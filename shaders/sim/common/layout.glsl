@@ -153,6 +153,8 @@ struct StatsPartial {
 // computed in the next substep (collect_active.comp takes the mark back to params.sleepSubsteps).
 #define CALM_UNBOUNDED 0xffffffffu
 #define calmTouched() (params.sleepSubsteps + 1u)
+// Bodies per thread of collect_active.comp, a chunk of quietChunks each (C++: kCollectChunk).
+#define COLLECT_CHUNK 32u
 
 // Constant for the whole step; set by World when settings or counts change (C++ twin: SimParams
 // in gpu_layout.h). std140 with one vec3, first, and 4-byte members after it: nothing is padded.
