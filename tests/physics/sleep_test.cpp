@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <set>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -503,9 +504,10 @@ TEST(Sleep, AColumnCutAtItsFootRunsOutAsWithoutSleep) {
 }
 
 // collect_active.comp passes over a chunk of bodies it found quiet (none computed) until
-// something may have changed it: an awake particle touching a sleeper in it, the CPU adding or
-// setting bodies, World::wake, a collider moved. Each of these, done to the sleeping pile, gives
-// the bits of a World that scans every chunk in every substep.
+// something may have changed it: an awake particle touching a sleeper in it, the CPU adding,
+// setting or restoring bodies, World::wake, a collider moved. Each of these, done to the sleeping
+// pile, gives the bits of a World that scans every chunk in every substep (and each fails
+// without its part of the invalidation).
 TEST(Sleep, PassingOverQuietChunksChangesNoBit) {
   const float d = sleepySettings().particleDiameter;
   testing::TestWorld pile(sleepySettings());
@@ -547,9 +549,16 @@ TEST(Sleep, PassingOverQuietChunksChangesNoBit) {
     std::printf("%s: at least %u of %u granules stayed asleep\n", event, fewest, kGranules);
     EXPECT_LT(fewest, kGranules) << event << " woke nothing";
   };
-  // The granule lands after about 60 ms, on sleepers in quiet chunks.
+  // The granule joins a quiet chunk (that of a static sphere added first, out of reach) and
+  // lands after about 60 ms, on sleepers in quiet chunks.
   compare("a granule dropped on the pile", 0.1, [&](testing::TestWorld& w) {
-    w.addGranule({0.07f, top.position.y + 3.0f * d, 0.07f}, {}, {0, -0.2f, 0});
+    const WorldSettings& s = w->settings();
+    w->addBody(makeParticleTemplate({{0.0f, 0.0f, 0.0f}}, d, s.material.density),
+               {.position = {0.09f, 0.5f, 0.09f}, .motion = Motion::Static});
+    w.simulate(0.005);
+    const BodyDesc granule{.position = {0.07f, top.position.y + 3.0f * d, 0.07f},
+                           .velocity = {0, -0.2f, 0}};
+    w->addGranules(std::span(&granule, 1));
   });
   compare("the highest sleeper lifted", 0.05,
           [&](testing::TestWorld& w) { w->setBodyState(top.id, lifted); });

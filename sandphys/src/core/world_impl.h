@@ -158,9 +158,11 @@ struct World::Impl {
   // still grid empty (a test's oracle of the two grids: the lists and so the results are the
   // same bit for bit). Set paramsDirty after changing it.
   bool oneGrid = false;
-  // With sleep: what collect_active.comp knows of quiet chunks (QuietChunks) may be out of date:
-  // the CPU changed bodies or parameters since. The next substep scans every chunk again.
+  // With sleep: what collect_active.comp knows of quiet chunks (QuietChunks) may be out of date,
+  // everywhere (the CPU added or restored bodies, or woke a region: the next substep scans every
+  // chunk again) or in the chunks of bodies it placed (kinematic moves place one every substep).
   bool quietStale = true;
+  std::vector<std::uint32_t> placedChunks;
   // With sleep: every substep scans every chunk (a test's oracle of passing over the quiet ones:
   // the active lists, and so the results, are the same bit for bit).
   bool scanEveryChunk = false;

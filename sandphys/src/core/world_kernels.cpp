@@ -100,7 +100,6 @@ void World::Impl::dispatchIndirect(GLuint program, const char* name, std::uint32
 
 void World::Impl::markParticlesDirty(std::uint32_t first, std::uint32_t end) {
   if (first >= end) return;
-  quietStale = true;  // the bodies changed: a sleeper may have woken or been born
   dirtyBegin = dirtyEnd > dirtyBegin ? std::min(dirtyBegin, first) : first;
   dirtyEnd = std::max(dirtyEnd, end);
 }
@@ -116,10 +115,14 @@ void World::Impl::fitTable() {
 void World::Impl::prepareBodies() {
   fitTable();
   if (paramsDirty) uploadParams();
-  if (sleep.enabled && (quietStale || scanEveryChunk)) {
+  if (sleep.enabled && (quietStale || scanEveryChunk || !placedChunks.empty())) {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // after the passes that wrote it
-    buffers[kQuietChunks].zero();
+    const std::uint32_t scan = 0;
+    if (quietStale || scanEveryChunk) buffers[kQuietChunks].zero();
+    for (const std::uint32_t chunk : placedChunks)
+      buffers[kQuietChunks].upload(chunk * sizeof scan, sizeof scan, &scan);
     quietStale = false;
+    placedChunks.clear();
   }
   // 0. The particles of bodies the CPU set, from their bodies (eq. 7, 8); the integration writes
   // the others'.
