@@ -59,7 +59,8 @@ bool computed(uint b, bool recentDue, uint stillBuild, out uvec4 info, out uint 
 
 void main() {
   uint local = gl_LocalInvocationID.x;
-  uint first = threadIndex() * COLLECT_CHUNK;
+  uint chunk = threadIndex();
+  uint first = chunk * COLLECT_CHUNK;
   uint end = min(first + COLLECT_CHUNK, params.bodyCount);
   // Every workgroup reads these before the last one changes them (decideListBuild).
   uint requested = counters[COUNTER_LIST_REQUESTED];
@@ -70,7 +71,6 @@ void main() {
   uint particles = 0u;
   uint recents = 0u;
   // The thread's chunk, unless it is quiet (the recent sleepers in it are not).
-  uint chunk = threadIndex();
   if (first < end && !recentDue && quietChunks[chunk] != 0u) end = first;
   for (uint b = first; b < end; ++b) {
     uvec4 info;

@@ -79,7 +79,7 @@ std::uint32_t World::Impl::addBodies(const ParticleTemplate& shape,
   // New particles: their state before the next contacts, and lists that hold them; and new
   // bodies to list, in chunks that may have been found quiet.
   markParticlesDirty(firstParticle, particleCount);
-  quietStale = true;
+  markBodiesChanged(firstBody, bodyCount);
   listsStale = true;
   if (isGranule) granulesSpawned += std::uint32_t(n);
   paramsDirty = true;
@@ -152,9 +152,8 @@ void World::Impl::placeBody(std::uint32_t body, const BodyDesc& desc) {
   // Its particles follow before the next contacts (and ask for a list build if they jumped).
   const std::uint32_t first = body == 0 ? 0u : particleEnd(body - 1);
   markParticlesDirty(first, particleEnd(body));
-  // A sleeper placed is computed again: its chunk is scanned (one word, not the whole World, as
-  // kinematic moves place a body every substep).
-  if (sleep.enabled) placedChunks.push_back(body / kCollectChunk);
+  // A sleeper placed is computed again: its chunk is scanned.
+  markBodiesChanged(body, body + 1);
 }
 
 void World::Impl::requireImpenetrableSurface(const ParticleTemplate& shape) const {

@@ -183,7 +183,7 @@ void World::Impl::wakeBox(const Bounds& box) {
   glUniform3f(0, box.lo.x, box.lo.y, box.lo.z);
   glUniform3f(1, box.hi.x, box.hi.y, box.hi.z);
   dispatch(kernels.wakeRegion, "wake_region", bodyCount, kWorkgroupSize);
-  quietStale = true;  // the sleepers it woke are computed again
+  markBodiesChanged(0, bodyCount);  // the sleepers it woke are computed again
   gl::check("waking a region");
 }
 

@@ -158,11 +158,6 @@ struct World::Impl {
   // still grid empty (a test's oracle of the two grids: the lists and so the results are the
   // same bit for bit). Set paramsDirty after changing it.
   bool oneGrid = false;
-  // With sleep: what collect_active.comp knows of quiet chunks (QuietChunks) may be out of date,
-  // everywhere (the CPU added or restored bodies, or woke a region: the next substep scans every
-  // chunk again) or in the chunks of bodies it placed (kinematic moves place one every substep).
-  bool quietStale = true;
-  std::vector<std::uint32_t> placedChunks;
   // With sleep: every substep scans every chunk (a test's oracle of passing over the quiet ones:
   // the active lists, and so the results, are the same bit for bit).
   bool scanEveryChunk = false;
@@ -170,6 +165,10 @@ struct World::Impl {
   // added, set or restored by the CPU): [dirtyBegin, dirtyEnd).
   std::uint32_t dirtyBegin = 0;
   std::uint32_t dirtyEnd = 0;
+  // With sleep: bodies the CPU changed (added, placed, restored, woken), whose chunks of
+  // QuietChunks collect_active.comp scans again in the next substep: [quietBegin, quietEnd).
+  std::uint32_t quietBegin = 0;
+  std::uint32_t quietEnd = 0;
   // Particles of bodies the CPU added since the last step, checked for deep initial overlaps at
   // its start: [overlapCheckBegin, overlapCheckEnd).
   std::uint32_t overlapCheckBegin = 0;
@@ -231,6 +230,7 @@ struct World::Impl {
 
   /// Particles [first, end) take their state from their bodies before the next contacts.
   void markParticlesDirty(std::uint32_t first, std::uint32_t end);
+  void markBodiesChanged(std::uint32_t first, std::uint32_t end);
   /// The contacts of particles [first, end) deeper than `minOverlap` (m), each pair once or, with
   /// `bothSides`, from each listed particle's side (contacts.comp compiled for CONTACT_LIST);
   /// sorted. Sync point.

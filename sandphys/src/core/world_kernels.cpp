@@ -104,6 +104,12 @@ void World::Impl::markParticlesDirty(std::uint32_t first, std::uint32_t end) {
   dirtyEnd = std::max(dirtyEnd, end);
 }
 
+void World::Impl::markBodiesChanged(std::uint32_t first, std::uint32_t end) {
+  if (first >= end) return;
+  quietBegin = quietEnd > quietBegin ? std::min(quietBegin, first) : first;
+  quietEnd = std::max(quietEnd, end);
+}
+
 void World::Impl::fitTable() {
   if (HashTable::sizeFor(particleCount) == table.size) return;
   // Buckets past the smaller table hold no count: grid_scatter takes every count back to zero.
@@ -115,15 +121,14 @@ void World::Impl::fitTable() {
 void World::Impl::prepareBodies() {
   fitTable();
   if (paramsDirty) uploadParams();
-  if (sleep.enabled && (quietStale || scanEveryChunk || !placedChunks.empty())) {
+  if (scanEveryChunk) markBodiesChanged(0, bodyCount);
+  if (sleep.enabled && quietEnd > quietBegin) {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // after the passes that wrote it
-    const std::uint32_t scan = 0;
-    if (quietStale || scanEveryChunk) buffers[kQuietChunks].zero();
-    for (const std::uint32_t chunk : placedChunks)
-      buffers[kQuietChunks].upload(chunk * sizeof scan, sizeof scan, &scan);
-    quietStale = false;
-    placedChunks.clear();
+    const std::uint32_t first = quietBegin / kCollectChunk;
+    const std::uint32_t end = (quietEnd + kCollectChunk - 1) / kCollectChunk;
+    buffers[kQuietChunks].zero(4ull * first, 4ull * (end - first));
   }
+  quietBegin = quietEnd = 0;
   // 0. The particles of bodies the CPU set, from their bodies (eq. 7, 8); the integration writes
   // the others'.
   writeDirtyParticles("bodies_to_particles");

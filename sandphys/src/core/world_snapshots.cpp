@@ -73,7 +73,7 @@ void World::restoreSnapshot(const WorldSnapshot& snapshot) {
   w.simTime = snapshot.simulatedTime;
   w.gridValid = false;
   w.markParticlesDirty(0, w.particleCount);
-  w.quietStale = true;
+  w.markBodiesChanged(0, w.bodyCount);
   w.listsStale = true;
   w.accumulator = snapshot.unsteppedTime;
   w.heldSubsteps = snapshot.heldSubsteps;

@@ -60,6 +60,12 @@ void Buffer::zero() {
   glClearNamedBufferData(m_id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
 }
 
+void Buffer::zero(std::size_t offset, std::size_t bytes) {
+  glClearNamedBufferSubData(m_id, GL_R32UI, static_cast<GLintptr>(offset),
+                            static_cast<GLsizeiptr>(bytes), GL_RED_INTEGER, GL_UNSIGNED_INT,
+                            nullptr);
+}
+
 void Buffer::grow(std::size_t newBytes, std::size_t bytesToKeep) {
   if (newBytes <= m_bytes) return;
   Buffer bigger(newBytes, m_name);

@@ -34,6 +34,8 @@ class Buffer {
     return out;
   }
   void zero();
+  /// Zeroes `bytes` from `offset` (both multiples of 4).
+  void zero(std::size_t offset, std::size_t bytes);
   /// Copies this buffer's first `bytes` into a new, larger buffer, which replaces it.
   void grow(std::size_t newBytes, std::size_t bytesToKeep);
 
