@@ -211,6 +211,12 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
       ->capture_default_str();
   app.add_flag("--sleep", measure.sleep,
                "sleeping sand (WorldSettings::sleep): time the pile once it has fallen asleep");
+  CLI::Option* rollingOption =
+      app.add_option("--rolling-friction", measure.box.material.rollingFriction,
+                     "box: rolling friction mu_r of every contact (Material::rollingFriction; "
+                     "0: none, the standard pile), the settling included")
+          ->check(CLI::Range(0.0f, 10.0f))
+          ->capture_default_str();
   app.add_option("--rock", measure.rockSpeed,
                  "box: at the start of timing, set a ball of radius 3 d down on the pile near one "
                  "wall, rolling across it at this speed, m/s (0: no ball)")
@@ -290,8 +296,10 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
         }
       }
     }
-    if (sandboxOption->count() > 0 && !box) {
-      throw UsageError("--sandbox: applies to --scene box only");
+    for (const CLI::Option* option : {sandboxOption, rollingOption}) {
+      if (option->count() > 0 && !box) {
+        throw UsageError(option->get_name() + ": applies to --scene box only");
+      }
     }
     if (measure.sandboxSeconds > 0.0 && measure.rockSpeed > 0.0f) {
       throw UsageError("--sandbox with --rock: the sandbox script drops its own ball");

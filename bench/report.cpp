@@ -256,6 +256,10 @@ nlohmann::json pileJson(const MeasureOptions& measure) {
                {"spacing_d", shortest(box.spacing)},
                {"jitter", shortest(box.jitter)},
                {"seed", box.seed}}}};
+    // Only when there is any, so that the keys of the piles settled without it stay.
+    if (box.material.rollingFriction > 0.0f) {
+      scene["options"]["rolling_friction"] = shortest(box.material.rollingFriction);
+    }
   } else {
     scene = {{"benchmark", "cylinder-pile"},
              {"description",
@@ -321,13 +325,14 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
     std::fprintf(out,
                  "sandphys-bench: settled box pile (square box of flat walls with friction, side "
                  "%g d * sqrt(N/4096), from a loose random lattice), d = %g m, %g kg/m^3, E = %g "
-                 "Pa, nu = %g, e = %g, mu = %g (grains), walls and floor mu = %g, e = %g, dt = %g "
-                 "s, %s\nGPU: %s (%u hardware threads)\n\n",
+                 "Pa, nu = %g, e = %g, mu = %g (grains), rolling mu_r = %g, walls and floor mu = "
+                 "%g, e = %g, dt = %g s, %s\nGPU: %s (%u hardware threads)\n\n",
                  double(c.sideAt4096), d, double(c.material.density),
                  double(c.material.youngsModulus), double(c.material.poissonRatio),
                  double(c.material.restitution), double(c.material.friction),
-                 double(c.wallMaterial.friction), double(c.wallMaterial.restitution),
-                 double(c.timeStep), law.c_str(), report.gpu.c_str(), report.hardwareThreads);
+                 double(c.material.rollingFriction), double(c.wallMaterial.friction),
+                 double(c.wallMaterial.restitution), double(c.timeStep), law.c_str(),
+                 report.gpu.c_str(), report.hardwareThreads);
   } else {
     std::fprintf(out,
                  "sandphys-bench: settled cylinder pile (wall radius %g d, rough particle floor, "

@@ -326,14 +326,15 @@ vec3 surfaceVelocity(vec3 particleVelocity, vec3 spin, vec3 centre, vec3 point) 
 }
 
 // Applies one contact of the current particle: gets its spring from the previous substep,
-// advances it, keeps it in a slot and adds force and torque at `point`. A new
+// advances it, keeps it in a slot and adds force and torque at `point` (and, with rolling
+// friction, the couple against the bodies' relative rolling, relativeSpin). A new
 // contact is undamped for its first substep: the number n of contacts that joined the two
 // bodies is counted after this substep, and taking n = 1 meanwhile would damp a body that meets
 // a surface with many particles at once n times too hard (its overlap, about v dt, makes the
 // damping missed this way small). Contacts that found no slot are damped with n = 1.
 MindlinResult mindlinContact(Particle self, uint key, float xi, vec3 n, vec3 point, vec3 vRel,
                              float kn, float kt0, float dampingFactor, float invMass,
-                             float friction) {
+                             float friction, vec3 relativeSpin, float rollingRadius) {
   uint pairs;
   vec3 spring = previousSpring(key, pairs);
   if (pairs == 0u && slotsUsed < uint(CONTACT_SLOTS)) dampingFactor = 0.0;
@@ -343,6 +344,10 @@ MindlinResult mindlinContact(Particle self, uint key, float xi, vec3 n, vec3 poi
 #ifndef CONTACT_LIST
   force += r.force;
   torque += cross(point - self.position.xyz, r.force);
+#ifdef ROLLING_FRICTION
+  torque += rollingTorque(relativeSpin, n, r.normalForce, rollingRadius,
+                          float(max(pairs, 1u)) * invMass, params.dt);
+#endif
 #endif
   return r;
 }
@@ -379,7 +384,8 @@ void pairContact(Particle self, uint otherId) {
   float invMassSum = max(self.velocity.w, 0.0) + max(otherVelocity.w, 0.0);
   MindlinResult r = mindlinContact(self, particleSlotKey(otherId), xi, n, point, vRel,
                                    params.grainStiffness, params.grainShearStiffness,
-                                   params.grainDamping, invMassSum, params.friction);
+                                   params.grainDamping, invMassSum, params.friction,
+                                   self.spin - otherSpin.xyz, 0.25 * params.particleDiameter);
 #ifdef CONTACT_LIST
   // Each pair once, from the side that keeps its history (static particles keep none).
   if (listBothSides != 0u ||
@@ -560,7 +566,8 @@ void colliderContact(Particle self, Collider c, vec4 hit, uint face, float radiu
       surfaceVelocity(self.velocity.xyz, self.spin, self.position.xyz, point) - surface;
   MindlinResult r = mindlinContact(self, colliderSlotKey(c, face), xi, n, point, vRel,
                                    params.wallStiffness, params.wallShearStiffness, c.material.z,
-                                   self.velocity.w, c.material.y);
+                                   self.velocity.w, c.material.y, self.spin - c.spin.xyz,
+                                   params.particleRadius);
   vec3 spring = r.spring;
 #endif
 #ifdef CONTACT_LIST

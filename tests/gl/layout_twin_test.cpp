@@ -95,6 +95,7 @@ TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
       {"sleepSubsteps", offsetof(SimParams, sleepSubsteps)},
       {"sleepNeighbourLead", offsetof(SimParams, sleepNeighbourLead)},
       {"oneGrid", offsetof(SimParams, oneGrid)},
+      {"rollingFriction", offsetof(SimParams, rollingFriction)},
   };
   for (const Member& m : members) {
     const std::string name = std::string("SimParams.") + m.name;

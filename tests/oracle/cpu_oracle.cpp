@@ -47,6 +47,7 @@ OracleModel OracleModel::fromWorld(const World& world) {
   m.shearStiffnessWall = c.shearStiffnessWall;
   m.dampingFactorGrain = c.dampingFactorGrain;
   m.friction = s.material.friction;
+  m.rollingFriction = s.material.rollingFriction;
   m.tangentialDamping = c.tangentialDamping;
   m.timeStep = c.timeStep;
   m.maxSpeed = s.maxSpeed;
@@ -320,6 +321,18 @@ MindlinResult OracleContact::evaluate() const {
   return r;
 }
 
+Vec3d OracleContact::rollingTorque(double normalForce) const {
+  // Rolling friction (contact_law.glsl, rollingTorque): against the tangential part of the
+  // relative spin, mu_r R F_n, at most what stops a sphere of radius R with the contact's share
+  // of the masses in one substep.
+  if (law != ContactLaw::HertzMindlin || rollingFriction == 0.0) return Vec3d::Zero();
+  const Vec3d rolling = relativeSpin - relativeSpin.dot(normal) * normal;
+  const double rate = rolling.norm();
+  if (rate == 0.0) return Vec3d::Zero();
+  const double stopping = 0.4 * rollingRadius * rollingRadius * rate / (invMassSum * timeStep);
+  return -std::min(rollingFriction * rollingRadius * normalForce, stopping) / rate * rolling;
+}
+
 // --- The step -------------------------------------------------------------------------------
 
 CpuOracle::CpuOracle(const OracleModel& model, std::vector<OracleBody> bodies,
@@ -417,7 +430,10 @@ std::vector<OracleContact> CpuOracle::findContacts(
            .dampingFactor = m.dampingFactorGrain,
            .invMassSum = invMassSum,
            .friction = m.friction,
-           .timeStep = m.timeStep}));
+           .timeStep = m.timeStep,
+           .relativeSpin = self.spin - other.spin,
+           .rollingRadius = 0.25 * m.diameter,
+           .rollingFriction = m.rollingFriction}));
     }
     // Colliders are rigid and immovable: m* is the particle's own mass (PaperViscous) or its
     // body's (HertzMindlin), k_n the wall stiffness, and only particles of dynamic bodies feel
@@ -466,7 +482,10 @@ std::vector<OracleContact> CpuOracle::findContacts(
                          .dampingFactor = c.dampingFactor,
                          .invMassSum = self.inverseMass,
                          .friction = c.friction,
-                         .timeStep = m.timeStep}));
+                         .timeStep = m.timeStep,
+                         .relativeSpin = self.spin - c.spin,
+                         .rollingRadius = m.radius,
+                         .rollingFriction = m.rollingFriction}));
       }
     }
   }
@@ -482,8 +501,9 @@ ContactPass CpuOracle::contactPass(const std::vector<OracleParticle>& particles)
     const MindlinResult r = c.evaluate();
     pass.force[c.particle] += r.force;
     if (c.law != ContactLaw::HertzMindlin) continue;
-    // Friction acts at the contact point: a torque about the particle's centre.
-    pass.torque[c.particle] += c.lever.cross(r.force);
+    // Friction acts at the contact point: a torque about the particle's centre; and rolling
+    // friction's couple.
+    pass.torque[c.particle] += c.lever.cross(r.force) + c.rollingTorque(r.normalForce);
     pass.history[{std::uint32_t(c.particle), c.key}] = {r.spring, 0u};
     ContactTally& tally = pass.tally[particles[c.particle].body];
     ++(c.fresh ? tally.fresh : r.slipping ? tally.slipping : tally.sticking);

@@ -66,6 +66,7 @@ struct OracleModel {
   double shearStiffnessWall = 0.0;  ///< HertzMindlin: k_t0 grain-collider, N/m^{3/2}
   double dampingFactorGrain = 0.0;  ///< c(e) grain-grain, dimensionless
   double friction = 0.0;            ///< μ grain-grain
+  double rollingFriction = 0.0;     ///< HertzMindlin: μ_r, every contact
   double tangentialDamping = 0.0;   ///< PaperViscous: γ_s, N·s/m (grain-grain and collider)
   double timeStep = 0.0;            ///< s
   double maxSpeed = 0.0;            ///< speed guard, m/s
@@ -233,15 +234,26 @@ struct OracleContact {
   double friction = 0.0;           ///< μ
   double tangentialDamping = 0.0;  ///< PaperViscous: γ_s, N·s/m
   double timeStep = 0.0;           ///< HertzMindlin: the spring advances by v_t dt, s
-  bool fresh = true;               ///< HertzMindlin: no history from the previous substep
-  std::uint32_t pairs = 0;         ///< HertzMindlin: n_pairs applied (1 when fresh)
-  Vec3d spring = Vec3d::Zero();    ///< HertzMindlin: δ of the previous substep, m
+  /// HertzMindlin with rolling friction: the bodies' spin minus the partner's (the collider's),
+  /// rad/s; the effective rolling radius R, m; μ_r.
+  Vec3d relativeSpin = Vec3d::Zero();
+  double rollingRadius = 0.0;
+  double rollingFriction = 0.0;
+  bool fresh = true;             ///< HertzMindlin: no history from the previous substep
+  std::uint32_t pairs = 0;       ///< HertzMindlin: n_pairs applied (1 when fresh)
+  Vec3d spring = Vec3d::Zero();  ///< HertzMindlin: δ of the previous substep, m
 
   /// The law applied to this contact: the force on `particle` and (HertzMindlin) its new spring.
   MindlinResult evaluate() const;
   Vec3d force() const { return evaluate().force; }
-  /// Torque of the force about the particle's centre, N·m (0 under PaperViscous).
-  Vec3d torque() const { return lever.cross(force()); }
+  /// The couple of rolling friction on `particle` for a normal force F_n, N·m.
+  Vec3d rollingTorque(double normalForce) const;
+  /// Torque about the particle's centre, N·m: the force's, and rolling friction's couple (0 under
+  /// PaperViscous).
+  Vec3d torque() const {
+    const MindlinResult r = evaluate();
+    return lever.cross(r.force) + rollingTorque(r.normalForce);
+  }
 };
 
 /// Tallies of the HertzMindlin contacts the oracle has applied (contact-substeps), to show

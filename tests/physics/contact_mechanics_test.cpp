@@ -6,9 +6,11 @@
 // forces; a moving collider drags what rests on it; contacts beyond the slots are counted.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "support/test_world.h"
@@ -141,6 +143,100 @@ TEST(ContactMechanics, SphereRollingWithoutSlippingIsNotSlowed) {
   EXPECT_LT(p->readBody(pb).velocity.x, 0.5f * v);
 }
 
+// Rolling friction against a floor: a couple mu_r R F_n with R = d/2 and F_n = m g, against a
+// sphere rolling without slipping (I = 2/5 m R² about its centre, 7/5 m R² about the contact)
+// slows it at (5/7) mu_r g until it stops; then the couple vanishes with the spin and it stays.
+TEST(ContactMechanics, RollingFrictionSlowsARollingSphereAtFiveSeventhsMuRG) {
+  WorldSettings settings = settingsWith(0.5f);
+  settings.material.rollingFriction = 0.1f;
+  TestWorld w(settings);
+  w.addFloor(0.0f, {.friction = 0.5f, .restitution = 0.5f});
+  const float d = w->settings().particleDiameter;
+  const ParticleTemplate sphere =
+      makeParticleTemplate({{0, 0, 0}}, d, w->settings().material.density);
+  const BodyId b = w->addBody(sphere, {.position = {0.0f, 0.5f * d, 0.0f}});
+  w.simulate(0.1);
+  const BodyState rest = w->readBody(b);
+  const float v = 0.5f;
+  w->setBodyState(b, {rest.position, rest.orientation, {v, 0, 0}, {0, 0, -v / rest.position.y}});
+  const double deceleration = 5.0 / 7.0 * settings.material.rollingFriction * 9.81;
+  const double seconds = 0.4;
+  w.simulate(seconds);
+  const BodyState rolled = w->readBody(b);
+  const double expected = v - deceleration * seconds;
+  std::printf("rolling friction 0.1: speed %.5f m/s after %.1f s, closed form %.5f\n",
+              rolled.velocity.x, seconds, expected);
+  EXPECT_NEAR(rolled.velocity.x, expected, 0.01 * v);
+  EXPECT_NEAR(rolled.angularVelocity.z * rest.position.y, -rolled.velocity.x, 0.01 * v)
+      << "no longer rolling without slipping";
+  // Stopped at v / deceleration = 0.73 s; then at rest for good.
+  w.simulate(0.5);
+  const BodyState stopped = w->readBody(b);
+  w.simulate(0.5);
+  const BodyState later = w->readBody(b);
+  std::printf(
+      "stopped at x = %.6f m (closed form %.6f), %.3g m/s; 0.5 s later %.3g m/s, moved "
+      "%.3g m\n",
+      stopped.position.x - rest.position.x, 0.5 * v * v / deceleration, stopped.velocity.x,
+      later.velocity.x, later.position.x - stopped.position.x);
+  EXPECT_NEAR(stopped.position.x - rest.position.x, 0.5 * v * v / deceleration, 0.01 * d);
+  EXPECT_LT(std::abs(later.velocity.x), 1e-4f);
+  EXPECT_LT(std::abs(later.position.x - stopped.position.x), 1e-4f * d);
+}
+
+// A granule hanging by the two particles of its top edge on two fixed spheres, its centre below
+// the line through the two contacts, tilted by 0.1 rad about that line and let go: it swings
+// like a pendulum, its particles rolling on the spheres. Rolling without slipping, no contact
+// force does work, so without rolling friction nothing stops the swing: a rattler of the settled
+// box pile swung so, and kept its neighbours awake. Returns the largest spin, rad/s, over the
+// first 0.3 s and over the last 0.3 s of `seconds`.
+std::pair<double, double> hangingSwing(float rollingFriction, double seconds) {
+  WorldSettings settings = settingsWith(0.5f);
+  settings.material.rollingFriction = rollingFriction;
+  TestWorld w(settings);
+  const float d = w->settings().particleDiameter;
+  const float density = w->settings().material.density;
+  // tetrahedronTemplate's corners are (±h, ±h, ±h): the top edge runs from (h, h, h) to
+  // (-h, h, -h), along `along`. Each of its particles rests on a sphere beyond the edge's end,
+  // 30° below it, so the line through the contacts is at y = h - d/4 above the centre.
+  const float h = d / (2.0f * std::numbers::sqrt2_v<float>);
+  const Vec3 along = normalized(Vec3{1.0f, 0.0f, 1.0f});
+  const Vec3 centre{0.0f, 0.5f, 0.0f};
+  for (const float side : {1.0f, -1.0f}) {
+    const Vec3 top = centre + Vec3{side * h, h, side * h};
+    w->addBody(makeParticleTemplate({{0, 0, 0}}, d, density),
+               {.position = top + (side * 0.8660254f * d) * along - Vec3{0.0f, 0.5f * d, 0.0f},
+                .motion = Motion::Static});
+  }
+  const Vec3 pivot = centre + Vec3{0.0f, h - 0.25f * d, 0.0f};
+  const Quat tilt = fromAxisAngle(along, 0.1f);
+  const BodyId g =
+      w->addBody(tetrahedronTemplate(d, density),
+                 {.position = pivot + rotate(tilt, centre - pivot), .orientation = tilt});
+  double first = 0.0, last = 0.0;
+  constexpr double kSample = 0.01;
+  for (double t = kSample; t <= seconds + 1e-9; t += kSample) {
+    w.simulate(kSample);
+    const double spin = norm(w->readBody(g).angularVelocity);
+    if (t <= 0.3) first = std::max(first, spin);
+    if (t > seconds - 0.3) last = std::max(last, spin);
+  }
+  std::printf(
+      "hanging granule, rolling friction %g: largest spin %.4f rad/s in the first 0.3 s, "
+      "%.4f in the last 0.3 s of %.1f s; centre at y = %.4f m\n",
+      double(rollingFriction), first, last, seconds, double(w->readBody(g).position.y));
+  EXPECT_GT(w->readBody(g).position.y, 0.4f) << "it fell off its supports";
+  return {first, last};
+}
+
+TEST(ContactMechanics, AGranuleSwingingOnTwoContactsStopsOnlyWithRollingFriction) {
+  const auto [freeFirst, freeLast] = hangingSwing(0.0f, 1.0);
+  EXPECT_GT(freeFirst, 0.5) << "it did not swing";
+  EXPECT_GT(freeLast, 0.8 * freeFirst) << "something else damps the swing";
+  const auto [rollingFirst, rollingLast] = hangingSwing(0.02f, 1.0);
+  EXPECT_LT(rollingLast, 0.05 * freeFirst);
+}
+
 // Angular momentum about the origin of single-particle bodies: m x × v + I ω, I = m d²/10.
 Vec3 angularMomentum(const BodyState& s, double mass, double d) {
   const double inertia = 0.1 * mass * d * d;
@@ -169,6 +265,50 @@ TEST(ContactMechanics, GlancingFrictionalCollisionKeepsAngularMomentum) {
               spin);
   EXPECT_LT(norm(after - before), 0.01 * norm(before));
   EXPECT_GT(spin, 1.0) << "friction at the contact point spins the spheres";
+}
+
+// Rolling friction's couples on the two sides of a contact are exactly opposite: two spheres
+// meeting head-on with spins across the normal keep their total angular momentum, and end with
+// less relative rolling than without rolling friction.
+TEST(ContactMechanics, RollingFrictionKeepsAngularMomentumAndTakesRelativeRolling) {
+  struct Outcome {
+    Vec3 before, after;
+    float rolling;  // |relative spin across the normal (x)| after, rad/s
+  };
+  auto collide = [](float rollingFriction) {
+    WorldSettings settings = settingsWith(0.5f, {0, 0, 0});
+    settings.material.rollingFriction = rollingFriction;
+    TestWorld w(settings);
+    const float d = w->settings().particleDiameter;
+    const double mass = w->contactModel().particleMass;
+    const ParticleTemplate sphere =
+        makeParticleTemplate({{0, 0, 0}}, d, w->settings().material.density);
+    const BodyId a = w->addBody(sphere, {.position = {-0.51f * d, 0.0f, 0.0f},
+                                         .velocity = {0.2f, 0.0f, 0.0f},
+                                         .angularVelocity = {2.0f, 30.0f, -20.0f}});
+    const BodyId b = w->addBody(sphere, {.position = {0.51f * d, 0.0f, 0.0f},
+                                         .velocity = {-0.2f, 0.0f, 0.0f},
+                                         .angularVelocity = {-1.0f, -10.0f, 5.0f}});
+    auto total = [&] {
+      return angularMomentum(w->readBody(a), mass, d) + angularMomentum(w->readBody(b), mass, d);
+    };
+    Outcome o;
+    o.before = total();
+    w.simulate(0.02);  // through the contact and apart
+    o.after = total();
+    const Vec3 relative = w->readBody(a).angularVelocity - w->readBody(b).angularVelocity;
+    o.rolling = std::hypot(relative.y, relative.z);
+    return o;
+  };
+  const Outcome with = collide(0.3f);
+  const Outcome without = collide(0.0f);
+  std::printf(
+      "head-on, spinning: L (%.4g, %.4g, %.4g) -> (%.4g, %.4g, %.4g); relative rolling "
+      "after %.4f rad/s, %.4f without rolling friction\n",
+      with.before.x, with.before.y, with.before.z, with.after.x, with.after.y, with.after.z,
+      with.rolling, without.rolling);
+  EXPECT_LT(norm(with.after - with.before), 1e-3 * norm(with.before));
+  EXPECT_LT(with.rolling, 0.99f * without.rolling) << "the couple did not act";
 }
 
 TEST(ContactMechanics, BothSidesOfAContactGetExactlyOppositeForces) {

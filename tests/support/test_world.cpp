@@ -42,7 +42,8 @@ void searchEveryParticle(World& world) {
   gpu().makeCurrent();
   World::Impl& w = detail::WorldAccess::impl(world);
   w.kernels.release();
-  w.kernels.compile(w.settings.contactLaw, w.sleep.enabled, true);
+  w.kernels.compile(w.settings.contactLaw, w.sleep.enabled,
+                    w.settings.material.rollingFriction > 0.0f, true);
   // Without sleep the list build lists the particles the search takes: the next substep builds.
   w.listsStale = true;
 }

@@ -168,6 +168,18 @@ INSTANTIATE_TEST_SUITE_P(
                    "inf", "> 0"},
         BadSetting{"material.friction", [](WorldSettings& s) { s.material.friction = -0.1f; },
                    "-0.1", ">= 0"},
+        BadSetting{"material.rollingFriction",
+                   [](WorldSettings& s) { s.material.rollingFriction = std::nanf(""); }, "nan",
+                   "finite and >= 0"},
+        BadSetting{"material.rollingFriction",
+                   [](WorldSettings& s) { s.material.rollingFriction = -0.05f; }, "-0.05",
+                   "finite and >= 0"},
+        BadSetting{"material.rollingFriction",
+                   [](WorldSettings& s) {
+                     s.contactLaw = ContactLaw::PaperViscous;
+                     s.material.rollingFriction = 0.1f;
+                   },
+                   "0.1", "must be 0 with ContactLaw::PaperViscous"},
         BadSetting{"material.restitution", [](WorldSettings& s) { s.material.restitution = 0.0f; },
                    "0", "(0, 1]"},
         BadSetting{"material.restitution", [](WorldSettings& s) { s.material.restitution = 1.5f; },

@@ -189,6 +189,10 @@ ContactModel ContactModel::fromSettings(const WorldSettings& s) {
   m.shearStiffnessWall = static_cast<float>(8.0 * gStarWall * std::sqrt(r));
   m.dampingFactorGrain = static_cast<float>(hertzDampingFactor(s.material.restitution));
   const bool paper = s.contactLaw == ContactLaw::PaperViscous;
+  require(!paper || s.material.rollingFriction == 0.0f, "WorldSettings.material.rollingFriction",
+          s.material.rollingFriction,
+          "must be 0 with ContactLaw::PaperViscous: the paper's law acts at particle centres and "
+          "turns no body at a contact");
   m.maxOverlap = paper ? static_cast<float>(0.1 * d) : std::numeric_limits<float>::infinity();
 
   // The peak overlaps of the stiffness check: two granules head-on, and a granule against a rigid

@@ -188,6 +188,7 @@ struct alignas(16) SimParams {
   std::uint32_t sleepSubsteps;
   std::uint32_t sleepNeighbourLead;
   std::uint32_t oneGrid;
+  float rollingFriction;
 };
 
 static_assert(sizeof(GpuCollider) == 96);

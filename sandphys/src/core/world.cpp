@@ -24,7 +24,7 @@ World::Impl::Impl(const GpuContext& context, const WorldSettings& s) : gpu(&cont
   granule = tetrahedronTemplate(settings.particleDiameter, settings.material.density);
 
   context.makeCurrent();
-  kernels.compile(settings.contactLaw, sleep.enabled);
+  kernels.compile(settings.contactLaw, sleep.enabled, settings.material.rollingFriction > 0.0f);
   buffers.allocate(bodyCapacity, particleCapacity, tableCapacity, settings.maxColliders, 0, 0,
                    keepsHistory(), sleep.enabled);
   profiler.setEnabled(settings.profileKernels);

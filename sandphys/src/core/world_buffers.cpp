@@ -148,11 +148,12 @@ std::uint64_t WorldBuffers::bytes() const {
   return total;
 }
 
-void WorldKernels::compile(ContactLaw law, bool sleeping, bool searchEvery) {
+void WorldKernels::compile(ContactLaw law, bool sleeping, bool rollingFriction, bool searchEvery) {
   gl::ShaderLibrary library;
   std::vector<std::string> defines;
   if (law == ContactLaw::PaperViscous) defines.push_back("PAPER_LAW 1");
   if (sleeping) defines.push_back("SLEEPING 1");
+  if (rollingFriction) defines.push_back("ROLLING_FRICTION 1");
   auto compile = [&](const char* name, std::vector<std::string> extra = {}) {
     extra.insert(extra.end(), defines.begin(), defines.end());
     return library.compileCompute(name, extra);

@@ -75,10 +75,12 @@ struct WorldKernels {
   GLuint wakeRegion = 0;     // with sleeping only
   GLuint collectActive = 0;  // with sleeping only
 
-  /// Compiles every kernel for `law` (PAPER_LAW defined for ContactLaw::PaperViscous) and, with
-  /// `sleeping`, for sleeping sand (SLEEPING defined); with `searchEvery` (a test's oracle), the
-  /// contacts pass leaves every particle to the grid search (SEARCH_EVERY).
-  void compile(ContactLaw law, bool sleeping, bool searchEvery = false);
+  /// Compiles every kernel for `law` (PAPER_LAW defined for ContactLaw::PaperViscous), with
+  /// `sleeping` for sleeping sand (SLEEPING defined), with `rollingFriction` for a non-zero
+  /// Material::rollingFriction (ROLLING_FRICTION defined, so that a World without it runs no
+  /// code for it); with `searchEvery` (a test's oracle), the contacts pass leaves every particle
+  /// to the grid search (SEARCH_EVERY).
+  void compile(ContactLaw law, bool sleeping, bool rollingFriction, bool searchEvery = false);
   void release();
 };
 

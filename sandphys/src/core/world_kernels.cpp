@@ -67,6 +67,7 @@ void World::Impl::uploadParams() {
   p.sleepSubsteps = sleep.substeps;
   p.sleepNeighbourLead = sleep.neighbourLead;
   p.oneGrid = oneGrid ? 1u : 0u;
+  p.rollingFriction = settings.material.rollingFriction;
   buffers[kColliders].upload(0, sorted.size() * sizeof(GpuCollider), sorted.data());
   buffers.params.upload(0, sizeof p, &p);
   paramsDirty = false;

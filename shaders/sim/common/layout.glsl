@@ -198,6 +198,7 @@ layout(std140, binding = 0) uniform SimParams {
   uint sleepSubsteps;          // SLEEPING: SleepModel::substeps, calm substeps before sleep
   uint sleepNeighbourLead;     // SLEEPING: SleepModel::neighbourLead
   uint oneGrid;                // SLEEPING: 1 sorts every particle into one grid at every build (a test's oracle)
+  float rollingFriction;       // ROLLING_FRICTION: mu_r (contact_law.glsl, rollingTorque)
 } params;
 
 // Linear thread index of a dispatch that World may fold into two dimensions. A macro, because
