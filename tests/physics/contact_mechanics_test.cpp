@@ -112,19 +112,24 @@ TEST(ContactMechanics, GranuleSlidesAboveAtanMuAtTheCoulombAcceleration) {
   EXPECT_NEAR(measured, expected, 0.05 * expected);
 }
 
-TEST(ContactMechanics, SphereRollingWithoutSlippingIsNotSlowed) {
-  TestWorld w(settingsWith(0.5f));
+// A sphere settled 0.1 s on a floor, then set rolling without slipping along +x at v: v = ω ×
+// (centre - contact), ω about -z, the rolling radius the centre's height. Returns the body and
+// its state at rest.
+std::pair<BodyId, BodyState> rollingSphere(TestWorld& w, float v) {
   w.addFloor(0.0f, {.friction = 0.5f, .restitution = 0.5f});
   const float d = w->settings().particleDiameter;
-  const ParticleTemplate sphere =
-      makeParticleTemplate({{0, 0, 0}}, d, w->settings().material.density);
-  // Settle on the floor first, then roll: v = ω × (centre - contact), ω about -z for +x.
-  const BodyId b = w->addBody(sphere, {.position = {0.0f, 0.5f * d, 0.0f}});
+  const BodyId b = w->addBody(makeParticleTemplate({{0, 0, 0}}, d, w->settings().material.density),
+                              {.position = {0.0f, 0.5f * d, 0.0f}});
   w.simulate(0.1);
   const BodyState rest = w->readBody(b);
+  w->setBodyState(b, {rest.position, rest.orientation, {v, 0, 0}, {0, 0, -v / rest.position.y}});
+  return {b, rest};
+}
+
+TEST(ContactMechanics, SphereRollingWithoutSlippingIsNotSlowed) {
   const float v = 0.5f;
-  const float radiusToContact = rest.position.y;  // the rolling radius: centre above the floor
-  w->setBodyState(b, {rest.position, rest.orientation, {v, 0, 0}, {0, 0, -v / radiusToContact}});
+  TestWorld w(settingsWith(0.5f));
+  const BodyId b = rollingSphere(w, v).first;
   w.simulate(0.5);
   const BodyState rolled = w->readBody(b);
   std::printf("rolling sphere: speed %.5f m/s after 0.5 s (started %.5f), spin %.3f rad/s\n",
@@ -134,11 +139,7 @@ TEST(ContactMechanics, SphereRollingWithoutSlippingIsNotSlowed) {
   WorldSettings paper = settingsWith(0.5f);
   paper.contactLaw = ContactLaw::PaperViscous;
   TestWorld p(paper);
-  p.addFloor(0.0f, {.friction = 0.5f, .restitution = 0.5f});
-  const BodyId pb = p->addBody(sphere, {.position = {0.0f, 0.5f * d, 0.0f}});
-  p.simulate(0.1);
-  const BodyState prest = p->readBody(pb);
-  p->setBodyState(pb, {prest.position, prest.orientation, {v, 0, 0}, {0, 0, -v / radiusToContact}});
+  const BodyId pb = rollingSphere(p, v).first;
   p.simulate(0.5);
   EXPECT_LT(p->readBody(pb).velocity.x, 0.5f * v);
 }
@@ -150,15 +151,9 @@ TEST(ContactMechanics, RollingFrictionSlowsARollingSphereAtFiveSeventhsMuRG) {
   WorldSettings settings = settingsWith(0.5f);
   settings.material.rollingFriction = 0.1f;
   TestWorld w(settings);
-  w.addFloor(0.0f, {.friction = 0.5f, .restitution = 0.5f});
   const float d = w->settings().particleDiameter;
-  const ParticleTemplate sphere =
-      makeParticleTemplate({{0, 0, 0}}, d, w->settings().material.density);
-  const BodyId b = w->addBody(sphere, {.position = {0.0f, 0.5f * d, 0.0f}});
-  w.simulate(0.1);
-  const BodyState rest = w->readBody(b);
   const float v = 0.5f;
-  w->setBodyState(b, {rest.position, rest.orientation, {v, 0, 0}, {0, 0, -v / rest.position.y}});
+  const auto [b, rest] = rollingSphere(w, v);
   const double deceleration = 5.0 / 7.0 * settings.material.rollingFriction * 9.81;
   const double seconds = 0.4;
   w.simulate(seconds);

@@ -87,8 +87,9 @@ MindlinResult hertzMindlin(float xi, vec3 n, vec3 vRel, float kn, float kt0, flo
 // w = w_this - w_other in the tangent plane, of size mu_r R F_n, R the effective rolling radius.
 // A constant size would reverse a slow rolling within one substep and chatter about rest, so it
 // is at most what stops, in one substep, a sphere of radius R with the contact's share of the
-// masses (1/invMassShare): the couple vanishes with w, and a body at rest stays at rest. Odd in
-// (w, n), so the two sides of a pair get exactly opposite couples.
+// masses (1/invMassShare): the couple vanishes with w, so it has no static part (a loaded body
+// creeps; docs/architecture.md, "contacts"). Odd in (w, n), so the two sides of a pair get
+// exactly opposite couples.
 vec3 rollingTorque(vec3 relativeSpin, vec3 n, float normalForce, float radius, float invMassShare,
                    float dt) {
   vec3 rolling = relativeSpin - dot(relativeSpin, n) * n;
