@@ -253,6 +253,7 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
   std::string goldens;
   std::optional<std::string> contactLaw;
   bool sleep = false;
+  float rollingFriction = 0.0f;
 
   app.add_option("--scene", options.sceneName, "scene to run (see --list)")->capture_default_str();
   app.add_flag("--list", list, "list the scenes and their parameters, then exit");
@@ -312,6 +313,12 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
   app.add_flag("--sleep", sleep,
                "sleeping sand: granules at rest fall asleep and cost less until touched "
                "(WorldSettings::sleep)");
+  app.add_option("--rolling-friction", rollingFriction,
+                 "rolling friction mu_r of every contact (Material::rollingFriction; default 0: "
+                 "none). Stops granules rocking on two contacts; it has no static part, so loaded "
+                 "sand creeps slowly (docs/architecture.md, \"contacts\")")
+      ->check(CLI::Range(0.0f, 10.0f))
+      ->type_name("MU");
   app.add_option("--screenshot", screenshot,
                  "write a PNG of the last frame to this file (headless: rendered offscreen)");
   app.add_option("--size", size,
@@ -457,6 +464,7 @@ std::optional<int> parseCommandLine(int argc, char** argv, RunOptions& options) 
         options.scene->setContactLaw(*law);
       }
       options.scene->setSleep(sleep);
+      options.scene->setRollingFriction(rollingFriction);
       for (const std::string& assignment : assignments) {
         const std::size_t equals = assignment.find('=');
         if (equals == std::string::npos || equals == 0) {

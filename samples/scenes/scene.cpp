@@ -23,6 +23,7 @@ WorldSettings Scene::settings() const {
   WorldSettings settings = worldSettings();
   settings.contactLaw = m_contactLaw;
   settings.sleep.enabled = m_sleep;
+  settings.material.rollingFriction = m_rollingFriction;
   return settings;
 }
 

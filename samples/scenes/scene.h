@@ -119,7 +119,7 @@ class Scene {
   virtual std::string_view name() const = 0;
 
   /// Settings for the World this scene runs in (worldSettings) under the contact law set with
-  /// setContactLaw, with sleep as setSleep says.
+  /// setContactLaw, with sleep as setSleep says and the rolling friction setRollingFriction set.
   WorldSettings settings() const;
 
   /// The contact law the scene's World gets (the samples app's --contact-law); HertzMindlin
@@ -131,6 +131,11 @@ class Scene {
   /// unless set. Takes effect at the next World built from settings().
   void setSleep(bool enabled) { m_sleep = enabled; }
   bool sleep() const { return m_sleep; }
+
+  /// Rolling friction μ_r of every contact (Material::rollingFriction, the samples app's
+  /// --rolling-friction); 0 unless set. Takes effect at the next World built from settings().
+  void setRollingFriction(float mu) { m_rollingFriction = mu; }
+  float rollingFriction() const { return m_rollingFriction; }
 
   /// The scene's own settings, with capacities sized for everything the scene will ever add
   /// (World::reserve is never needed). Throws InvalidArgument when the parameters ask for more
@@ -204,6 +209,7 @@ class Scene {
  private:
   ContactLaw m_contactLaw = ContactLaw::HertzMindlin;
   bool m_sleep = false;
+  float m_rollingFriction = 0.0f;
 };
 
 /// The bounds of `world`'s alive bodies that `scene` contains, but for static ones (floors), each

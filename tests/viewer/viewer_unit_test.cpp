@@ -373,5 +373,16 @@ TEST(ViewerFlags, WindowOnlyFlagsAreRefusedHeadless) {
                    {"--panel-in-screenshots", "--headless"});
 }
 
+TEST(ViewerFlags, RollingFrictionReachesTheScenesWorld) {
+  const Parsed parsed = parse({"--scene", "box-drop", "--headless", "--rolling-friction", "0.2"});
+  ASSERT_FALSE(parsed.exitCode) << parsed.errors;
+  ASSERT_TRUE(parsed.options.scene);
+  EXPECT_EQ(parsed.options.scene->settings().material.rollingFriction, 0.2f);
+  const Parsed none = parse({"--scene", "box-drop", "--headless"});
+  ASSERT_FALSE(none.exitCode) << none.errors;
+  EXPECT_EQ(none.options.scene->settings().material.rollingFriction, 0.0f);
+  expectUsageError({"--rolling-friction", "-1"}, {"--rolling-friction", "-1"});
+}
+
 }  // namespace
 }  // namespace sandphys::viewer
