@@ -28,9 +28,6 @@ class BlockAvalanche final : public SlopeAvalanche {
   BlockAvalanche();
   ~BlockAvalanche() override;
 
-  /// The blocks (change them before build()); config() is the slope's.
-  BlockAvalancheConfig& blocks() { return m_blocksConfig; }
-
   std::string_view name() const override { return "avalanche"; }
   WorldSettings worldSettings() const override;
   /// The slope's sand and container, and a new Bullet world with its floor and the two blocks.

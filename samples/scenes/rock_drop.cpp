@@ -192,10 +192,7 @@ void RockDrop::build(World& world) {
                          kit::granuleMass(world.settings()));
   m_run = {};
   m_surfaces.clear();  // the rock's, once dropped
-  const float height = boxHeight();
-  world.addCollider(Box{.center = {0.0f, 0.5f * height, 0.0f},
-                        .halfExtents = {halfWidth(0), 0.5f * height, halfWidth(2)},
-                        .inside = true});
+  world.addCollider(kit::containerBox(bounds()));
   world.addGranules(kit::blockAbove(kit::kLatticeGap * d(), bedCounts(),
                                     kDefaultGranuleSpacing * d(), m_config.seed));
 }

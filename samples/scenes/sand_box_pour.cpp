@@ -64,10 +64,7 @@ WorldSettings SandBoxPour::worldSettings() const {
 }
 
 void SandBoxPour::build(World& world) {
-  const float height = m_config.boxHeight * d();
-  world.addCollider(Box{.center = {0.0f, 0.5f * height, 0.0f},
-                        .halfExtents = {halfWidth(), 0.5f * height, halfWidth()},
-                        .inside = true});
+  world.addCollider(kit::containerBox(bounds()));
   const bool bed = bedGranules() > 0;
   const float spacing = kDefaultGranuleSpacing * d();
   const float bedHeight = bed ? kit::blockSpan(m_config.block[1], spacing) : 0.0f;
