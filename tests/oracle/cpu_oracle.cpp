@@ -326,7 +326,7 @@ Vec3d OracleContact::rollingTorque(double normalForce) const {
   // relative spin, mu_r R F_n, at most what stops a sphere of radius R with the contact's share
   // of the masses in one substep.
   if (law != ContactLaw::HertzMindlin || rollingFriction == 0.0) return Vec3d::Zero();
-  const Vec3d rolling = relativeSpin - relativeSpin.dot(normal) * normal;
+  const Vec3d rolling = relativeRolling();
   const double rate = rolling.norm();
   if (rate == 0.0) return Vec3d::Zero();
   const double stopping = 0.4 * rollingRadius * rollingRadius * rate / (invMassSum * timeStep);

@@ -246,6 +246,9 @@ struct OracleContact {
   /// The law applied to this contact: the force on `particle` and (HertzMindlin) its new spring.
   MindlinResult evaluate() const;
   Vec3d force() const { return evaluate().force; }
+  /// The relative spin's part in the tangent plane, the rolling that rolling friction resists,
+  /// rad/s.
+  Vec3d relativeRolling() const { return relativeSpin - relativeSpin.dot(normal) * normal; }
   /// The couple of rolling friction on `particle` for a normal force F_n, N·m.
   Vec3d rollingTorque(double normalForce) const;
   /// Torque about the particle's centre, N·m: the force's, and rolling friction's couple (0 under

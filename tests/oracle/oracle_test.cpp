@@ -327,10 +327,10 @@ RoundOff mindlinRoundOff(const OracleContact& c, double overlapError, double pos
   // round with the spins (4 ε of their magnitudes): an angle of that over |w_r|, at most 2.
   const Vec3d couple = c.rollingTorque(r.normalForce);
   if (couple.norm() > 0.0) {
-    const Vec3d rolling = c.relativeSpin - c.relativeSpin.dot(c.normal) * c.normal;
     const double spinError = 4.0 * kEps * c.spinTerms;
-    out.torque += c.rollingFriction * c.rollingRadius * normal +
-                  couple.norm() * (std::min(2.0, 2.0 * spinError / rolling.norm()) + 8.0 * kEps);
+    out.torque +=
+        c.rollingFriction * c.rollingRadius * normal +
+        couple.norm() * (std::min(2.0, 2.0 * spinError / c.relativeRolling().norm()) + 8.0 * kEps);
   }
   out.spring =
       r.slipping ? (c.friction * normal + 2.0 * trial + etaVtError + r.spring.norm() * ktError) / kt

@@ -2,6 +2,7 @@
 
 #include <GL/glew.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -104,6 +105,20 @@ struct HashTable {
   static std::uint32_t sizeFor(std::uint32_t particles);
 };
 
+/// Slots [begin, end) that the CPU changed since the GPU last took them: grown to cover every
+/// range added, cleared once taken.
+struct ChangedRange {
+  std::uint32_t begin = 0;
+  std::uint32_t end = 0;
+  bool empty() const { return end <= begin; }
+  void add(std::uint32_t first, std::uint32_t last) {
+    if (first >= last) return;
+    begin = empty() ? first : std::min(begin, first);
+    end = std::max(end, last);
+  }
+  void clear() { begin = end = 0; }
+};
+
 }  // namespace detail
 
 struct World::Impl {
@@ -164,13 +179,11 @@ struct World::Impl {
   // the active lists, and so the results, are the same bit for bit).
   bool scanEveryChunk = false;
   // Particles whose state must be written from their bodies before the next contacts (bodies
-  // added, set or restored by the CPU): [dirtyBegin, dirtyEnd).
-  std::uint32_t dirtyBegin = 0;
-  std::uint32_t dirtyEnd = 0;
+  // added, set or restored by the CPU).
+  detail::ChangedRange dirtyParticles;
   // With sleep: bodies the CPU changed (added, placed, restored, woken), whose chunks of
-  // QuietChunks collect_active.comp scans again in the next substep: [quietBegin, quietEnd).
-  std::uint32_t quietBegin = 0;
-  std::uint32_t quietEnd = 0;
+  // QuietChunks collect_active.comp scans again in the next substep.
+  detail::ChangedRange changedBodies;
   // Particles of bodies the CPU added since the last step, checked for deep initial overlaps at
   // its start: [overlapCheckBegin, overlapCheckEnd).
   std::uint32_t overlapCheckBegin = 0;

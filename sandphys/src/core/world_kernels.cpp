@@ -100,15 +100,11 @@ void World::Impl::dispatchIndirect(GLuint program, const char* name, std::uint32
 }
 
 void World::Impl::markParticlesDirty(std::uint32_t first, std::uint32_t end) {
-  if (first >= end) return;
-  dirtyBegin = dirtyEnd > dirtyBegin ? std::min(dirtyBegin, first) : first;
-  dirtyEnd = std::max(dirtyEnd, end);
+  dirtyParticles.add(first, end);
 }
 
 void World::Impl::markBodiesChanged(std::uint32_t first, std::uint32_t end) {
-  if (first >= end) return;
-  quietBegin = quietEnd > quietBegin ? std::min(quietBegin, first) : first;
-  quietEnd = std::max(quietEnd, end);
+  changedBodies.add(first, end);
 }
 
 void World::Impl::fitTable() {
@@ -123,13 +119,13 @@ void World::Impl::prepareBodies() {
   fitTable();
   if (paramsDirty) uploadParams();
   if (scanEveryChunk) markBodiesChanged(0, bodyCount);
-  if (sleep.enabled && quietEnd > quietBegin) {
+  if (sleep.enabled && !changedBodies.empty()) {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // after the passes that wrote it
-    const std::uint32_t first = quietBegin / kCollectChunk;
-    const std::uint32_t end = (quietEnd + kCollectChunk - 1) / kCollectChunk;
+    const std::uint32_t first = changedBodies.begin / kCollectChunk;
+    const std::uint32_t end = (changedBodies.end + kCollectChunk - 1) / kCollectChunk;
     buffers[kQuietChunks].zero(4ull * first, 4ull * (end - first));
   }
-  quietBegin = quietEnd = 0;
+  changedBodies.clear();
   // 0. The particles of bodies the CPU set, from their bodies (eq. 7, 8); the integration writes
   // the others'.
   writeDirtyParticles("bodies_to_particles");
@@ -142,11 +138,12 @@ void World::Impl::prepareBodies() {
 }
 
 void World::Impl::writeDirtyParticles(const char* name) {
-  if (dirtyEnd <= dirtyBegin) return;
+  if (dirtyParticles.empty()) return;
+  const std::uint32_t count = dirtyParticles.end - dirtyParticles.begin;
   glUseProgram(kernels.bodiesToParticles);
-  glUniform2ui(0, dirtyBegin, dirtyEnd - dirtyBegin);
-  dispatch(kernels.bodiesToParticles, name, dirtyEnd - dirtyBegin, kWorkgroupSize);
-  dirtyBegin = dirtyEnd = 0;
+  glUniform2ui(0, dirtyParticles.begin, count);
+  dispatch(kernels.bodiesToParticles, name, count, kWorkgroupSize);
+  dirtyParticles.clear();
 }
 
 void World::Impl::buildLists() {

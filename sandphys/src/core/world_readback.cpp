@@ -123,7 +123,7 @@ std::vector<ParticleState> World::readParticles() const {
   w.gpu->makeCurrent();
   // Bodies placed since the last substep: their particles as the next substep will start from
   // them (not profiled: no step's work).
-  if (w.dirtyEnd > w.dirtyBegin) {
+  if (!w.dirtyParticles.empty()) {
     Impl& writable = const_cast<Impl&>(w);
     if (writable.paramsDirty) writable.uploadParams();
     writable.buffers.bindAll();
