@@ -112,6 +112,9 @@ CONTACT_PAIRS_TEXTURE
 CONTACT_SLOTS_0_TEXTURE
 CONTACT_SLOTS_1_TEXTURE
 CONTACT_SLOTS_2_TEXTURE
+#ifdef ROLLING_FRICTION
+ROLLING_SLOTS_TEXTURE
+#endif
 #endif
 #ifdef CONTACT_LIST
 CONTACT_LIST_BUFFER(coherent)
@@ -133,6 +136,9 @@ PARTICLE_TORQUE(writeonly)
 CONTACT_SLOTS_0(coherent)
 CONTACT_SLOTS_1(coherent)
 CONTACT_SLOTS_2(coherent)
+#ifdef ROLLING_FRICTION
+ROLLING_SLOTS_IMAGE(writeonly)
+#endif
 #endif
 #endif
 #ifdef HANDS_OVER
@@ -241,6 +247,9 @@ void record(uint a, uint b, uint bodyA, uint bodyB, uint collider, vec3 point, v
 // free), held by the thread (every index below is a constant once the loops are unrolled), and
 // their pair counts.
 vec4 previous[LOADED_SLOTS];
+#ifdef ROLLING_FRICTION
+vec3 previousRolling[LOADED_SLOTS];  // their rolling springs
+#endif
 uvec4 previousPairs;
 uint slotsUsed = 0u;
 // Whether the slots name other partners than in the previous substep, or in another order: only
@@ -260,19 +269,27 @@ void loadSlots(uint particle) {
                            : (k < 8u ? texelFetch(contactSlots1Texture, int(entry))
                                      : texelFetch(contactSlots2Texture, int(entry)));
     }
+#ifdef ROLLING_FRICTION
+    previousRolling[k] = vec3(0.0);
+    if (k < used) previousRolling[k] = texelFetch(rollingSlotsTexture, rollingEntry(particle, k)).xyz;
+#endif
   }
 }
 
-// The spring the contact with `key` had in the previous substep (zero for a new contact), and
-// how many contacts joined the two bodies then (0 for a new contact). Notes whether it was in
-// the slot it takes now (keepSlot: the next free one).
-vec3 previousSpring(uint key, out uint pairs) {
+// The spring the contact with `key` had in the previous substep (zero for a new contact), its
+// rolling spring (ROLLING_FRICTION), and how many contacts joined the two bodies then (0 for a new
+// contact). Notes whether it was in the slot it takes now (keepSlot: the next free one).
+vec3 previousSpring(uint key, out uint pairs, out vec3 rolling) {
   vec3 spring = vec3(0.0);
+  rolling = vec3(0.0);
   pairs = 0u;
   uint was = uint(CONTACT_SLOTS);
   for (uint k = 0u; k < uint(LOADED_SLOTS); ++k) {
     if (floatBitsToUint(previous[k].w) == key) {
       spring = previous[k].xyz;
+#ifdef ROLLING_FRICTION
+      rolling = previousRolling[k];
+#endif
       pairs = slotPairs(previousPairs, k);
       was = k;
     }
@@ -282,7 +299,7 @@ vec3 previousSpring(uint key, out uint pairs) {
 }
 
 #ifndef CONTACT_LIST
-void storeSlot(uint particle, uint k, vec4 slot) {
+void storeSlot(uint particle, uint k, vec4 slot, vec3 rolling) {
   uint entry = slotEntry(particle, k);
   if (k < 4u) {
     contactSlots0[entry] = slot;
@@ -291,13 +308,16 @@ void storeSlot(uint particle, uint k, vec4 slot) {
   } else {
     contactSlots2[entry] = slot;
   }
+#ifdef ROLLING_FRICTION
+  imageStore(rollingSlotsImage, rollingEntry(particle, k), vec4(rolling, 0.0));
+#endif
 }
 
 // Frees the slots of contacts that ended.
 void clearUnusedSlots(uint particle) {
   for (uint k = 0u; k < uint(LOADED_SLOTS); ++k) {
     if (k >= slotsUsed && floatBitsToUint(previous[k].w) != SLOT_EMPTY) {
-      storeSlot(particle, k, vec4(0.0));
+      storeSlot(particle, k, vec4(0.0), vec3(0.0));
     }
   }
 }
@@ -305,10 +325,10 @@ void clearUnusedSlots(uint particle) {
 
 // Writes the contact into the next free slot, in the order the contacts were found (listing, it
 // only counts the slot, as the substep will take it).
-void keepSlot(uint particle, uint key, vec3 spring) {
+void keepSlot(uint particle, uint key, vec3 spring, vec3 rolling) {
   if (slotsUsed < uint(CONTACT_SLOTS)) {
 #ifndef CONTACT_LIST
-    storeSlot(particle, slotsUsed, vec4(spring, uintBitsToFloat(key)));
+    storeSlot(particle, slotsUsed, vec4(spring, uintBitsToFloat(key)), rolling);
 #endif
     ++slotsUsed;
   } else {
@@ -327,7 +347,8 @@ vec3 surfaceVelocity(vec3 particleVelocity, vec3 spin, vec3 centre, vec3 point) 
 
 // Applies one contact of the current particle: gets its spring from the previous substep,
 // advances it, keeps it in a slot and adds force and torque at `point` (and, with rolling
-// friction, the couple against the bodies' relative rolling, relativeSpin). A new
+// friction, the couple against the bodies' relative rolling, relativeSpin, whose spring it keeps
+// in the same slot). A new
 // contact is undamped for its first substep: the number n of contacts that joined the two
 // bodies is counted after this substep, and taking n = 1 meanwhile would damp a body that meets
 // a surface with many particles at once n times too hard (its overlap, about v dt, makes the
@@ -336,17 +357,21 @@ MindlinResult mindlinContact(Particle self, uint key, float xi, vec3 n, vec3 poi
                              float kn, float kt0, float dampingFactor, float invMass,
                              float friction, vec3 relativeSpin, float rollingRadius) {
   uint pairs;
-  vec3 spring = previousSpring(key, pairs);
+  vec3 rolling;
+  vec3 spring = previousSpring(key, pairs, rolling);
   if (pairs == 0u && slotsUsed < uint(CONTACT_SLOTS)) dampingFactor = 0.0;
   MindlinResult r = hertzMindlin(xi, n, vRel, kn, kt0, dampingFactor,
                                  float(max(pairs, 1u)) * invMass, friction, params.dt, spring);
-  keepSlot(self.id, key, r.spring);
+#ifdef ROLLING_FRICTION
+  RollingResult roll = rollingResistance(relativeSpin, n, rollingRadius, r, params.dt, rolling);
+  rolling = roll.spring;
+#endif
+  keepSlot(self.id, key, r.spring, rolling);
 #ifndef CONTACT_LIST
   force += r.force;
   torque += cross(point - self.position.xyz, r.force);
 #ifdef ROLLING_FRICTION
-  torque += rollingTorque(relativeSpin, n, r.normalForce, rollingRadius,
-                          float(max(pairs, 1u)) * invMass, params.dt);
+  torque += roll.torque;
 #endif
 #endif
   return r;

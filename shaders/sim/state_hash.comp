@@ -5,7 +5,7 @@
 // same on every run; src/recording/state_hash.cpp computes the same function on the CPU. Under
 // ContactLaw::HertzMindlin every particle's contact slots and pair counts (the history a
 // contact carries across substeps) are absorbed the same way, seeded with the particle's index;
-// and with SLEEPING every particle's last computed force and torque, which a sleeper carries.
+// with ROLLING_FRICTION every particle's rolling springs (x, y, z of each slot); and with SLEEPING every particle's last computed force and torque, which a sleeper carries.
 #include "common/layout.glsl"
 
 #define HASH_THREADS 256
@@ -22,6 +22,9 @@ CONTACT_SLOTS_0(readonly)
 CONTACT_SLOTS_1(readonly)
 CONTACT_SLOTS_2(readonly)
 CONTACT_PAIRS(readonly)
+#endif
+#ifdef ROLLING_FRICTION
+ROLLING_SLOTS(readonly)
 #endif
 // Sleep comes with ContactLaw::HertzMindlin only.
 #ifdef SLEEPING
@@ -85,6 +88,15 @@ void main() {
     }
     uvec4 pairs = contactPairs[i];
     h = absorb(absorb(absorb(absorb(h, pairs.x), pairs.y), pairs.z), pairs.w);
+    sum += h;
+  }
+#endif
+#ifdef ROLLING_FRICTION
+  for (uint i = gl_GlobalInvocationID.x; i < params.particleCount; i += stride) {
+    uvec2 h = uvec2(fmix(i ^ 0xbe5466cfu), fmix(i ^ 0x34e90c6cu));
+    for (uint k = 0u; k < uint(CONTACT_SLOTS); ++k) {
+      h = absorb3(h, rollingSlots[i * uint(CONTACT_SLOTS) + k]);
+    }
     sum += h;
   }
 #endif

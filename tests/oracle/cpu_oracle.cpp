@@ -237,16 +237,20 @@ std::uint32_t colliderSlotKey(std::size_t collider, std::uint32_t face) {
   return kSlotCollider | (std::uint32_t(collider) * kSlotColliderFaces + face);
 }
 
-ContactHistoryMap historyFromSnapshot(const std::vector<StoredContacts>& contacts) {
+ContactHistoryMap historyFromSnapshot(const WorldSnapshot& snapshot) {
   ContactHistoryMap history;
-  for (std::size_t i = 0; i < contacts.size(); ++i) {
-    const StoredContacts& stored = contacts[i];
+  const auto toVec = [](const auto& words) {
+    return Vec3d(std::bit_cast<float>(words[0]), std::bit_cast<float>(words[1]),
+                 std::bit_cast<float>(words[2]));
+  };
+  for (std::size_t i = 0; i < snapshot.contacts.size(); ++i) {
+    const StoredContacts& stored = snapshot.contacts[i];
     for (std::size_t k = 0; k < stored.slots.size(); ++k) {
       const std::array<std::uint32_t, 4>& slot = stored.slots[k];
       if (slot[3] == kSlotEmpty) continue;
       ContactHistory h;
-      h.spring = Vec3d(std::bit_cast<float>(slot[0]), std::bit_cast<float>(slot[1]),
-                       std::bit_cast<float>(slot[2]));
+      h.spring = toVec(slot);
+      if (i < snapshot.rolling.size()) h.rollingSpring = toVec(snapshot.rolling[i].springs[k]);
       h.pairs = (stored.pairs[k / 4] >> (8u * (k % 4))) & 0xffu;
       history[{std::uint32_t(i), slot[3]}] = h;
     }
@@ -273,6 +277,13 @@ Vec3d contactForce(double xi, const Vec3d& n, const Vec3d& vRel, double stiffnes
   return fn * n + fs;
 }
 
+Vec3d turnedIntoPlane(const Vec3d& spring, const Vec3d& n) {
+  // Its normal part dropped, its length kept.
+  const Vec3d planar = spring - spring.dot(n) * n;
+  return planar.norm() > 0.0 ? Vec3d(planar * (spring.norm() / planar.norm()))
+                             : Vec3d(Vec3d::Zero());
+}
+
 MindlinResult hertzMindlin(double xi, const Vec3d& n, const Vec3d& vRel, double stiffness,
                            double shearStiffness, double dampingFactor, double invMassSum,
                            double friction, double timeStep, const Vec3d& spring) {
@@ -285,12 +296,8 @@ MindlinResult hertzMindlin(double xi, const Vec3d& n, const Vec3d& vRel, double 
   r.normalForce = std::max(stiffness * std::pow(xi, 1.5) + eta * xiDot, 0.0);
   const Vec3d vt = vRel + xiDot * n;  // tangential part of vRel
 
-  // The spring turns with the contact: its normal part dropped, its length kept; then it
-  // stretches by the tangential motion of this substep.
-  const Vec3d planar = spring - spring.dot(n) * n;
-  Vec3d delta =
-      planar.norm() > 0.0 ? Vec3d(planar * (spring.norm() / planar.norm())) : Vec3d(Vec3d::Zero());
-  delta += vt * timeStep;
+  // The spring turns with the contact, then stretches by the tangential motion of this substep.
+  Vec3d delta = turnedIntoPlane(spring, n) + vt * timeStep;
 
   // Mindlin: F_t = -k_t δ - η v_t, k_t = k_t0 √ξ; Coulomb caps |F_t| at μ F_n, and a slipping
   // contact's spring is reset to the one that gives the capped force.
@@ -305,6 +312,30 @@ MindlinResult hertzMindlin(double xi, const Vec3d& n, const Vec3d& vRel, double 
   r.tangentialForce = ft;
   r.spring = delta;
   r.force = r.normalForce * n + ft;
+  r.shearStiffness = kt;
+  r.damping = eta;
+  return r;
+}
+
+RollingResult rollingResistance(const Vec3d& relativeSpin, const Vec3d& n, double radius,
+                                const MindlinResult& contact, double rollingFriction,
+                                double timeStep, const Vec3d& spring) {
+  // LAMMPS pair granular's rolling sds, with the tangential spring's k_t and η: the rolling
+  // velocity v_r = R (ω × n) stretches a spring that turns with the contact as δ does;
+  // F_r = -k_t δ_r - η v_r, capped at μ_r F_n (the spring then reset to the capped force); the
+  // couple is R n × F_r.
+  const Vec3d vr = radius * relativeSpin.cross(n);
+  Vec3d delta = turnedIntoPlane(spring, n) + vr * timeStep;
+  RollingResult r;
+  r.force = -contact.shearStiffness * delta - contact.damping * vr;
+  const double cap = rollingFriction * contact.normalForce;
+  if (r.force.norm() > cap) {
+    r.force *= cap / r.force.norm();
+    delta = -(r.force + contact.damping * vr) / contact.shearStiffness;
+    r.rolls = true;
+  }
+  r.spring = delta;
+  r.torque = radius * n.cross(r.force);
   return r;
 }
 
@@ -321,16 +352,10 @@ MindlinResult OracleContact::evaluate() const {
   return r;
 }
 
-Vec3d OracleContact::rollingTorque(double normalForce) const {
-  // Rolling friction (contact_law.glsl, rollingTorque): against the tangential part of the
-  // relative spin, mu_r R F_n, at most what stops a sphere of radius R with the contact's share
-  // of the masses in one substep.
-  if (law != ContactLaw::HertzMindlin || rollingFriction == 0.0) return Vec3d::Zero();
-  const Vec3d rolling = relativeRolling();
-  const double rate = rolling.norm();
-  if (rate == 0.0) return Vec3d::Zero();
-  const double stopping = 0.4 * rollingRadius * rollingRadius * rate / (invMassSum * timeStep);
-  return -std::min(rollingFriction * rollingRadius * normalForce, stopping) / rate * rolling;
+RollingResult OracleContact::rolling(const MindlinResult& r) const {
+  if (law != ContactLaw::HertzMindlin || rollingFriction == 0.0) return {};
+  return rollingResistance(relativeSpin, normal, rollingRadius, r, rollingFriction, timeStep,
+                           rollingSpring);
 }
 
 // --- The step -------------------------------------------------------------------------------
@@ -374,6 +399,7 @@ std::vector<OracleContact> CpuOracle::findContacts(
     c.fresh = it == m_history.end();
     c.pairs = c.fresh ? 1u : std::max(it->second.pairs, 1u);
     c.spring = c.fresh ? Vec3d(Vec3d::Zero()) : it->second.spring;
+    c.rollingSpring = c.fresh ? Vec3d(Vec3d::Zero()) : it->second.rollingSpring;
     if (c.fresh) c.dampingFactor = 0.0;
     c.invMassSum *= double(c.pairs);
     return c;
@@ -503,8 +529,9 @@ ContactPass CpuOracle::contactPass(const std::vector<OracleParticle>& particles)
     if (c.law != ContactLaw::HertzMindlin) continue;
     // Friction acts at the contact point: a torque about the particle's centre; and rolling
     // friction's couple.
-    pass.torque[c.particle] += c.lever.cross(r.force) + c.rollingTorque(r.normalForce);
-    pass.history[{std::uint32_t(c.particle), c.key}] = {r.spring, 0u};
+    const RollingResult rolling = c.rolling(r);
+    pass.torque[c.particle] += c.lever.cross(r.force) + rolling.torque;
+    pass.history[{std::uint32_t(c.particle), c.key}] = {r.spring, rolling.spring, 0u};
     ContactTally& tally = pass.tally[particles[c.particle].body];
     ++(c.fresh ? tally.fresh : r.slipping ? tally.slipping : tally.sticking);
   }

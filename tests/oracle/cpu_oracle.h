@@ -172,7 +172,8 @@ struct ContactKey {
 
 /// What one contact carries from one substep to the next.
 struct ContactHistory {
-  Vec3d spring = Vec3d::Zero();  ///< tangential displacement δ, m
+  Vec3d spring = Vec3d::Zero();         ///< tangential displacement δ, m
+  Vec3d rollingSpring = Vec3d::Zero();  ///< rolling displacement δ_r (rolling friction), m
   /// n: contacts that joined the two bodies (the partner body, or the collider face) in the
   /// substep that wrote the slot, as the body pass counted them. 0: not counted (a slot that a
   /// restore wrote); the contact law takes it as 1.
@@ -183,8 +184,8 @@ using ContactHistoryMap = std::map<ContactKey, ContactHistory>;
 
 /// The history the GPU holds, from WorldSnapshot::contacts (recording.h): every non-empty slot
 /// with its spring (float bits in words 0..2, key in word 3) and pair count (slot k in byte
-/// k % 4 of pairs[k / 4]).
-ContactHistoryMap historyFromSnapshot(const std::vector<StoredContacts>& contacts);
+/// k % 4 of pairs[k / 4]); and with rolling friction its rolling spring (WorldSnapshot::rolling).
+ContactHistoryMap historyFromSnapshot(const WorldSnapshot& snapshot);
 
 // --- Contact law (contact_law.glsl) -------------------------------------------------------
 
@@ -194,6 +195,9 @@ Vec3d contactForce(double xi, const Vec3d& n, const Vec3d& vRel, double stiffnes
                    double dampingFactor, double invMassSum, double friction,
                    double tangentialDamping);
 
+/// A contact's spring turned with the contact into the plane normal to n (turnedIntoPlane).
+Vec3d turnedIntoPlane(const Vec3d& spring, const Vec3d& n);
+
 /// HertzMindlin: one contact's force and its spring after this substep (hertzMindlin).
 struct MindlinResult {
   Vec3d force = Vec3d::Zero();            ///< F_n n + F_t on this particle, N
@@ -201,7 +205,23 @@ struct MindlinResult {
   Vec3d tangentialForce = Vec3d::Zero();  ///< F_t, N
   Vec3d spring = Vec3d::Zero();           ///< δ after the substep (to keep), m
   bool slipping = false;                  ///< |F_t| hit the cap μ F_n (and δ was reset)
+  double shearStiffness = 0.0;            ///< k_t = k_t0 √ξ, N/m
+  double damping = 0.0;                   ///< η, N·s/m
 };
+
+/// Rolling friction: one contact's couple and its rolling spring after this substep
+/// (rollingResistance).
+struct RollingResult {
+  Vec3d torque = Vec3d::Zero();  ///< on this particle, N·m
+  Vec3d spring = Vec3d::Zero();  ///< δ_r after the substep (to keep), m
+  Vec3d force = Vec3d::Zero();   ///< F_r, N (the couple is R n × F_r)
+  bool rolls = false;            ///< |F_r| hit the cap μ_r F_n (and δ_r was reset)
+};
+/// relativeSpin = ω_this - ω_other; contact: the contact's hertzMindlin result this substep;
+/// spring = δ_r of the previous substep.
+RollingResult rollingResistance(const Vec3d& relativeSpin, const Vec3d& n, double radius,
+                                const MindlinResult& contact, double rollingFriction,
+                                double timeStep, const Vec3d& spring);
 /// n from the other body to this particle; vRel = this body's velocity minus the other's at the
 /// contact point; invMassSum = n_pairs (1/M_a + 1/M_b); spring = δ of the previous substep.
 MindlinResult hertzMindlin(double xi, const Vec3d& n, const Vec3d& vRel, double stiffness,
@@ -239,23 +259,21 @@ struct OracleContact {
   Vec3d relativeSpin = Vec3d::Zero();
   double rollingRadius = 0.0;
   double rollingFriction = 0.0;
-  bool fresh = true;             ///< HertzMindlin: no history from the previous substep
-  std::uint32_t pairs = 0;       ///< HertzMindlin: n_pairs applied (1 when fresh)
-  Vec3d spring = Vec3d::Zero();  ///< HertzMindlin: δ of the previous substep, m
+  bool fresh = true;                    ///< HertzMindlin: no history from the previous substep
+  std::uint32_t pairs = 0;              ///< HertzMindlin: n_pairs applied (1 when fresh)
+  Vec3d spring = Vec3d::Zero();         ///< HertzMindlin: δ of the previous substep, m
+  Vec3d rollingSpring = Vec3d::Zero();  ///< rolling friction: δ_r of the previous substep, m
 
   /// The law applied to this contact: the force on `particle` and (HertzMindlin) its new spring.
   MindlinResult evaluate() const;
   Vec3d force() const { return evaluate().force; }
-  /// The relative spin's part in the tangent plane, the rolling that rolling friction resists,
-  /// rad/s.
-  Vec3d relativeRolling() const { return relativeSpin - relativeSpin.dot(normal) * normal; }
-  /// The couple of rolling friction on `particle` for a normal force F_n, N·m.
-  Vec3d rollingTorque(double normalForce) const;
-  /// Torque about the particle's centre, N·m: the force's, and rolling friction's couple (0 under
-  /// PaperViscous).
+  /// Rolling friction's couple on `particle` and its new rolling spring, for this substep's
+  /// result r of the law (nothing under PaperViscous or without rolling friction).
+  RollingResult rolling(const MindlinResult& r) const;
+  /// Torque about the particle's centre, N·m: the force's, and rolling friction's couple.
   Vec3d torque() const {
     const MindlinResult r = evaluate();
-    return lever.cross(r.force) + rollingTorque(r.normalForce);
+    return lever.cross(r.force) + rolling(r).torque;
   }
 };
 

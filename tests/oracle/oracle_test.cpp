@@ -78,7 +78,7 @@ class OracleScene {
       bodies.push_back(OracleBody::from(s, m_shapes[s.id.index], m_motions[s.id.index]));
     }
     return CpuOracle(OracleModel::fromWorld(*m_world), std::move(bodies), m_colliders,
-                     oracle::historyFromSnapshot(m_world->readSnapshot().contacts));
+                     oracle::historyFromSnapshot(m_world->readSnapshot()));
   }
 
  private:
@@ -245,9 +245,10 @@ constexpr std::uint32_t kCollisionCapacity = 16;  // body slots (the scene has 1
 // How much a float evaluation of one contact may differ from the double one for the same float
 // inputs (positions, velocities, spins, springs), to first order.
 struct RoundOff {
-  double force = 0.0;   // N
-  double torque = 0.0;  // N·m, about the particle's centre (HertzMindlin)
-  double spring = 0.0;  // m, the spring kept for the next substep (HertzMindlin)
+  double force = 0.0;          // N
+  double torque = 0.0;         // N·m, about the particle's centre (HertzMindlin)
+  double spring = 0.0;         // m, the spring kept for the next substep (HertzMindlin)
+  double rollingSpring = 0.0;  // m, the rolling spring kept (rolling friction)
 };
 
 // The absolute error of the GPU's float overlap ξ. A pair: ξ = d - |x_a - x_b|; the difference,
@@ -322,19 +323,27 @@ RoundOff mindlinRoundOff(const OracleContact& c, double overlapError, double pos
   RoundOff out;
   out.force = (1.0 + c.friction) * normal + 2.0 * trial + 8.0 * kEps * r.force.norm();
   out.torque = c.lever.norm() * out.force + r.force.norm() * pointError;
-  // Rolling friction's couple: its size follows F_n (mu_r R times F_n's error), or under its
-  // limit the rolling rate; its direction the relative spin's tangential part w_r, whose terms
-  // round with the spins (4 ε of their magnitudes): an angle of that over |w_r|, at most 2.
-  const Vec3d couple = c.rollingTorque(r.normalForce);
-  if (couple.norm() > 0.0) {
-    const double spinError = 4.0 * kEps * c.spinTerms;
-    out.torque +=
-        c.rollingFriction * c.rollingRadius * normal +
-        couple.norm() * (std::min(2.0, 2.0 * spinError / c.relativeRolling().norm()) + 8.0 * kEps);
-  }
   out.spring =
       r.slipping ? (c.friction * normal + 2.0 * trial + etaVtError + r.spring.norm() * ktError) / kt
                  : springError;
+  // Rolling friction's spring and couple R n × F_r, as the tangential spring's with the rolling
+  // velocity v_r = R (w × n), whose spins round with their terms (4 ε of their magnitudes).
+  const oracle::RollingResult rolling = c.rolling(r);
+  if (c.rollingFriction > 0.0) {
+    const double radius = c.rollingRadius;
+    const double vr = radius * c.relativeSpin.cross(c.normal).norm();
+    const double vrError = radius * (4.0 * kEps * c.spinTerms + 2.0 * kEps * c.relativeSpin.norm());
+    const double etaVrError = 0.25 * eta * vr * overlapError / xi + eta * vrError;
+    const double rollingSpringError = 8.0 * kEps * c.rollingSpring.norm() + c.timeStep * vrError;
+    const double rollingTrial =
+        kt * rollingSpringError + (c.rollingSpring.norm() + vr * c.timeStep) * ktError + etaVrError;
+    const double forceError =
+        rolling.rolls ? c.rollingFriction * normal + 2.0 * rollingTrial : rollingTrial;
+    out.torque += radius * forceError + 8.0 * kEps * rolling.torque.norm();
+    out.rollingSpring = rolling.rolls
+                            ? (forceError + etaVrError + rolling.spring.norm() * ktError) / kt
+                            : rollingSpringError;
+  }
   return out;
 }
 
@@ -363,9 +372,9 @@ struct ForceComparison {
   double maxAbsoluteError = 0.0;          // N
   std::size_t contactEnds = 0;            // particle-particle contacts seen from each side
   std::size_t colliderContacts = 0;
-  std::vector<double> tolerance;                 // per particle, N
-  std::vector<double> torqueAllowance;           // per particle, N·m (HertzMindlin)
-  std::map<ContactKey, double> springAllowance;  // per contact, m (HertzMindlin)
+  std::vector<double> tolerance;                   // per particle, N
+  std::vector<double> torqueAllowance;             // per particle, N·m (HertzMindlin)
+  std::map<ContactKey, RoundOff> springAllowance;  // per contact: spring, rollingSpring
 };
 
 // Tolerance: |F_gpu - F_cpu| <= 1e-4 · max(|F_cpu|, floor) + the round-off allowance (above).
@@ -395,7 +404,7 @@ ForceComparison compareForces(const World& world, const CpuOracle& before,
                 : paperRoundOff(c, dXi);
     allowance[c.particle] += r.force;
     result.torqueAllowance[c.particle] += r.torque;
-    if (mindlin) result.springAllowance[{std::uint32_t(c.particle), c.key}] = r.spring;
+    if (mindlin) result.springAllowance[{std::uint32_t(c.particle), c.key}] = r;
     ++(c.other == OracleContact::kCollider ? result.colliderContacts : result.contactEnds);
   }
   const double floor = 1e-3 * particleWeight(world);
@@ -498,22 +507,25 @@ BodyPassComparison compareBodyPass(const World& world, const CpuOracle& before,
 
 // The contact history after that substep: the GPU's slots (World::readSnapshot) against the
 // oracle's, contact by contact: the same contacts, the same pair counts (integers, exactly),
-// and springs within 1e-4 max(|δ|, 1 µm) + the spring round-off allowance (mindlinRoundOff).
+// and springs (and rolling springs) within 1e-4 max(|δ|, 1 µm) + their round-off allowance
+// (mindlinRoundOff).
 struct HistoryComparison {
   std::size_t contacts = 0;  // in the oracle's history
   std::size_t missing = 0;   // in the oracle's, not in the GPU's
   std::size_t extra = 0;     // in the GPU's, not in the oracle's
   std::size_t pairMismatches = 0;
-  std::size_t springFailures = 0;
-  double maxSpringError = 0.0;  // m
+  std::size_t springFailures = 0;  // the tangential or (rolling friction) the rolling spring
+  double maxSpringError = 0.0;     // m
   double worstSpringFraction = 0.0;
+  double maxRollingSpringError = 0.0;  // m
+  double worstRollingSpringFraction = 0.0;
   std::size_t sharedPairs = 0;  // contacts with n > 1 (the count matters)
 };
 
 HistoryComparison compareHistory(const World& world, const CpuOracle& after,
                                  const ForceComparison& forces) {
   HistoryComparison result;
-  const ContactHistoryMap gpu = oracle::historyFromSnapshot(world.readSnapshot().contacts);
+  const ContactHistoryMap gpu = oracle::historyFromSnapshot(world.readSnapshot());
   for (const auto& [key, h] : after.history()) {
     ++result.contacts;
     if (h.pairs > 1) ++result.sharedPairs;
@@ -523,13 +535,19 @@ HistoryComparison compareHistory(const World& world, const CpuOracle& after,
       continue;
     }
     if (it->second.pairs != h.pairs) ++result.pairMismatches;
+    const auto found = forces.springAllowance.find(key);
+    const RoundOff allowance = found == forces.springAllowance.end() ? RoundOff{} : found->second;
     const double error = (it->second.spring - h.spring).norm();
-    const auto allowance = forces.springAllowance.find(key);
-    const double tolerance = 1e-4 * std::max(h.spring.norm(), 1e-6) +
-                             (allowance == forces.springAllowance.end() ? 0.0 : allowance->second);
+    const double tolerance = 1e-4 * std::max(h.spring.norm(), 1e-6) + allowance.spring;
     result.maxSpringError = std::max(result.maxSpringError, error);
     result.worstSpringFraction = std::max(result.worstSpringFraction, error / tolerance);
-    if (error > tolerance) ++result.springFailures;
+    const double rollingError = (it->second.rollingSpring - h.rollingSpring).norm();
+    const double rollingTolerance =
+        1e-4 * std::max(h.rollingSpring.norm(), 1e-6) + allowance.rollingSpring;
+    result.maxRollingSpringError = std::max(result.maxRollingSpringError, rollingError);
+    result.worstRollingSpringFraction =
+        std::max(result.worstRollingSpringFraction, rollingError / rollingTolerance);
+    if (error > tolerance || rollingError > rollingTolerance) ++result.springFailures;
   }
   for (const auto& entry : gpu) {
     if (!after.history().contains(entry.first)) ++result.extra;
@@ -578,9 +596,11 @@ void print(const SubstepComparison& r, const char* what) {
       r.bodies.maxContactTorqueFraction);
   std::printf(
       "[ oracle ] %s: history %zu contacts (%zu with n > 1), %zu missing, %zu extra, %zu pair "
-      "counts differ; max spring error %.3g m, worst %.3g of the tolerance, %zu fail\n",
+      "counts differ; max spring error %.3g m, worst %.3g of the tolerance; rolling springs %.3g "
+      "m, %.3g; %zu fail\n",
       what, r.history.contacts, r.history.sharedPairs, r.history.missing, r.history.extra,
       r.history.pairMismatches, r.history.maxSpringError, r.history.worstSpringFraction,
+      r.history.maxRollingSpringError, r.history.worstRollingSpringFraction,
       r.history.springFailures);
 }
 

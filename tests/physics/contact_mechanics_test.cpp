@@ -179,6 +179,49 @@ TEST(ContactMechanics, RollingFrictionSlowsARollingSphereAtFiveSeventhsMuRG) {
   EXPECT_LT(std::abs(later.position.x - stopped.position.x), 1e-4f * d);
 }
 
+// Rolling friction's static part: a sphere of radius R at rest on a slope, friction enough to
+// keep it from sliding, is held by the couple mu_r R F_n as long as the weight's torque about the
+// contact, m g sin(theta) R, is below it: tan(theta) < mu_r. Above, it rolls down at
+// (5/7) g (sin(theta) - mu_r cos(theta)) (I = 2/5 m R², and a rolling couple mu_r R m g cos).
+// A couple without a spring (or a stateless one that vanishes at rest) lets the held sphere creep.
+TEST(ContactMechanics, RollingFrictionHoldsASphereOnASlopeBelowAtanMuR) {
+  constexpr float kMuR = 0.1f;
+  auto onSlope = [](double theta, BodyState& before, BodyState& after) {
+    WorldSettings settings = settingsWith(0.5f);
+    settings.material.rollingFriction = kMuR;
+    TestWorld w(settings);
+    w->addCollider(slope(theta, 0.5f));
+    const float d = w->settings().particleDiameter;
+    const Vec3 normal{float(-std::sin(theta)), float(std::cos(theta)), 0.0f};
+    const BodyId b =
+        w->addBody(makeParticleTemplate({{0, 0, 0}}, d, w->settings().material.density),
+                   {.position = (0.5f * d + 1e-5f) * normal});
+    w.simulate(0.2);  // lands and loads its springs
+    before = w->readBody(b);
+    w.simulate(0.5);
+    after = w->readBody(b);
+    return double(d);
+  };
+  const double g0 = 9.81;
+  const double held = std::atan(0.8 * kMuR);
+  BodyState a, b;
+  const double d = onSlope(held, a, b);
+  const double drift = dot(b.position - a.position, downhill(held));
+  std::printf("sphere on a slope of tan 0.8 mu_r: drift over 0.5 s %.3g d, spin %.3g rad/s\n",
+              drift / d, double(norm(b.angularVelocity)));
+  EXPECT_LT(std::abs(drift), 1e-4 * d);
+  EXPECT_LT(norm(b.angularVelocity), 1e-3f);
+
+  const double rolls = std::atan(2.0 * kMuR);
+  onSlope(rolls, a, b);
+  const double expected = 5.0 / 7.0 * g0 * (std::sin(rolls) - kMuR * std::cos(rolls));
+  const double measured =
+      (dot(b.velocity, downhill(rolls)) - dot(a.velocity, downhill(rolls))) / 0.5;
+  std::printf("sphere on a slope of tan 2 mu_r: acceleration %.4f m/s^2, closed form %.4f\n",
+              measured, expected);
+  EXPECT_NEAR(measured, expected, 0.02 * expected);
+}
+
 // A granule hanging by the two particles of its top edge on two fixed spheres, its centre below
 // the line through the two contacts, tilted by 0.1 rad about that line and let go: it swings
 // like a pendulum, its particles rolling on the spheres. Rolling without slipping, no contact

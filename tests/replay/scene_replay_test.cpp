@@ -94,6 +94,30 @@ TEST_P(SleepingSceneReplay, ReplaysBitIdentically) {
 INSTANTIATE_TEST_SUITE_P(EveryScene, SleepingSceneReplay,
                          ::testing::ValuesIn(testing::registeredScenes()), testing::sceneTestName);
 
+// With rolling friction the recording's snapshots carry the rolling springs (ROLL records) and a
+// replay is bit-identical, snapshots included.
+TEST(RollingFrictionReplay, ReplaysBitIdenticallyWithTheRollingSpringsInItsSnapshots) {
+  const std::string name = "sand-box-pour";
+  std::unique_ptr<scenes::Scene> scene = goldenScene(name);
+  scene->setRollingFriction(0.1f);
+  const std::filesystem::path file = tempRecording(name + "-rolling");
+  const RunSummary run = recordScene(*scene, file, kGoldenFrames, 5);
+  ASSERT_EQ(run.frames, kGoldenFrames);
+  const Recording recording = readRecording(file);
+  ASSERT_FALSE(recording.snapshots.empty());
+  const WorldSnapshot& last = recording.snapshots.back();
+  EXPECT_EQ(last.rolling.size(), last.contacts.size());
+  std::size_t loaded = 0;
+  for (const StoredRolling& r : last.rolling) {
+    for (const auto& spring : r.springs) loaded += spring != decltype(spring){};
+  }
+  EXPECT_GT(loaded, 0u) << "no rolling spring in use at frame " << last.frame;
+  const ReplayResult replay = replayRecording(testing::gpu(), recording);
+  EXPECT_TRUE(replay.identical) << replay.difference;
+  EXPECT_EQ(replay.frames, kGoldenFrames);
+  std::filesystem::remove(file);
+}
+
 TEST(PerturbedReplay, IsCaughtAtTheFrameAndNamesTheGranule) {
   constexpr std::uint32_t kGranule = 21;
   constexpr std::uint64_t kFrame = 10;

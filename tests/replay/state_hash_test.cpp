@@ -95,6 +95,56 @@ TEST(Snapshot, ARestoredWorldContinuesAsItDidBitForBit) {
   EXPECT_FALSE(difference) << difference->describe();
 }
 
+// With rolling friction each contact slot keeps a rolling spring: the snapshot carries it, the
+// GPU hash and its CPU twin absorb it, a restore puts it back, and a restore without it (the
+// springs zeroed, all else the same) runs differently, so it is state.
+TEST(Snapshot, RollingSpringsAreStateThatTheSnapshotAndTheHashCarry) {
+  WorldSettings settings = testing::smallSettings(96);
+  settings.material.rollingFriction = 0.1f;
+  testing::TestWorld w(settings);
+  testing::buildPile(*w);
+  w->substep(1500);
+  const WorldSnapshot then = w->readSnapshot();
+  ASSERT_EQ(then.rolling.size(), then.contacts.size());
+  std::size_t loaded = 0;
+  for (const StoredRolling& r : then.rolling) {
+    for (const auto& spring : r.springs) loaded += spring != decltype(spring){};
+  }
+  std::size_t inUse = 0;
+  for (const StoredContacts& c : then.contacts) inUse += std::min(c.pairs[3], kContactSlots);
+  EXPECT_GT(loaded, 20u) << "too few rolling springs in use to test (" << inUse << " slots)";
+  EXPECT_EQ(w->readStateHash(), stateHash(then));
+  w->substep(50);
+  const WorldSnapshot later = w->readSnapshot();
+
+  w->restoreSnapshot(then);
+  EXPECT_EQ(w->readStateHash(), stateHash(then));
+  w->substep(50);
+  const std::optional<StateDifference> same = firstDifference(later, w->readSnapshot());
+  EXPECT_FALSE(same) << same->describe();
+
+  WorldSnapshot unrolled = then;
+  for (StoredRolling& r : unrolled.rolling) r = StoredRolling{};
+  EXPECT_NE(stateHash(unrolled), stateHash(then));
+  const std::optional<StateDifference> named = firstDifference(then, unrolled);
+  ASSERT_TRUE(named);
+  EXPECT_NE(named->field.find("rolling"), std::string::npos) << named->field;
+  w->restoreSnapshot(unrolled);
+  w->substep(50);
+  EXPECT_TRUE(firstDifference(later, w->readSnapshot()))
+      << "the rolling springs left no trace in 50 substeps";
+
+  WorldSnapshot missing = then;
+  missing.rolling.clear();
+  try {
+    w->restoreSnapshot(missing);
+    FAIL() << "a snapshot without its rolling springs was restored";
+  } catch (const InvalidArgument& error) {
+    EXPECT_NE(std::string(error.what()).find("WorldSnapshot.rolling.size()"), std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(Snapshot, SlotsAddedAfterItAreHiddenAndALargerOneIsRefused) {
   testing::TestWorld w;
   addPile(*w, 2, 2, 2);

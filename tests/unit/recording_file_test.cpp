@@ -142,6 +142,40 @@ TEST(RecordingFile, ReadsBackWhatWasWrittenBitForBit) {
   EXPECT_EQ(r.snapshots[1].frame, 5u);
 }
 
+// With rolling friction a snapshot's rolling springs follow it in a record of their own, and
+// come back with it bit for bit, named where they differ.
+TEST(RecordingFile, RollingSpringsComeBackWithTheirSnapshot) {
+  WorldSnapshot snapshot = snapshotOf(3, 2);
+  snapshot.contacts.resize(4);
+  snapshot.rolling.resize(4);
+  for (std::uint32_t i = 0; i < 4; ++i) {
+    snapshot.contacts[i].slots[i][3] = i + 10;  // a partner key
+    snapshot.rolling[i].springs[i] = {std::bit_cast<std::uint32_t>(1e-7f * float(i + 1)),
+                                      std::bit_cast<std::uint32_t>(-0.0f), 1u};
+  }
+  const std::filesystem::path file = tempFile("rolling.sprec");
+  {
+    RecordingWriter writer(file, {{"scene", "box-drop"}});
+    writer.addSnapshot(snapshot);
+    writer.addSnapshot(snapshotOf(4, 2));  // one without: no ROLL record follows it
+    writer.finish(1.0);
+  }
+  const Recording r = readRecording(file);
+  ASSERT_EQ(r.snapshots.size(), 2u);
+  EXPECT_FALSE(firstDifference(snapshot, r.snapshots[0]))
+      << firstDifference(snapshot, r.snapshots[0])->describe();
+  EXPECT_EQ(stateHash(snapshot), stateHash(r.snapshots[0]));
+  EXPECT_TRUE(r.snapshots[1].rolling.empty());
+
+  WorldSnapshot changed = snapshot;
+  changed.rolling[2].springs[2][1] ^= 1u;
+  const std::optional<StateDifference> difference = firstDifference(r.snapshots[0], changed);
+  ASSERT_TRUE(difference);
+  EXPECT_EQ(difference->body, 2u);
+  EXPECT_EQ(difference->field, "contact slot 2 rolling.y");
+  EXPECT_NE(stateHash(changed), stateHash(snapshot));
+}
+
 TEST(RecordingFile, KeepsThePrincipalOrientationInTheGpusWordOrder) {
   // Four different words, so that any other order shows (the file keeps any bits, unit or not).
   WorldSnapshot snapshot;

@@ -39,12 +39,12 @@ struct Material {
   float friction = 0.5f;
   /// ContactLaw::HertzMindlin only: coefficient of rolling friction μ_r, dimensionless; >= 0 (0:
   /// none, as in LAMMPS and LIGGGHTS by default). Each contact of a grain, with a grain or a
-  /// collider, resists the relative rolling of its two bodies with a torque μ_r R F_n (R the
-  /// effective rolling radius: d/4 between two particles, d/2 against a collider), as LIGGGHTS's
-  /// `rolling_friction cdt` and Chrono's rolling friction do, capped so that it vanishes with the
-  /// rolling rate. Without it a granule resting on two contacts can rock about the line through
-  /// them for ever; with it a loaded body creeps rather than holds, since the couple has no
-  /// static part (docs/architecture.md, "contacts").
+  /// collider, resists the relative rolling of its two bodies with a rolling spring, damper and
+  /// slider as LAMMPS's `rolling sds`: a couple of at most μ_r R F_n (R the effective rolling
+  /// radius: d/4 between two particles, d/2 against a collider), which holds a loaded contact
+  /// still below that limit (a sphere rests on a slope of tan θ < μ_r). Without it a granule
+  /// resting on two contacts can rock about the line through them for ever. Costs 192 B per
+  /// particle for the rolling springs (docs/architecture.md, "contacts").
   float rollingFriction = 0.0f;
   /// ContactLaw::PaperViscous only: tangential damping γs of eq. 10 in N·s/m; >= 0. 0 selects
   /// the automatic value 0.25 · particle mass / time step (a quarter of the explicit stability

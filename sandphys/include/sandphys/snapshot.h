@@ -52,6 +52,13 @@ struct StoredContacts {
   std::array<std::uint32_t, 4> pairs{};
 };
 
+/// One particle's rolling springs (Material::rollingFriction), slot by slot as its StoredContacts:
+/// each slot's rolling displacement (x, y, z as float bits) exactly as the GPU stores it (whose
+/// fourth word is always 0). What rolling friction carries from one substep to the next.
+struct StoredRolling {
+  std::array<std::array<std::uint32_t, 3>, kContactSlots> springs{};
+};
+
 /// One particle's contact force and torque from the last substep that computed them, exactly as
 /// the GPU stores them (x, y, z as float bits, and the w words the kernels keep beside them). With
 /// sleep a sleeping particle is not computed and these carry over from substep to substep: the
@@ -78,6 +85,9 @@ struct WorldSnapshot {
   /// Under ContactLaw::HertzMindlin, every particle slot in use; empty under PaperViscous (whose
   /// contacts keep nothing).
   std::vector<StoredContacts> contacts;
+  /// With rolling friction (Material::rollingFriction > 0), every particle slot in use; empty
+  /// without.
+  std::vector<StoredRolling> rolling;
   /// With sleep (WorldSettings::sleep), every particle slot in use; empty without, where every
   /// substep computes every particle's force before it is used.
   std::vector<StoredForces> forces;
@@ -92,7 +102,8 @@ std::uint64_t stateHash(const WorldSnapshot& snapshot);
 /// "calm"); field "body count" when the
 /// number of slots differs (body is then the smaller count). Then the contact history: the
 /// lowest particle (subject Particle), "contact slot K spring.x" ... "contact slot K key",
-/// "contact pairs W", or "particle count"; then the forces: "force.x" ... "torque.w", or "forces
+/// "contact pairs W", or "particle count"; then the rolling springs: "contact slot K rolling.x"
+/// ... "rolling.z", or "rolling count"; then the forces: "force.x" ... "torque.w", or "forces
 /// count". Also for inputs (below).
 struct StateDifference {
   enum class Subject { Body, Particle };

@@ -1,6 +1,7 @@
 // The particle state of snapshots between the GPU's layout and the snapshot's: the contact history
 // (gpu_buffers.def: slot k of particle i is entry 4 i + k % 4 of group buffer k / 4) and
-// StoredContacts, and with sleep the last computed forces and StoredForces.
+// StoredContacts, the rolling springs (entry 12 i + k of rollingSlots) and StoredRolling, and with
+// sleep the last computed forces and StoredForces.
 #include "core/contact_state.h"
 
 #include <array>
@@ -70,6 +71,36 @@ void uploadContacts(WorldBuffers& buffers, const std::vector<StoredContacts>& co
     }
   }
   buffers[kParticleStats].upload(0, stats.size() * sizeof(GpuUVec4), stats.data());
+}
+
+std::vector<StoredRolling> downloadRolling(const WorldBuffers& buffers, std::uint32_t particles) {
+  std::vector<StoredRolling> out(particles);
+  if (particles == 0) return out;
+  std::vector<SlotWords> words(std::size_t(particles) * kContactSlots);
+  buffers[kRollingSlots].download(0, words.size() * sizeof(SlotWords), words.data());
+  for (std::uint32_t i = 0; i < particles; ++i) {
+    for (std::uint32_t k = 0; k < kContactSlots; ++k) {
+      const SlotWords& w = words[std::size_t(i) * kContactSlots + k];
+      out[i].springs[k] = {w[0], w[1], w[2]};
+    }
+  }
+  return out;
+}
+
+void uploadRolling(WorldBuffers& buffers, const std::vector<StoredRolling>& rolling,
+                   std::uint32_t particles) {
+  SANDPHYS_ASSERT(rolling.size() <= particles, std::to_string(rolling.size()) +
+                                                   " particles' rolling springs for " +
+                                                   std::to_string(particles) + " particles in use");
+  if (particles == 0) return;
+  std::vector<SlotWords> words(std::size_t(particles) * kContactSlots, SlotWords{});
+  for (std::size_t i = 0; i < rolling.size(); ++i) {
+    for (std::uint32_t k = 0; k < kContactSlots; ++k) {
+      const auto& spring = rolling[i].springs[k];
+      words[i * kContactSlots + k] = {spring[0], spring[1], spring[2], 0u};
+    }
+  }
+  buffers[kRollingSlots].upload(0, words.size() * sizeof(SlotWords), words.data());
 }
 
 std::vector<StoredForces> downloadForces(const WorldBuffers& buffers, std::uint32_t particles) {

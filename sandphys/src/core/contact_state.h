@@ -18,6 +18,15 @@ std::vector<StoredContacts> downloadContacts(const WorldBuffers& buffers, std::u
 void uploadContacts(WorldBuffers& buffers, const std::vector<StoredContacts>& contacts,
                     std::uint32_t particles);
 
+/// The rolling springs of the first `particles` particles (rollingSlots; rolling friction).
+/// Sync point.
+std::vector<StoredRolling> downloadRolling(const WorldBuffers& buffers, std::uint32_t particles);
+
+/// Puts `rolling` back into the first rolling.size() particles and zeroes the springs of the
+/// particles after them, up to `particles`.
+void uploadRolling(WorldBuffers& buffers, const std::vector<StoredRolling>& rolling,
+                   std::uint32_t particles);
+
 /// The last computed force and torque of the first `particles` particles (particleForce,
 /// particleTorque; sleep comes with ContactLaw::HertzMindlin only). Sync point.
 std::vector<StoredForces> downloadForces(const WorldBuffers& buffers, std::uint32_t particles);

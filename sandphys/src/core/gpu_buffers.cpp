@@ -21,6 +21,12 @@ std::string generatedBufferDeclarations() {
            "_TEXTURE layout(binding = " + std::to_string(spec.textureUnit) + ") uniform " +
            sampler + " " + spec.array + "Texture;\n";
   }
+  for (const GpuBufferSpec& spec : kGpuBuffers) {
+    if (spec.imageUnit == kNoImageUnit) continue;
+    out += "#define " + std::string(spec.macro) +
+           "_IMAGE(access) layout(rgba32f, binding = " + std::to_string(spec.imageUnit) +
+           ") uniform access imageBuffer " + spec.array + "Image;\n";
+  }
   return out;
 }
 

@@ -17,6 +17,7 @@ namespace sandphys::detail {
 /// ScanBlocks, GridParticles: one of each per grid, two under sleep) are rebuilt from the
 /// particles, so nothing is kept when they grow.
 /// History: the particles when the contact law keeps contact state (HertzMindlin), else one unit;
+/// RollingHistory: the particles when it also keeps rolling springs (rolling friction), else one;
 /// SleepBodies, SleepParticles: the bodies, the particles with sleep, else one unit; SleepChunks:
 /// collect_active.comp's chunks of kCollectChunk bodies with sleep, else one unit.
 /// AwakeLists: the particles without sleep, else one unit, rebuilt from the lists.
@@ -29,6 +30,7 @@ enum class SizedBy {
   Lists,
   AwakeLists,
   History,
+  RollingHistory,
   Table,
   TablePlusOne,
   ScanBlocks,
@@ -50,15 +52,34 @@ enum Binding : unsigned {
 /// dispatches wrote.
 enum TextureUnit : unsigned {
 #define SANDPHYS_TEXTURE_UNIT_View(Name) k##Name##Texture,
+#define SANDPHYS_TEXTURE_UNIT_ViewAndImage(Name) k##Name##Texture,
 #define SANDPHYS_TEXTURE_UNIT_NoView(Name)
 #define SANDPHYS_GPU_BUFFER(Name, array, macro, element, bytes, sizedBy, perUnit, view, ...) \
   SANDPHYS_TEXTURE_UNIT_##view(Name)
 #include "core/gpu_buffers.def"
 #undef SANDPHYS_TEXTURE_UNIT_View
+#undef SANDPHYS_TEXTURE_UNIT_ViewAndImage
 #undef SANDPHYS_TEXTURE_UNIT_NoView
   kTextureCount
 };
 inline constexpr unsigned kNoTextureUnit = ~0u;
+
+/// Image units of the buffers written through an image of their view (ViewAndImage in
+/// gpu_buffers.def): a kernel that already binds as many storage blocks as the driver allows
+/// (contacts.comp) writes them with imageStore, which also has no storage block's size limit.
+enum ImageUnit : unsigned {
+#define SANDPHYS_IMAGE_UNIT_View(Name)
+#define SANDPHYS_IMAGE_UNIT_ViewAndImage(Name) k##Name##Image,
+#define SANDPHYS_IMAGE_UNIT_NoView(Name)
+#define SANDPHYS_GPU_BUFFER(Name, array, macro, element, bytes, sizedBy, perUnit, view, ...) \
+  SANDPHYS_IMAGE_UNIT_##view(Name)
+#include "core/gpu_buffers.def"
+#undef SANDPHYS_IMAGE_UNIT_View
+#undef SANDPHYS_IMAGE_UNIT_ViewAndImage
+#undef SANDPHYS_IMAGE_UNIT_NoView
+  kImageCount
+};
+inline constexpr unsigned kNoImageUnit = ~0u;
 
 /// One entry of gpu_buffers.def, whose header explains the fields.
 struct GpuBufferSpec {
@@ -70,6 +91,7 @@ struct GpuBufferSpec {
   SizedBy sizedBy;
   std::size_t perUnit;
   unsigned textureUnit;  ///< kNoTextureUnit: no view
+  unsigned imageUnit;    ///< kNoImageUnit: not written through an image
   const char* header;
 
   /// Bytes per body, particle, bucket... (in all, for SizedBy::Fixed).
@@ -87,7 +109,11 @@ constexpr GLenum viewFormat(std::string_view element) {
 /// gpu_buffers.def as a table, indexed by Binding.
 inline constexpr GpuBufferSpec kGpuBuffers[kBindingCount] = {
 #define SANDPHYS_TEXTURE_UNIT_View(Name) k##Name##Texture
+#define SANDPHYS_TEXTURE_UNIT_ViewAndImage(Name) k##Name##Texture
 #define SANDPHYS_TEXTURE_UNIT_NoView(Name) kNoTextureUnit
+#define SANDPHYS_IMAGE_UNIT_View(Name) kNoImageUnit
+#define SANDPHYS_IMAGE_UNIT_ViewAndImage(Name) k##Name##Image
+#define SANDPHYS_IMAGE_UNIT_NoView(Name) kNoImageUnit
 // gpu_buffers.def's fields in order: Name, array, MACRO, element, elementBytes, sizedBy, perUnit...
 #define SANDPHYS_GPU_BUFFER(N, A, M, E, B, S, P, V, ...) \
   {.name = #N,                                           \
@@ -98,10 +124,15 @@ inline constexpr GpuBufferSpec kGpuBuffers[kBindingCount] = {
    .sizedBy = SizedBy::S,                                \
    .perUnit = P,                                         \
    .textureUnit = SANDPHYS_TEXTURE_UNIT_##V(N),          \
+   .imageUnit = SANDPHYS_IMAGE_UNIT_##V(N),              \
    .header = #__VA_ARGS__},
 #include "core/gpu_buffers.def"
 #undef SANDPHYS_TEXTURE_UNIT_View
+#undef SANDPHYS_TEXTURE_UNIT_ViewAndImage
 #undef SANDPHYS_TEXTURE_UNIT_NoView
+#undef SANDPHYS_IMAGE_UNIT_View
+#undef SANDPHYS_IMAGE_UNIT_ViewAndImage
+#undef SANDPHYS_IMAGE_UNIT_NoView
 };
 
 constexpr bool everyViewHasAFormat() {
@@ -112,6 +143,13 @@ constexpr bool everyViewHasAFormat() {
 }
 static_assert(everyViewHasAFormat(),
               "a View in gpu_buffers.def needs a vec4, uvec4 or uint element");
+constexpr bool everyImageIsVec4() {
+  for (const GpuBufferSpec& spec : kGpuBuffers) {
+    if (spec.imageUnit != kNoImageUnit && viewFormat(spec.element) != GL_RGBA32F) return false;
+  }
+  return true;
+}
+static_assert(everyImageIsVec4(), "a ViewAndImage in gpu_buffers.def needs a vec4 element");
 // The contact slot groups are addressed as kContactSlots0 + group: in a row, before kContactPairs.
 static_assert(kContactSlots0 + kContactSlotGroups == kContactPairs);
 
@@ -121,7 +159,7 @@ inline constexpr std::size_t kContactListHeaderBytes = 16;
 /// Where the shader loader serves generatedBufferDeclarations() (included by layout.glsl).
 inline constexpr const char* kBufferDeclarationsFile = "sim/common/buffers.glsl";
 /// The GLSL declarations of kGpuBuffers: MACRO(access) for each buffer, MACRO_TEXTURE for each
-/// view.
+/// view, MACRO_IMAGE(access) for each image.
 std::string generatedBufferDeclarations();
 
 }  // namespace sandphys::detail

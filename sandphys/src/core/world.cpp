@@ -24,9 +24,9 @@ World::Impl::Impl(const GpuContext& context, const WorldSettings& s) : gpu(&cont
   granule = tetrahedronTemplate(settings.particleDiameter, settings.material.density);
 
   context.makeCurrent();
-  kernels.compile(settings.contactLaw, sleep.enabled, settings.material.rollingFriction > 0.0f);
+  kernels.compile(settings.contactLaw, sleep.enabled, keepsRollingHistory());
   buffers.allocate(bodyCapacity, particleCapacity, tableCapacity, settings.maxColliders, 0, 0,
-                   keepsHistory(), sleep.enabled);
+                   keepsHistory(), keepsRollingHistory(), sleep.enabled);
   profiler.setEnabled(settings.profileKernels);
   uploadParams();
 }
@@ -85,7 +85,8 @@ void World::reserve(std::uint32_t maxBodies, std::uint32_t maxParticles) {
   w.particleCapacity = std::max(w.particleCapacity, maxParticles);
   w.tableCapacity = HashTable::sizeFor(w.particleCapacity);
   w.buffers.allocate(w.bodyCapacity, w.particleCapacity, w.tableCapacity, w.settings.maxColliders,
-                     w.bodyCount, w.particleCount, w.keepsHistory(), w.sleep.enabled);
+                     w.bodyCount, w.particleCount, w.keepsHistory(), w.keepsRollingHistory(),
+                     w.sleep.enabled);
   w.paramsDirty = true;
   // A grown table, and grown lists, are new, empty buffers.
   w.gridValid = false;

@@ -46,7 +46,8 @@ HashTable HashTable::forParticles(std::uint32_t particles) {
 
 void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::uint32_t tableSize,
                             std::uint32_t colliders, std::uint32_t bodiesInUse,
-                            std::uint32_t particlesInUse, bool history, bool sleeping) {
+                            std::uint32_t particlesInUse, bool history, bool rollingHistory,
+                            bool sleeping) {
   const std::uint32_t grids = sleeping ? 2u : 1u;
   for (unsigned b = 0; b < kBindingCount; ++b) {
     const GpuBufferSpec& spec = kGpuBuffers[b];
@@ -82,6 +83,10 @@ void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::
       case SizedBy::History:
         count = history ? particles : 1;
         keep = history ? particlesInUse : 0;
+        break;
+      case SizedBy::RollingHistory:
+        count = rollingHistory ? particles : 1;
+        keep = rollingHistory ? particlesInUse : 0;
         break;
       case SizedBy::Table:
         count = std::size_t(tableSize) * grids;
@@ -140,6 +145,11 @@ void WorldBuffers::bindAll() const {
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, storage[kCounters].id());
   params.bindBase(GL_UNIFORM_BUFFER, kSimParamsBinding);
   for (GLuint unit = 0; unit < textures.size(); ++unit) glBindTextureUnit(unit, textures[unit]);
+  for (const GpuBufferSpec& spec : kGpuBuffers) {
+    if (spec.imageUnit == kNoImageUnit) continue;
+    glBindImageTexture(spec.imageUnit, textures[spec.textureUnit], 0, GL_FALSE, 0, GL_READ_WRITE,
+                       viewFormat(spec.element));
+  }
 }
 
 std::uint64_t WorldBuffers::bytes() const {

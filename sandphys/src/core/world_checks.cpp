@@ -103,6 +103,15 @@ void requireRestorable(const WorldSnapshot& snapshot) {
       }
     }
   }
+  for (std::size_t p = 0; p < snapshot.rolling.size(); ++p) {
+    for (std::uint32_t k = 0; k < kContactSlots; ++k) {
+      for (int axis = 0; axis < 3; ++axis) {
+        requireFinite("WorldSnapshot.rolling[" + std::to_string(p) + "].springs[" +
+                          std::to_string(k) + "]." + std::string(1, "xyz"[axis]),
+                      std::bit_cast<float>(snapshot.rolling[p].springs[k][axis]));
+      }
+    }
+  }
   for (std::size_t p = 0; p < snapshot.forces.size(); ++p) {
     const StoredForces& f = snapshot.forces[p];
     const std::string name = "WorldSnapshot.forces[" + std::to_string(p) + "].";

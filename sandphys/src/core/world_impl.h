@@ -38,11 +38,12 @@ struct WorldBuffers {
 
   /// Allocates (or, when already allocated, grows keeping contents) for these capacities;
   /// `history`: the contact law keeps contact state (the contact slots and what goes with them);
-  /// `sleeping`: sleeping sand (its lists of what a substep computes, what goes with them, and
-  /// the list build's second grid: a moving and a still one, common/grid.glsl).
+  /// `rollingHistory`: it keeps rolling springs too (rolling friction); `sleeping`: sleeping sand
+  /// (its lists of what a substep computes, what goes with them, and the list build's second grid:
+  /// a moving and a still one, common/grid.glsl).
   void allocate(std::uint32_t bodies, std::uint32_t particles, std::uint32_t tableSize,
                 std::uint32_t colliders, std::uint32_t bodiesInUse, std::uint32_t particlesInUse,
-                bool history, bool sleeping);
+                bool history, bool rollingHistory, bool sleeping);
   void bindAll() const;
   std::uint64_t bytes() const;
 };
@@ -199,6 +200,11 @@ struct World::Impl {
   /// The contact law keeps contact state across substeps (HertzMindlin): slots, pair counts,
   /// torques and the sorted spins exist.
   bool keepsHistory() const { return settings.contactLaw == ContactLaw::HertzMindlin; }
+  /// It keeps a rolling spring per contact slot too (Material::rollingFriction, which only
+  /// HertzMindlin takes).
+  bool keepsRollingHistory() const {
+    return keepsHistory() && settings.material.rollingFriction > 0.0f;
+  }
   /// The contacts pass leaves the particles near a collider to contacts_colliders (without sleep;
   /// with it contacts keeps the collider code): a collider changed needs a list build then.
   bool collidersInOwnPass() const { return !sleep.enabled; }

@@ -86,7 +86,7 @@ void World::Impl::dispatch(GLuint program, const char* name, std::uint32_t threa
   glDispatchCompute(gx, gy, 1);
   if (name) profiler.end();
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
-                  GL_COMMAND_BARRIER_BIT);
+                  GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 }
 
 void World::Impl::dispatchIndirect(GLuint program, const char* name, std::uint32_t commandOffset) {
@@ -96,7 +96,7 @@ void World::Impl::dispatchIndirect(GLuint program, const char* name, std::uint32
   profiler.end();
   // Passes over lists write the commands of later passes (contacts, integrate_bodies).
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
-                  GL_COMMAND_BARRIER_BIT);
+                  GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 }
 
 void World::Impl::markParticlesDirty(std::uint32_t first, std::uint32_t end) {

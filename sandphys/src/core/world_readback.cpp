@@ -87,6 +87,7 @@ WorldSnapshot World::readSnapshot() const {
     b.calm = std::bit_cast<std::uint32_t>(v.w);
   }
   if (w.keepsHistory()) snapshot.contacts = downloadContacts(w.buffers, w.particleCount);
+  if (w.keepsRollingHistory()) snapshot.rolling = downloadRolling(w.buffers, w.particleCount);
   if (w.sleep.enabled) snapshot.forces = downloadForces(w.buffers, w.particleCount);
   return snapshot;
 }

@@ -29,6 +29,13 @@ void World::restoreSnapshot(const WorldSnapshot& snapshot) {
           "must be " + std::to_string(expected) +
               (w.keepsHistory() ? " (the particles of its bodies, under ContactLaw::HertzMindlin)"
                                 : " (ContactLaw::PaperViscous keeps no contact history)"));
+  const std::size_t rolling = w.keepsRollingHistory() ? particles : 0u;
+  require(snapshot.rolling.size() == rolling, "WorldSnapshot.rolling.size()",
+          double(snapshot.rolling.size()),
+          "must be " + std::to_string(rolling) +
+              (w.keepsRollingHistory()
+                   ? " (the particles of its bodies, with rolling friction)"
+                   : " (a World without rolling friction keeps no rolling springs)"));
   // With sleep a sleeper's forces are not computed again: a touched one's balance sums them.
   const std::size_t forces = w.sleep.enabled ? particles : 0u;
   require(snapshot.forces.size() == forces, "WorldSnapshot.forces.size()",
@@ -67,6 +74,7 @@ void World::restoreSnapshot(const WorldSnapshot& snapshot) {
   w.buffers[kBodyAngularVelocity].upload(0, count * sizeof(GpuVec4), spin.data());
   w.buffers[kBodyInfo].upload(0, count * sizeof(GpuUVec4), info.data());
   if (w.keepsHistory()) uploadContacts(w.buffers, snapshot.contacts, w.particleCount);
+  if (w.keepsRollingHistory()) uploadRolling(w.buffers, snapshot.rolling, w.particleCount);
   uploadForces(w.buffers, snapshot.forces);
   gl::check("World::restoreSnapshot");
   w.steps = snapshot.steps;

@@ -38,6 +38,8 @@ constexpr std::size_t kEndPayloadBytes = 32;
 constexpr std::size_t kSnapshotBodyBytes = 14 * 4;
 constexpr std::size_t kSnapshotContactBytes = sizeof(StoredContacts);
 static_assert(sizeof(StoredContacts) == (4 * kContactSlots + 4) * 4);
+constexpr std::size_t kSnapshotRollingBytes = sizeof(StoredRolling);
+static_assert(sizeof(StoredRolling) == 3 * kContactSlots * 4);
 constexpr std::size_t kSnapshotForceBytes = sizeof(StoredForces);
 static_assert(sizeof(StoredForces) == 8 * 4);
 // Fast and still about halves float state; recordings are written while a scene runs.
@@ -50,6 +52,9 @@ constexpr std::uint32_t tag(const char (&text)[5]) {
 constexpr std::uint32_t kSettingsTag = tag("SETS");
 constexpr std::uint32_t kFrameTag = tag("FRAM");
 constexpr std::uint32_t kSnapshotTag = tag("SNAP");
+// The rolling springs of the snapshot just before it (rolling friction only), so that a recording
+// without rolling friction is laid out as before rolling friction kept state.
+constexpr std::uint32_t kRollingTag = tag("ROLL");
 constexpr std::uint32_t kEndTag = tag("END!");
 
 std::string tagText(std::uint32_t value) {
@@ -184,6 +189,61 @@ RecordedFrame readFrame(Reader& in, const std::string& context, std::size_t inde
   return frame;
 }
 
+// Appends `raw` as one zstd frame (for recording `file`'s error).
+void putCompressed(Bytes& out, const std::vector<std::uint8_t>& raw,
+                   const std::filesystem::path& file) {
+  std::vector<std::uint8_t> compressed(ZSTD_compressBound(raw.size()));
+  const std::size_t size =
+      ZSTD_compress(compressed.data(), compressed.size(), raw.data(), raw.size(), kZstdLevel);
+  if (ZSTD_isError(size)) {
+    throw Error("cannot write recording '" + file.string() + "': zstd: " + ZSTD_getErrorName(size));
+  }
+  out.putRaw(compressed.data(), size);
+}
+
+// The rest of `in`, a zstd frame of rawSize bytes; `what` it is and what it should `hold`, for
+// the error.
+std::vector<std::uint8_t> decompressRest(Reader& in, std::size_t rawSize,
+                                         const std::string& context, const std::string& what,
+                                         const std::string& hold) {
+  const std::size_t compressedSize = in.remaining();
+  const std::uint8_t* compressed = in.take(compressedSize);
+  const unsigned long long contentSize = ZSTD_getFrameContentSize(compressed, compressedSize);
+  if (contentSize != rawSize) {
+    throw RecordingError(context + " is malformed: " + what + " does not hold " + hold);
+  }
+  std::vector<std::uint8_t> raw(rawSize);
+  const std::size_t result = ZSTD_decompress(raw.data(), raw.size(), compressed, compressedSize);
+  if (ZSTD_isError(result) || result != rawSize) {
+    throw RecordingError(context + " is malformed: " + what + " does not decompress (" +
+                         (ZSTD_isError(result) ? ZSTD_getErrorName(result) : "short") + ")");
+  }
+  return raw;
+}
+
+// A ROLL record: the rolling springs of `snapshot`, the one read just before it.
+void readRolling(Reader& in, const std::string& context, WorldSnapshot* snapshot) {
+  const auto frame = in.get<std::uint64_t>();
+  const std::uint32_t particles = in.get<std::uint32_t>();
+  if (!snapshot || snapshot->frame != frame || !snapshot->rolling.empty() ||
+      particles != snapshot->contacts.size()) {
+    throw RecordingError(context + " is malformed: rolling springs of frame " +
+                         std::to_string(frame) + " for " + std::to_string(particles) +
+                         " particles do not follow that frame's snapshot of as many particles");
+  }
+  const std::vector<std::uint8_t> raw =
+      decompressRest(in, std::size_t(particles) * kSnapshotRollingBytes, context,
+                     "the rolling springs of frame " + std::to_string(frame),
+                     std::to_string(particles) + " particles'");
+  Reader words(raw.data(), raw.size(), context);
+  snapshot->rolling.resize(particles);
+  for (StoredRolling& r : snapshot->rolling) {
+    for (auto& spring : r.springs) {
+      for (std::uint32_t& word : spring) word = words.get<std::uint32_t>();
+    }
+  }
+}
+
 WorldSnapshot readSnapshot(Reader& in, const std::string& context) {
   WorldSnapshot snapshot;
   snapshot.frame = in.get<std::uint64_t>();
@@ -202,26 +262,13 @@ WorldSnapshot readSnapshot(Reader& in, const std::string& context) {
                          std::to_string(forces) + " particles' forces, more than a World holds (" +
                          std::to_string(kMaxParticleCapacity) + ")");
   }
-  const std::size_t compressedSize = in.remaining();
-  const std::uint8_t* compressed = in.take(compressedSize);
   const std::size_t rawSize = std::size_t(bodies) * kSnapshotBodyBytes +
                               std::size_t(particles) * kSnapshotContactBytes +
                               std::size_t(forces) * kSnapshotForceBytes;
-  const unsigned long long contentSize = ZSTD_getFrameContentSize(compressed, compressedSize);
-  if (contentSize != rawSize) {
-    throw RecordingError(context + " is malformed: the snapshot of frame " +
-                         std::to_string(snapshot.frame) + " does not hold " +
-                         std::to_string(bodies) + " bodies, the contacts of " +
-                         std::to_string(particles) + " particles and the forces of " +
-                         std::to_string(forces) + " particles");
-  }
-  std::vector<std::uint8_t> raw(rawSize);
-  const std::size_t result = ZSTD_decompress(raw.data(), raw.size(), compressed, compressedSize);
-  if (ZSTD_isError(result) || result != rawSize) {
-    throw RecordingError(context + " is malformed: the snapshot of frame " +
-                         std::to_string(snapshot.frame) + " does not decompress (" +
-                         (ZSTD_isError(result) ? ZSTD_getErrorName(result) : "short") + ")");
-  }
+  const std::vector<std::uint8_t> raw = decompressRest(
+      in, rawSize, context, "the snapshot of frame " + std::to_string(snapshot.frame),
+      std::to_string(bodies) + " bodies, the contacts of " + std::to_string(particles) +
+          " particles and the forces of " + std::to_string(forces) + " particles");
   Reader body(raw.data(), raw.size(), context);
   snapshot.bodies.resize(bodies);
   for (StoredBody& b : snapshot.bodies) {
@@ -352,13 +399,6 @@ void RecordingWriter::addSnapshot(const WorldSnapshot& snapshot) {
                       std::to_string(snapshot.bodies.size()) + " bodies, " +
                       std::to_string(snapshot.contacts.size()) + " particles' contacts and " +
                       std::to_string(snapshot.forces.size()) + " particles' forces");
-  std::vector<std::uint8_t> compressed(ZSTD_compressBound(raw.data().size()));
-  const std::size_t size = ZSTD_compress(compressed.data(), compressed.size(), raw.data().data(),
-                                         raw.data().size(), kZstdLevel);
-  if (ZSTD_isError(size)) {
-    throw Error("cannot write recording '" + m_file.string() +
-                "': zstd: " + ZSTD_getErrorName(size));
-  }
   Bytes out;
   out.put(snapshot.frame);
   out.put(snapshot.steps);
@@ -366,9 +406,24 @@ void RecordingWriter::addSnapshot(const WorldSnapshot& snapshot) {
   out.put(std::uint32_t(snapshot.bodies.size()));
   out.put(std::uint32_t(snapshot.contacts.size()));
   out.put(std::uint32_t(snapshot.forces.size()));
-  out.putRaw(compressed.data(), size);
+  putCompressed(out, raw.data(), m_file);
   writeRecord(kSnapshotTag, out.data());
   ++m_snapshots;
+  if (snapshot.rolling.empty()) return;
+  SANDPHYS_ASSERT(snapshot.rolling.size() == snapshot.contacts.size(),
+                  std::to_string(snapshot.rolling.size()) + " particles' rolling springs for " +
+                      std::to_string(snapshot.contacts.size()) + " particles' contacts");
+  Bytes springs;
+  for (const StoredRolling& r : snapshot.rolling) {
+    for (const auto& spring : r.springs) {
+      for (std::uint32_t word : spring) springs.put(word);
+    }
+  }
+  Bytes rolling;
+  rolling.put(snapshot.frame);
+  rolling.put(std::uint32_t(snapshot.rolling.size()));
+  putCompressed(rolling, springs.data(), m_file);
+  writeRecord(kRollingTag, rolling.data());
 }
 
 std::uint64_t RecordingWriter::finish(double wallSeconds) {
@@ -507,6 +562,9 @@ Recording readRecording(const std::filesystem::path& file) {
       recording.frames.push_back(readFrame(payload, name, recording.frames.size()));
     } else if (recordTag == kSnapshotTag) {
       recording.snapshots.push_back(readSnapshot(payload, name));
+    } else if (recordTag == kRollingTag) {
+      readRolling(payload, name,
+                  recording.snapshots.empty() ? nullptr : &recording.snapshots.back());
     } else {
       throw RecordingError(name + " is malformed: unknown record '" + tagText(recordTag) +
                            "' at byte " + std::to_string(offset));

@@ -120,6 +120,14 @@ std::uint64_t stateHash(const WorldSnapshot& snapshot) {
     low += h.x;
     high += h.y;
   }
+  for (std::uint32_t i = 0; i < snapshot.rolling.size(); ++i) {
+    Lanes h{fmix(i ^ 0xbe5466cfu), fmix(i ^ 0x34e90c6cu)};
+    for (const auto& spring : snapshot.rolling[i].springs) {
+      for (std::uint32_t word : spring) h = absorb(h, word);
+    }
+    low += h.x;
+    high += h.y;
+  }
   for (std::uint32_t i = 0; i < snapshot.forces.size(); ++i) {
     const StoredForces& f = snapshot.forces[i];
     Lanes h{fmix(i ^ 0xa4093822u), fmix(i ^ 0x299f31d0u)};
@@ -195,6 +203,31 @@ std::optional<StateDifference> firstDifference(const WorldSnapshot& recorded,
     return StateDifference{std::uint32_t(particles),           "particle count",
                            double(recorded.contacts.size()),   double(replayed.contacts.size()),
                            StateDifference::Subject::Particle, true};
+  }
+  // Rolling springs (rolling friction): named by particle, slot and word.
+  const std::size_t rolled = std::min(recorded.rolling.size(), replayed.rolling.size());
+  for (std::size_t i = 0; i < rolled; ++i) {
+    for (std::uint32_t k = 0; k < kContactSlots; ++k) {
+      for (std::uint32_t w = 0; w < 3; ++w) {
+        const std::uint32_t a = recorded.rolling[i].springs[k][w];
+        const std::uint32_t b = replayed.rolling[i].springs[k][w];
+        if (a == b) continue;
+        return StateDifference{std::uint32_t(i),
+                               "contact slot " + std::to_string(k) + " rolling." + "xyz"[w],
+                               double(std::bit_cast<float>(a)),
+                               double(std::bit_cast<float>(b)),
+                               StateDifference::Subject::Particle,
+                               false};
+      }
+    }
+  }
+  if (recorded.rolling.size() != replayed.rolling.size()) {
+    return StateDifference{std::uint32_t(rolled),
+                           "rolling count",
+                           double(recorded.rolling.size()),
+                           double(replayed.rolling.size()),
+                           StateDifference::Subject::Particle,
+                           true};
   }
   // Forces (sleep): named by particle and word; the force's w is an integer (a calm count).
   const std::size_t loaded = std::min(recorded.forces.size(), replayed.forces.size());

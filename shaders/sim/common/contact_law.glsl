@@ -48,7 +48,17 @@ struct MindlinResult {
   float normalForce;
   vec3 tangentialForce;
   vec3 spring;
+  float shearStiffness;  // k_t
+  float damping;         // eta_n
 };
+
+// A contact's spring turns with the contact: its normal part is dropped, its length kept.
+vec3 turnedIntoPlane(vec3 spring, vec3 n) {
+  float length0 = length(spring);
+  vec3 planar = spring - dot(spring, n) * n;
+  float planarLength = length(planar);
+  return planarLength > 0.0 ? planar * (length0 / planarLength) : vec3(0.0);
+}
 
 MindlinResult hertzMindlin(float xi, vec3 n, vec3 vRel, float kn, float kt0, float dampingFactor,
                            float invMassSum, float friction, float dt, vec3 spring) {
@@ -58,12 +68,7 @@ MindlinResult hertzMindlin(float xi, vec3 n, vec3 vRel, float kn, float kt0, flo
   float fn = max(kn * xi * rootXi + eta * xiDot, 0.0);
   vec3 vt = vRel + xiDot * n;
 
-  // The spring turns with the contact: drop its normal part, keep its length.
-  float length0 = length(spring);
-  vec3 planar = spring - dot(spring, n) * n;
-  float planarLength = length(planar);
-  spring = planarLength > 0.0 ? planar * (length0 / planarLength) : vec3(0.0);
-  spring += vt * dt;
+  spring = turnedIntoPlane(spring, n) + vt * dt;
 
   float kt = kt0 * rootXi;
   vec3 ft = -kt * spring - eta * vt;
@@ -78,24 +83,42 @@ MindlinResult hertzMindlin(float xi, vec3 n, vec3 vRel, float kn, float kt0, flo
   r.normalForce = fn;
   r.tangentialForce = ft;
   r.spring = spring;
+  r.shearStiffness = kt;
+  r.damping = eta;
   return r;
 }
 
 #ifdef ROLLING_FRICTION
-// Rolling friction (Material::rollingFriction, mu_r), as LIGGGHTS rolling_friction cdt: a couple
-// against the relative rolling of the two bodies, the part of their relative spin
-// w = w_this - w_other in the tangent plane, of size mu_r R F_n, R the effective rolling radius.
-// A constant size would reverse a slow rolling within one substep and chatter about rest, so it
-// is at most what stops, in one substep, a sphere of radius R with the contact's share of the
-// masses (1/invMassShare): the couple vanishes with w, so it has no static part (a loaded body
-// creeps; docs/architecture.md, "contacts"). Odd in (w, n), so the two sides of a pair get
-// exactly opposite couples.
-vec3 rollingTorque(vec3 relativeSpin, vec3 n, float normalForce, float radius, float invMassShare,
-                   float dt) {
-  vec3 rolling = relativeSpin - dot(relativeSpin, n) * n;
-  float rate = length(rolling);
-  float stopping = 0.4 * radius * radius * rate / (invMassShare * dt);
-  float size = min(params.rollingFriction * radius * normalForce, stopping);
-  return rate > 0.0 ? rolling * (-size / rate) : vec3(0.0);
+// Rolling resistance (Material::rollingFriction, mu_r), as LAMMPS pair granular's rolling sds: a
+// spring-dashpot-slider on the contact's rolling displacement, with the tangential spring's
+// stiffness and damping, so that a loaded contact holds still below its limit:
+//   v_r = R (w x n),  w = w_this - w_other the bodies' relative spin, R the rolling radius
+//   delta_r <- delta_r turned into the tangent plane (length kept) + v_r dt
+//   F_r = -k_t delta_r - eta_n v_r
+//   |F_r| > mu_r F_n: F_r <- mu_r F_n F_r/|F_r|, delta_r <- -(F_r + eta_n v_r) / k_t   (rolls)
+//   couple on this body: R n x F_r, at most mu_r R F_n, against w's tangential part.
+// v_r and delta_r are even in (w, n): the two sides of a pair keep the same spring, bit for bit,
+// and get exactly opposite couples.
+struct RollingResult {
+  vec3 torque;
+  vec3 spring;
+};
+
+RollingResult rollingResistance(vec3 relativeSpin, vec3 n, float radius, MindlinResult contact,
+                                float dt, vec3 spring) {
+  vec3 vr = radius * cross(relativeSpin, n);
+  spring = turnedIntoPlane(spring, n) + vr * dt;
+  float kt = contact.shearStiffness;
+  vec3 fr = -kt * spring - contact.damping * vr;
+  float frLength = length(fr);
+  float cap = params.rollingFriction * contact.normalForce;
+  if (frLength > cap) {
+    fr *= cap / frLength;
+    spring = -(fr + contact.damping * vr) / kt;
+  }
+  RollingResult r;
+  r.torque = radius * cross(n, fr);
+  r.spring = spring;
+  return r;
 }
 #endif

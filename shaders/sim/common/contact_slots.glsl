@@ -26,6 +26,11 @@ uint slotEntry(uint particle, uint k) {
   return particle * uint(CONTACT_SLOTS_PER_GROUP) + k % uint(CONTACT_SLOTS_PER_GROUP);
 }
 
+// Entry of slot k of particle `particle` in rollingSlots (ROLLING_FRICTION).
+int rollingEntry(uint particle, uint k) {
+  return int(particle * uint(CONTACT_SLOTS) + k);
+}
+
 // The pair count n of slot k from contactPairs (one byte per slot), at least 1 (a slot written
 // after the counts were taken, by a restore, counts as one).
 uint slotPairs(uvec4 pairs, uint k) {
