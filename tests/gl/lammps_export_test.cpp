@@ -166,6 +166,57 @@ TEST_F(ExportedWorld, CarriesEveryParticleBodyColliderAndWhatDoesNotMap) {
   EXPECT_NEAR(detail::adhesiveHertzRestitution(alpha), s.material.restitution, 1e-4);
 }
 
+// Rolling friction maps onto LAMMPS's rolling sds, whose spring and damping are constants: the
+// deck gives sandphys's k_t = k_t0 sqrt(ξ) and η = c(e) sqrt(m* k_n) ξ^{1/4} at the overlap ξ of
+// one granule's weight, k_n and k_t0 from E and ν, between grains (m* half a granule) and on each
+// wall (m* a granule, c for the wall's restitution). Without rolling friction there is none.
+TEST_F(ExportedWorld, CarriesRollingFrictionAsRollingSds) {
+  WorldSettings s = testing::smallSettings();
+  s.material.rollingFriction = 0.1f;
+  World world(testing::gpu(), s);
+  world.addCollider(Plane{.material = {.friction = 0.4f, .restitution = 0.7f}});
+  world.addGranules(GranuleBlock{.center = {0.0f, 0.1f, 0.0f}, .countX = 2, .countY = 1});
+  world.substep(1);
+  const std::string deck = readText(exportLammps(world, dir, {.runSeconds = 0.5}).deck);
+
+  const double d = s.particleDiameter;
+  const double e = s.material.youngsModulus;
+  const double nu = s.material.poissonRatio;
+  const double g = -s.gravity.y;
+  const double granule = tetrahedronTemplate(float(d), s.material.density).mass;
+  // k_n, k_t0 of a grain pair (R* = d/4) and of a grain on a rigid wall (R* = d/2).
+  const double g0 = e / (2.0 * (1.0 + nu));
+  const double knGrain = 4.0 / 3.0 * e / (2.0 * (1.0 - nu * nu)) * std::sqrt(0.25 * d);
+  const double ktGrain = 8.0 * g0 / (2.0 * (2.0 - nu)) * std::sqrt(0.25 * d);
+  const double knWall = 4.0 / 3.0 * e / (1.0 - nu * nu) * std::sqrt(0.5 * d);
+  const double ktWall = 8.0 * g0 / (2.0 - nu) * std::sqrt(0.5 * d);
+  auto expectRolling = [&](const std::string& from, double kn, double kt, double restitution,
+                           double effectiveMass) {
+    const std::size_t at = deck.find(" rolling sds ", deck.find(from));
+    ASSERT_NE(at, std::string::npos) << "no rolling sds after '" << from << "' in\n" << deck;
+    std::istringstream words(deck.substr(at + 13));
+    double stiffness, damping, mu;
+    words >> stiffness >> damping >> mu;
+    const double xi = std::pow(granule * g / kn, 2.0 / 3.0);
+    EXPECT_NEAR(stiffness, kt * std::sqrt(xi), 1e-4 * stiffness) << from;
+    EXPECT_NEAR(
+        damping,
+        hertzDampingFactor(restitution) * std::sqrt(effectiveMass * kn) * std::pow(xi, 0.25),
+        1e-4 * damping)
+        << from;
+    EXPECT_FLOAT_EQ(float(mu), s.material.rollingFriction) << from;
+  };
+  expectRolling("pair_coeff * * ", knGrain, ktGrain, s.material.restitution, 0.5 * granule);
+  expectRolling("fix wall0 ", knWall, ktWall, 0.7, granule);
+  EXPECT_NE(deck.find("rolling friction: rolling sds"), std::string::npos) << deck;
+
+  s.material.rollingFriction = 0.0f;
+  World without(testing::gpu(), s);
+  without.addCollider(Plane{});
+  const std::string plain = readText(exportLammps(without, dir, {.runSeconds = 0.5}).deck);
+  EXPECT_EQ(plain.find("rolling"), std::string::npos) << plain;
+}
+
 TEST_F(ExportedWorld, RefusesABadSpanAndAFolderItCannotWrite) {
   World world(testing::gpu(), testing::smallSettings());
   EXPECT_NE(testing::errorMessageOf([&] {

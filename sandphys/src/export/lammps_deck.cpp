@@ -32,11 +32,29 @@ LammpsDeck composeLammpsDeck(const World& world, const LammpsScene& scene,
   const double skin = std::max(double(model.listSkin), 0.1 * d);
   // fix rigid/small needs every particle of a clump within the ghost cutoff of its owner.
   const double ghostCutoff = std::max(2.0 * scene.largestClumpRadius + d + skin, 2.0 * d);
-  const std::string grain =
-      lammpsContact(model.stiffnessGrain / std::sqrt(0.5 * model.radius),
-                    model.shearStiffnessGrain / std::sqrt(0.5 * model.radius),
-                    settings.material.restitution, settings.material.friction);
   const double g = length(settings.gravity);
+  // Rolling friction's spring and damping, constant in LAMMPS, at the overlap one granule's
+  // weight makes (without gravity, a granule's at maxSpeed).
+  const double rollingFriction = settings.material.rollingFriction;
+  const double weight = double(model.granuleMass) * g;
+  auto restingOverlap = [&](double kn, double peak) {
+    return weight > 0.0 ? hertzRestingOverlap(weight, kn) : peak;
+  };
+  const double grainOverlap = restingOverlap(model.stiffnessGrain, model.peakOverlapGrain);
+  const double wallOverlap = restingOverlap(model.stiffnessWall, model.peakOverlapWall);
+  const std::string grain = lammpsContact(
+      model.stiffnessGrain / std::sqrt(0.5 * model.radius),
+      model.shearStiffnessGrain / std::sqrt(0.5 * model.radius), settings.material.restitution,
+      settings.material.friction,
+      lammpsRolling(model.stiffnessGrain, model.shearStiffnessGrain, model.dampingFactorGrain,
+                    0.5 * model.granuleMass, grainOverlap, rollingFriction));
+  if (rollingFriction > 0.0) {
+    notes.push_back(
+        "rolling friction: rolling sds with sandphys's k_t and damping at the overlap of one "
+        "granule's weight (" +
+        lammpsNumber(grainOverlap) + " m between grains, " + lammpsNumber(wallOverlap) +
+        " m on a wall), where sandphys scales both with the overlap as its tangential spring");
+  }
   const bool verticalY = g > 0.0 && std::abs(settings.gravity.y) > 0.99 * g;
 
   if (settings.contactLaw == ContactLaw::PaperViscous) {
@@ -82,7 +100,8 @@ LammpsDeck composeLammpsDeck(const World& world, const LammpsScene& scene,
   notes.insert(notes.end(), options.notes.begin(), options.notes.end());
 
   const std::vector<ColliderShape>& colliders = w.colliderShapes;
-  const LammpsWalls walls = lammpsWalls(colliders, model, scene, notes);
+  const LammpsWalls walls =
+      lammpsWalls(colliders, model, scene, rollingFriction, wallOverlap, notes);
   deck.walls = static_cast<std::uint32_t>(colliders.size());
 
   std::ostringstream out;

@@ -40,10 +40,20 @@ double lammpsTsujiRestitution(double e) {
 
 // Given as stiffnesses, not as hertz/material E e nu: fix wall/gran of LAMMPS 29 Sep 2021
 // (Debian 12's) derives a wall's moduli from E and nu with other formulas than its pairs'.
-std::string lammpsContact(double kn, double kt, double restitution, double friction) {
+std::string lammpsContact(double kn, double kt, double restitution, double friction,
+                          const std::string& rolling) {
   return "hertz " + lammpsNumber(kn) + ' ' + lammpsNumber(lammpsTsujiRestitution(restitution)) +
          " tangential mindlin " + lammpsNumber(kt) + " 1.0 " + lammpsNumber(friction) +
-         " damping tsuji";
+         " damping tsuji" + rolling;
+}
+
+std::string lammpsRolling(double kn, double kt0, double dampingFactor, double effectiveMass,
+                          double overlap, double rollingFriction) {
+  if (rollingFriction == 0.0) return {};
+  const double stiffness = kt0 * std::sqrt(overlap);
+  const double damping = dampingFactor * std::sqrt(effectiveMass * kn) * std::pow(overlap, 0.25);
+  return " rolling sds " + lammpsNumber(stiffness) + ' ' + lammpsNumber(damping) + ' ' +
+         lammpsNumber(rollingFriction);
 }
 
 }  // namespace sandphys::detail

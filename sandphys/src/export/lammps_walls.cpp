@@ -18,11 +18,23 @@ bool moves(const ColliderMotion& m) {
 class WallWriter {
  public:
   WallWriter(std::ostringstream& out, std::vector<std::string>& notes, const ContactModel& model,
-             const LammpsScene& scene)
-      : m_out(out), m_notes(notes), m_scene(scene) {
+             const LammpsScene& scene, double rollingFriction, double rollingOverlap)
+      : m_out(out),
+        m_notes(notes),
+        m_scene(scene),
+        m_model(model),
+        m_rollingFriction(rollingFriction),
+        m_rollingOverlap(rollingOverlap) {
     const double wallRadius = std::sqrt(double(model.radius));
     m_kn = model.stiffnessWall / wallRadius;
     m_kt = model.shearStiffnessWall / wallRadius;
+  }
+
+  // A granule on a rigid wall: m* = the granule's mass, the damping for the wall's restitution.
+  std::string rolling(double restitution) const {
+    return lammpsRolling(m_model.stiffnessWall, m_model.shearStiffnessWall,
+                         hertzDampingFactor(restitution), m_model.granuleMass, m_rollingOverlap,
+                         m_rollingFriction);
   }
 
   void write(std::uint32_t k, const ColliderShape& shape) {
@@ -31,7 +43,8 @@ class WallWriter {
     std::visit(
         [&](const auto& s) {
           m_out << "fix " << region << " clumps wall/gran/region granular "
-                << lammpsContact(m_kn, m_kt, s.material.restitution, s.material.friction)
+                << lammpsContact(m_kn, m_kt, s.material.restitution, s.material.friction,
+                                 rolling(s.material.restitution))
                 << " region " << region << '\n';
           if (moves(s.motion)) {
             m_notes.push_back("collider " + std::to_string(k) +
@@ -117,6 +130,9 @@ class WallWriter {
   std::ostringstream& m_out;
   std::vector<std::string>& m_notes;
   const LammpsScene& m_scene;
+  const ContactModel& m_model;
+  double m_rollingFriction;
+  double m_rollingOverlap;
   double m_kn = 0.0;
   double m_kt = 0.0;
 };
@@ -124,9 +140,10 @@ class WallWriter {
 }  // namespace
 
 LammpsWalls lammpsWalls(const std::vector<ColliderShape>& colliders, const ContactModel& model,
-                        const LammpsScene& scene, std::vector<std::string>& notes) {
+                        const LammpsScene& scene, double rollingFriction, double rollingOverlap,
+                        std::vector<std::string>& notes) {
   std::ostringstream out;
-  WallWriter writer(out, notes, model, scene);
+  WallWriter writer(out, notes, model, scene, rollingFriction, rollingOverlap);
   for (std::uint32_t k = 0; k < colliders.size(); ++k) writer.write(k, colliders[k]);
   return {writer.m_preamble.str(), out.str()};
 }

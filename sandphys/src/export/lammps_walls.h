@@ -20,7 +20,10 @@ struct LammpsWalls {
   std::string variables;
   std::string walls;
 };
+/// With rolling friction μ_r > 0, each wall's contact has its rolling model (lammpsRolling) at
+/// overlap `rollingOverlap`.
 LammpsWalls lammpsWalls(const std::vector<ColliderShape>& colliders, const ContactModel& model,
-                        const LammpsScene& scene, std::vector<std::string>& notes);
+                        const LammpsScene& scene, double rollingFriction, double rollingOverlap,
+                        std::vector<std::string>& notes);
 
 }  // namespace sandphys::detail
