@@ -271,7 +271,9 @@ void loadSlots(uint particle) {
     }
 #ifdef ROLLING_FRICTION
     previousRolling[k] = vec3(0.0);
-    if (k < used) previousRolling[k] = texelFetch(rollingSlotsTexture, rollingEntry(particle, k)).xyz;
+    if (k < used) {
+      previousRolling[k] = texelFetch(rollingSlotsTexture, rollingEntry(particle, k)).xyz;
+    }
 #endif
   }
 }
@@ -348,11 +350,11 @@ vec3 surfaceVelocity(vec3 particleVelocity, vec3 spin, vec3 centre, vec3 point) 
 // Applies one contact of the current particle: gets its spring from the previous substep,
 // advances it, keeps it in a slot and adds force and torque at `point` (and, with rolling
 // friction, the couple against the bodies' relative rolling, relativeSpin, whose spring it keeps
-// in the same slot). A new
-// contact is undamped for its first substep: the number n of contacts that joined the two
-// bodies is counted after this substep, and taking n = 1 meanwhile would damp a body that meets
-// a surface with many particles at once n times too hard (its overlap, about v dt, makes the
-// damping missed this way small). Contacts that found no slot are damped with n = 1.
+// in the same slot). A new contact is undamped for its first substep: the number n of contacts
+// that joined the two bodies is counted after this substep, and taking n = 1 meanwhile would damp
+// a body that meets a surface with many particles at once n times too hard (its overlap, about
+// v dt, makes the damping missed this way small). Contacts that found no slot are damped with
+// n = 1.
 MindlinResult mindlinContact(Particle self, uint key, float xi, vec3 n, vec3 point, vec3 vRel,
                              float kn, float kt0, float dampingFactor, float invMass,
                              float friction, vec3 relativeSpin, float rollingRadius) {

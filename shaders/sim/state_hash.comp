@@ -5,7 +5,8 @@
 // same on every run; src/recording/state_hash.cpp computes the same function on the CPU. Under
 // ContactLaw::HertzMindlin every particle's contact slots and pair counts (the history a
 // contact carries across substeps) are absorbed the same way, seeded with the particle's index;
-// with ROLLING_FRICTION every particle's rolling springs (x, y, z of each slot); and with SLEEPING every particle's last computed force and torque, which a sleeper carries.
+// with ROLLING_FRICTION every particle's rolling springs (x, y, z of each slot); and with SLEEPING
+// every particle's last computed force and torque, which a sleeper carries.
 #include "common/layout.glsl"
 
 #define HASH_THREADS 256
