@@ -122,6 +122,12 @@ TEST(Snapshot, RollingSpringsAreStateThatTheSnapshotAndTheHashCarry) {
   w->substep(50);
   const std::optional<StateDifference> same = firstDifference(later, w->readSnapshot());
   EXPECT_FALSE(same) << same->describe();
+  // Grown, the World keeps them (the buffer and the image its kernel writes through move).
+  w->restoreSnapshot(then);
+  w->reserve(200, 800);
+  w->substep(50);
+  const std::optional<StateDifference> grown = firstDifference(later, w->readSnapshot());
+  EXPECT_FALSE(grown) << grown->describe();
 
   WorldSnapshot unrolled = then;
   for (StoredRolling& r : unrolled.rolling) r = StoredRolling{};
