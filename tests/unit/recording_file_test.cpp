@@ -2,6 +2,7 @@
 // and every kind of bad file gets an error that names the file and the problem.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cstring>
@@ -13,6 +14,9 @@
 
 #include <sandphys/sandphys.h>
 #include <zstd.h>
+
+#define XXH_INLINE_ALL
+#include <xxhash.h>
 
 namespace sandphys {
 namespace {
@@ -174,6 +178,20 @@ TEST(RecordingFile, RollingSpringsComeBackWithTheirSnapshot) {
   EXPECT_EQ(difference->body, 2u);
   EXPECT_EQ(difference->field, "contact slot 2 rolling.y");
   EXPECT_NE(stateHash(changed), stateHash(snapshot));
+
+  // Springs that name another frame than the snapshot before them are malformed, by frame.
+  std::vector<char> bytes = bytesOf(file);
+  const auto at = std::search(bytes.begin(), bytes.end(), "ROLL", std::next("ROLL", 4));
+  ASSERT_NE(at, bytes.end());
+  ++*(at + 8);  // the record's frame, after its tag and length
+  // The end record's checksum made to match, as a writer with this fault would have written it.
+  const std::uint64_t checksum = XXH3_64bits(bytes.data(), bytes.size() - 8);
+  std::memcpy(bytes.data() + bytes.size() - 8, &checksum, sizeof checksum);
+  writeBytes(file, bytes);
+  const std::string message = readError(file);
+  EXPECT_NE(message.find("is malformed: rolling springs of frame 4 for 4 particles"),
+            std::string::npos)
+      << message;
 }
 
 TEST(RecordingFile, KeepsThePrincipalOrientationInTheGpusWordOrder) {

@@ -407,12 +407,12 @@ void RecordingWriter::addSnapshot(const WorldSnapshot& snapshot) {
   out.put(std::uint32_t(snapshot.contacts.size()));
   out.put(std::uint32_t(snapshot.forces.size()));
   putCompressed(out, raw.data(), m_file);
+  SANDPHYS_ASSERT(snapshot.rolling.empty() || snapshot.rolling.size() == snapshot.contacts.size(),
+                  std::to_string(snapshot.rolling.size()) + " particles' rolling springs for " +
+                      std::to_string(snapshot.contacts.size()) + " particles' contacts");
   writeRecord(kSnapshotTag, out.data());
   ++m_snapshots;
   if (snapshot.rolling.empty()) return;
-  SANDPHYS_ASSERT(snapshot.rolling.size() == snapshot.contacts.size(),
-                  std::to_string(snapshot.rolling.size()) + " particles' rolling springs for " +
-                      std::to_string(snapshot.contacts.size()) + " particles' contacts");
   Bytes springs;
   for (const StoredRolling& r : snapshot.rolling) {
     for (const auto& spring : r.springs) {
