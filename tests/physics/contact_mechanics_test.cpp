@@ -146,7 +146,7 @@ TEST(ContactMechanics, SphereRollingWithoutSlippingIsNotSlowed) {
 
 // Rolling friction against a floor: a couple mu_r R F_n with R = d/2 and F_n = m g, against a
 // sphere rolling without slipping (I = 2/5 m R² about its centre, 7/5 m R² about the contact)
-// slows it at (5/7) mu_r g until it stops; then the couple vanishes with the spin and it stays.
+// slows it at (5/7) mu_r g until it stops; then the rolling spring holds it where it stopped.
 TEST(ContactMechanics, RollingFrictionSlowsARollingSphereAtFiveSeventhsMuRG) {
   WorldSettings settings = settingsWith(0.5f);
   settings.material.rollingFriction = 0.1f;
