@@ -69,7 +69,10 @@ struct SurfaceMaterial {
 /// from what held it at rest by more than wakeAcceleration (per unit mass), and on World::wake.
 /// Zero fields take the defaults from d and g = |gravity|. ContactLaw::HertzMindlin only.
 struct SleepSettings {
-  /// Off keeps every granule awake, and the step exactly as without sleep.
+  /// Off keeps every granule awake, and the step exactly as without sleep. Without rolling
+  /// friction a settled pile keeps a few granules rocking on two contacts, and each holds a band
+  /// of neighbours awake; with Material::rollingFriction > 0 it sleeps whole (bench/README.md,
+  /// "Rolling friction and the granules that never sleep").
   bool enabled = false;
   /// Linear speed threshold in m/s; >= 0. 0 selects kSleepLinearSpeed · sqrt(g d).
   float linearSpeed = 0.0f;
