@@ -229,16 +229,20 @@ layout(location = 1) uniform float listMinOverlap;
 layout(location = 2) uniform uint listBothSides;
 
 void record(uint a, uint b, uint bodyA, uint bodyB, uint collider, vec3 point, vec3 n, float xi,
-            float normalForce, vec3 tangentialForce, vec3 spring) {
+            float normalForce, vec3 tangentialForce, vec3 spring, vec3 rollingTorque,
+            vec3 rollingSpring) {
   if (xi <= listMinOverlap) return;
   uint slot = atomicAdd(contactListCount, 1u);
   if (slot >= contactListCapacity) return;
-  contactList[slot * 5u + 0u] = vec4(uintBitsToFloat(a), uintBitsToFloat(b), uintBitsToFloat(bodyA),
-                                     uintBitsToFloat(bodyB));
-  contactList[slot * 5u + 1u] = vec4(point, xi);
-  contactList[slot * 5u + 2u] = vec4(n, normalForce);
-  contactList[slot * 5u + 3u] = vec4(tangentialForce, uintBitsToFloat(collider));
-  contactList[slot * 5u + 4u] = vec4(spring, 0.0);
+  uint at = slot * uint(CONTACT_RECORD);
+  contactList[at + 0u] = vec4(uintBitsToFloat(a), uintBitsToFloat(b), uintBitsToFloat(bodyA),
+                              uintBitsToFloat(bodyB));
+  contactList[at + 1u] = vec4(point, xi);
+  contactList[at + 2u] = vec4(n, normalForce);
+  contactList[at + 3u] = vec4(tangentialForce, uintBitsToFloat(collider));
+  contactList[at + 4u] = vec4(spring, 0.0);
+  contactList[at + 5u] = vec4(rollingTorque, 0.0);
+  contactList[at + 6u] = vec4(rollingSpring, 0.0);
 }
 #endif
 
@@ -354,26 +358,30 @@ vec3 surfaceVelocity(vec3 particleVelocity, vec3 spin, vec3 centre, vec3 point) 
 // that joined the two bodies is counted after this substep, and taking n = 1 meanwhile would damp
 // a body that meets a surface with many particles at once n times too hard (its overlap, about
 // v dt, makes the damping missed this way small). Contacts that found no slot are damped with
-// n = 1.
+// n = 1. rollingTorque, rollingSpring: rolling friction's couple and spring (zero without it).
 MindlinResult mindlinContact(Particle self, uint key, float xi, vec3 n, vec3 point, vec3 vRel,
                              float kn, float kt0, float dampingFactor, float invMass,
-                             float friction, vec3 relativeSpin, float rollingRadius) {
+                             float friction, vec3 relativeSpin, float rollingRadius,
+                             out vec3 rollingTorque, out vec3 rollingSpring) {
   uint pairs;
   vec3 rolling;
   vec3 spring = previousSpring(key, pairs, rolling);
   if (pairs == 0u && slotsUsed < uint(CONTACT_SLOTS)) dampingFactor = 0.0;
   MindlinResult r = hertzMindlin(xi, n, vRel, kn, kt0, dampingFactor,
                                  float(max(pairs, 1u)) * invMass, friction, params.dt, spring);
+  rollingTorque = vec3(0.0);
 #ifdef ROLLING_FRICTION
   RollingResult roll = rollingResistance(relativeSpin, n, rollingRadius, r, params.dt, rolling);
   rolling = roll.spring;
+  rollingTorque = roll.torque;
 #endif
+  rollingSpring = rolling;
   keepSlot(self.id, key, r.spring, rolling);
 #ifndef CONTACT_LIST
   force += r.force;
   torque += cross(point - self.position.xyz, r.force);
 #ifdef ROLLING_FRICTION
-  torque += roll.torque;
+  torque += rollingTorque;
 #endif
 #endif
   return r;
@@ -409,17 +417,19 @@ void pairContact(Particle self, uint otherId) {
   precise vec3 vRel = surfaceVelocity(self.velocity.xyz, self.spin, self.position.xyz, point) -
                       surfaceVelocity(otherVelocity.xyz, otherSpin.xyz, other.xyz, point);
   float invMassSum = max(self.velocity.w, 0.0) + max(otherVelocity.w, 0.0);
+  vec3 rollingTorque, rollingSpring;
   MindlinResult r = mindlinContact(self, particleSlotKey(otherId), xi, n, point, vRel,
                                    params.grainStiffness, params.grainShearStiffness,
                                    params.grainDamping, invMassSum, params.friction,
-                                   self.spin - otherSpin.xyz, 0.25 * params.particleDiameter);
+                                   self.spin - otherSpin.xyz, 0.25 * params.particleDiameter,
+                                   rollingTorque, rollingSpring);
 #ifdef CONTACT_LIST
   // Each pair once, from the side that keeps its history (static particles keep none).
   if (listBothSides != 0u ||
       (self.velocity.w >= 0.0 && (otherVelocity.w < 0.0 || self.id < otherId))) {
     record(self.id, otherId, self.body, floatBitsToUint(other.w), 0xffffffffu,
            self.position.xyz - n * (params.particleRadius - 0.5 * xi), n, xi, r.normalForce,
-           r.tangentialForce, r.spring);
+           r.tangentialForce, r.spring, rollingTorque, rollingSpring);
   }
 #else
   ++pairContacts;
@@ -464,7 +474,7 @@ void pairContact(Particle self, uint otherId) {
   if (listed) {
     record(self.id, otherId, self.body, otherBody, 0xffffffffu,
            self.position.xyz - n * (radius - 0.5 * xi), n, xi, r.normalForce,
-           r.tangentialForce, spring);
+           r.tangentialForce, spring, vec3(0.0), vec3(0.0));
   }
 #else
   ++pairContacts;
@@ -581,6 +591,8 @@ void colliderContact(Particle self, Collider c, vec4 hit, uint face, float radiu
                                  c.material.z, self.velocity.w, c.material.y,
                                  params.tangentialDamping);
   vec3 spring = vec3(0.0);
+  vec3 rollingTorque = vec3(0.0);
+  vec3 rollingSpring = vec3(0.0);
 #ifndef CONTACT_LIST
   force += r.force;
 #endif
@@ -591,15 +603,16 @@ void colliderContact(Particle self, Collider c, vec4 hit, uint face, float radiu
   precise vec3 surface = c.velocity.xyz + cross(c.spin.xyz, point);
   precise vec3 vRel =
       surfaceVelocity(self.velocity.xyz, self.spin, self.position.xyz, point) - surface;
+  vec3 rollingTorque, rollingSpring;
   MindlinResult r = mindlinContact(self, colliderSlotKey(c, face), xi, n, point, vRel,
                                    params.wallStiffness, params.wallShearStiffness, c.material.z,
                                    self.velocity.w, c.material.y, self.spin - c.spin.xyz,
-                                   params.particleRadius);
+                                   params.particleRadius, rollingTorque, rollingSpring);
   vec3 spring = r.spring;
 #endif
 #ifdef CONTACT_LIST
   record(self.id, 0xffffffffu, self.body, 0xffffffffu, floatBitsToUint(c.material.w), point, n,
-         xi, r.normalForce, r.tangentialForce, spring);
+         xi, r.normalForce, r.tangentialForce, spring, rollingTorque, rollingSpring);
 #else
   ++wallContacts;
 #endif

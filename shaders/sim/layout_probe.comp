@@ -16,6 +16,9 @@ CONTACT_LIST_BUFFER(readonly)
 layout(std430, binding = 40) readonly buffer SlotsProbe { vec4 slotsProbe[CONTACT_SLOTS]; };
 layout(std430, binding = 41) readonly buffer SlotGroupProbe { vec4 slotGroupProbe[CONTACT_SLOTS_PER_GROUP]; };
 layout(std430, binding = 42) readonly buffer SlotGroupsProbe { vec4 slotGroupsProbe[CONTACT_SLOT_GROUPS]; };
+// And a contact list record's, for GpuContactRecord (a uniform block: the storage blocks are at
+// the driver's limit).
+layout(std140, binding = 1) uniform ContactRecordProbe { vec4 contactRecordProbe[CONTACT_RECORD]; };
 // And the neighbour lists' constants: capacity, the counters' layout and the build's passes.
 layout(std430, binding = 43) readonly buffer ListCapacityProbe { uint listCapacityProbe[NEIGHBOUR_LIST_CAPACITY]; };
 layout(std430, binding = 44) readonly buffer ListDispatchProbe { uint listDispatchProbe[COUNTER_LIST_DISPATCH]; };
@@ -47,7 +50,7 @@ void main() {
   vec4 sum = vec4(params.gravity, params.dt) + vec4(float(params.oneGrid));
   sum += colliders[0].a + colliders[0].b + colliders[0].c + colliders[0].material;
   sum += colliders[0].velocity + colliders[0].spin;
-  sum += slotsProbe[0] + slotGroupProbe[0] + slotGroupsProbe[0];
+  sum += slotsProbe[0] + slotGroupProbe[0] + slotGroupsProbe[0] + contactRecordProbe[0];
   sum += vec4(listPassesProbe[0]);
   sum.y += float(listCapacityProbe[0] + listDispatchProbe[0] + listPassProbe[0].x);
   sum.z += float(activeDispatchProbe[0] + activePassesProbe[0].x + collectChunkProbe[0] +

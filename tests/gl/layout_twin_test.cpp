@@ -130,6 +130,8 @@ TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
             GLint(16 * kContactSlotsPerGroup));
   EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "SlotGroupsProbe"),
             GLint(16 * kContactSlotGroups));
+  EXPECT_EQ(blockSize(program, GL_UNIFORM_BLOCK, "ContactRecordProbe"),
+            GLint(sizeof(GpuContactRecord)));
   // The neighbour lists' constants.
   EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "ListCapacityProbe"),
             GLint(4 * kNeighbourListCapacity));

@@ -184,9 +184,12 @@ TEST(ContactMechanics, RollingFrictionSlowsARollingSphereAtFiveSeventhsMuRG) {
 // contact, m g sin(theta) R, is below it: tan(theta) < mu_r. Above, it rolls down at
 // (5/7) g (sin(theta) - mu_r cos(theta)) (I = 2/5 m R², and a rolling couple mu_r R m g cos).
 // A couple without a spring (or a stateless one that vanishes at rest) lets the held sphere creep.
+// The contact World::readContacts lists carries the couple: held, it balances the friction's
+// torque about the centre, m g sin(theta) R; rolling, it is at its cap mu_r R F_n.
 TEST(ContactMechanics, RollingFrictionHoldsASphereOnASlopeBelowAtanMuR) {
   constexpr float kMuR = 0.1f;
-  auto onSlope = [](double theta, BodyState& before, BodyState& after) {
+  std::vector<ContactRecord> contacts;
+  auto onSlope = [&](double theta, BodyState& before, BodyState& after) {
     WorldSettings settings = settingsWith(0.5f);
     settings.material.rollingFriction = kMuR;
     TestWorld w(settings);
@@ -200,7 +203,14 @@ TEST(ContactMechanics, RollingFrictionHoldsASphereOnASlopeBelowAtanMuR) {
     before = w->readBody(b);
     w.simulate(0.5);
     after = w->readBody(b);
+    contacts = w->readContacts();
     return double(d);
+  };
+  // The listed contact's couple and the friction's torque about the sphere's centre `centre`.
+  auto couples = [&](Vec3 centre) {
+    EXPECT_EQ(contacts.size(), 1u);
+    const ContactRecord& c = contacts.at(0);
+    return std::pair{c.rollingTorque, cross(c.point - centre, c.tangentialForce)};
   };
   const double g0 = 9.81;
   const double held = std::atan(0.8 * kMuR);
@@ -211,6 +221,14 @@ TEST(ContactMechanics, RollingFrictionHoldsASphereOnASlopeBelowAtanMuR) {
               drift / d, double(norm(b.angularVelocity)));
   EXPECT_LT(std::abs(drift), 1e-4 * d);
   EXPECT_LT(norm(b.angularVelocity), 1e-3f);
+  const double mass = settingsWith(0.5f).material.density * kPi / 6.0 * d * d * d;
+  const auto [heldCouple, heldFriction] = couples(b.position);
+  std::printf("held: rolling couple %.4g N m, friction's torque %.4g, m g sin R %.4g\n",
+              double(norm(heldCouple)), double(norm(heldFriction)),
+              mass * g0 * std::sin(held) * 0.5 * d);
+  EXPECT_NEAR(norm(heldCouple), mass * g0 * std::sin(held) * 0.5 * d,
+              0.01 * mass * g0 * std::sin(held) * 0.5 * d);
+  EXPECT_LT(norm(heldCouple + heldFriction), 1e-3 * norm(heldCouple));
 
   const double rolls = std::atan(2.0 * kMuR);
   onSlope(rolls, a, b);
@@ -220,6 +238,9 @@ TEST(ContactMechanics, RollingFrictionHoldsASphereOnASlopeBelowAtanMuR) {
   std::printf("sphere on a slope of tan 2 mu_r: acceleration %.4f m/s^2, closed form %.4f\n",
               measured, expected);
   EXPECT_NEAR(measured, expected, 0.02 * expected);
+  const ContactRecord& rolling = contacts.at(0);
+  EXPECT_NEAR(norm(rolling.rollingTorque), kMuR * 0.5 * d * rolling.normalForce,
+              1e-3 * kMuR * 0.5 * d * rolling.normalForce);
 }
 
 // A granule hanging by the two particles of its top edge on two fixed spheres, its centre below

@@ -51,6 +51,11 @@ struct ContactRecord {
   /// ContactLaw::HertzMindlin: A's tangential spring displacement δ after that substep, m (in
   /// the tangent plane; its length times k_t is the stick force). Zero under PaperViscous.
   Vec3 tangentialDisplacement{};
+  /// Rolling friction (Material::rollingFriction): its couple on A's body, N m, and A's rolling
+  /// spring displacement δ_r after that substep, m (docs/architecture.md, "contacts"). Zero
+  /// without rolling friction.
+  Vec3 rollingTorque{};
+  Vec3 rollingDisplacement{};
 };
 
 /// The sand's push on one body that is not a granule (a sampled mesh, a body coupled to another

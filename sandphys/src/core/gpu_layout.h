@@ -133,7 +133,7 @@ struct GpuSink {
   GpuVec4 hi;
 };
 
-/// One record of the contact list (contacts.comp with CONTACT_LIST): 5 vec4.
+/// One record of the contact list (contacts.comp with CONTACT_LIST): CONTACT_RECORD (7) vec4.
 struct GpuContactRecord {
   std::uint32_t particleA, particleB, bodyA, bodyB;
   float px, py, pz, overlap;
@@ -141,6 +141,8 @@ struct GpuContactRecord {
   float tx, ty, tz;
   std::uint32_t collider;
   float sx, sy, sz, unused;
+  float rollingTorqueX, rollingTorqueY, rollingTorqueZ, unused1;
+  float rollingSpringX, rollingSpringY, rollingSpringZ, unused2;
 };
 
 /// Partial sums written by one workgroup of stats_reduce.comp.
@@ -193,7 +195,7 @@ struct alignas(16) SimParams {
 
 static_assert(sizeof(GpuCollider) == 96);
 static_assert(sizeof(GpuSink) == 32);
-static_assert(sizeof(GpuContactRecord) == 80);
+static_assert(sizeof(GpuContactRecord) == 112);
 static_assert(sizeof(GpuStatsPartial) == 48);
 static_assert(sizeof(Vec3) == 12);  // std140 packs dt right after gravity
 static_assert(sizeof(SimParams) == 160);

@@ -192,7 +192,9 @@ std::vector<ContactRecord> World::Impl::listContacts(std::uint32_t first, std::u
                 r.normalForce,
                 {r.tx, r.ty, r.tz},
                 r.overlap,
-                {r.sx, r.sy, r.sz}};
+                {r.sx, r.sy, r.sz},
+                {r.rollingTorqueX, r.rollingTorqueY, r.rollingTorqueZ},
+                {r.rollingSpringX, r.rollingSpringY, r.rollingSpringZ}};
     }
     // Appends happen in thread order: sort so that the list is the same on every call.
     std::sort(out.begin(), out.end(), [](const ContactRecord& a, const ContactRecord& b) {

@@ -140,6 +140,8 @@ struct StatsPartial {
 #define CONTACT_SLOTS 12
 #define CONTACT_SLOTS_PER_GROUP 4
 #define CONTACT_SLOT_GROUPS 3
+// Vec4s per record of the contact list (C++: GpuContactRecord).
+#define CONTACT_RECORD 7
 
 // Sleep (SLEEPING, docs/architecture.md "sleep"). A body's calm count is the number of substeps its
 // speeds have been below the thresholds, but at most params.sleepNeighbourLead more than the
