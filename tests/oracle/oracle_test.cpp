@@ -302,6 +302,26 @@ RoundOff paperRoundOff(const OracleContact& c, double overlapError) {
 // plus at most twice the trial's (the direction's error is the trial's relative error times
 // μ F_n < |trial|), and its spring -(F_t + η v_t)/k_t inherits those over k_t. The torque
 // (p - x) × F rounds with the lever's error 2 ε |x| as well.
+// A spring-dashpot-slider's part of that (the tangential spring's and rolling friction's): the
+// trial force -k_t δ - η v from the spring turned and advanced (8 ε |δ| and dt δv), k_t's error
+// and η v's; and the spring kept, the trial's, or after a slip the capped force's (the cap's
+// error `capError` and twice the trial's) over k_t.
+struct SliderRoundOff {
+  double trial = 0.0;   // N
+  double spring = 0.0;  // m
+};
+SliderRoundOff sliderRoundOff(double spring, double springAfter, bool slipped, double speed,
+                              double speedError, double capError, double kt, double ktError,
+                              double eta, double xi, double overlapError, double timeStep) {
+  const double etaVError = 0.25 * eta * speed * overlapError / xi + eta * speedError;
+  const double springError = 8.0 * kEps * spring + timeStep * speedError;
+  SliderRoundOff out;
+  out.trial = kt * springError + (spring + speed * timeStep) * ktError + etaVError;
+  out.spring =
+      slipped ? (capError + 2.0 * out.trial + etaVError + springAfter * ktError) / kt : springError;
+  return out;
+}
+
 RoundOff mindlinRoundOff(const OracleContact& c, double overlapError, double position) {
   const double xi = std::max(c.overlap, overlapError);
   const double pointError = 2.0 * kEps * position;
@@ -315,34 +335,28 @@ RoundOff mindlinRoundOff(const OracleContact& c, double overlapError, double pos
                         eta * velocityError;
   const double kt = c.shearStiffness * std::sqrt(xi);
   const double ktError = 0.5 * c.shearStiffness / std::sqrt(xi) * overlapError;
-  const double etaVtError = 0.25 * eta * vt * overlapError / xi + eta * velocityError;
-  const double springError = 8.0 * kEps * c.spring.norm() + c.timeStep * velocityError;
-  const double trial =
-      kt * springError + (c.spring.norm() + vt * c.timeStep) * ktError + etaVtError;
   const oracle::MindlinResult r = c.evaluate();
+  const SliderRoundOff tangential =
+      sliderRoundOff(c.spring.norm(), r.spring.norm(), r.slipping, vt, velocityError,
+                     c.friction * normal, kt, ktError, eta, xi, overlapError, c.timeStep);
   RoundOff out;
-  out.force = (1.0 + c.friction) * normal + 2.0 * trial + 8.0 * kEps * r.force.norm();
+  out.force = (1.0 + c.friction) * normal + 2.0 * tangential.trial + 8.0 * kEps * r.force.norm();
   out.torque = c.lever.norm() * out.force + r.force.norm() * pointError;
-  out.spring =
-      r.slipping ? (c.friction * normal + 2.0 * trial + etaVtError + r.spring.norm() * ktError) / kt
-                 : springError;
-  // Rolling friction's spring and couple R n × F_r, as the tangential spring's with the rolling
-  // velocity v_r = R (w × n), whose spins round with their terms (4 ε of their magnitudes).
+  out.spring = tangential.spring;
+  // Rolling friction's spring and couple R n × F_r, the same with the rolling velocity
+  // v_r = R (w × n), whose spins round with their terms (4 ε of their magnitudes).
   const oracle::RollingResult rolling = c.rolling(r);
   if (c.rollingFriction > 0.0) {
     const double radius = c.rollingRadius;
     const double vr = radius * c.relativeSpin.cross(c.normal).norm();
     const double vrError = radius * (4.0 * kEps * c.spinTerms + 2.0 * kEps * c.relativeSpin.norm());
-    const double etaVrError = 0.25 * eta * vr * overlapError / xi + eta * vrError;
-    const double rollingSpringError = 8.0 * kEps * c.rollingSpring.norm() + c.timeStep * vrError;
-    const double rollingTrial =
-        kt * rollingSpringError + (c.rollingSpring.norm() + vr * c.timeStep) * ktError + etaVrError;
-    const double forceError =
-        rolling.rolls ? c.rollingFriction * normal + 2.0 * rollingTrial : rollingTrial;
+    const double cap = c.rollingFriction * normal;
+    const SliderRoundOff slider =
+        sliderRoundOff(c.rollingSpring.norm(), rolling.spring.norm(), rolling.rolls, vr, vrError,
+                       cap, kt, ktError, eta, xi, overlapError, c.timeStep);
+    const double forceError = rolling.rolls ? cap + 2.0 * slider.trial : slider.trial;
     out.torque += radius * forceError + 8.0 * kEps * rolling.torque.norm();
-    out.rollingSpring = rolling.rolls
-                            ? (forceError + etaVrError + rolling.spring.norm() * ktError) / kt
-                            : rollingSpringError;
+    out.rollingSpring = slider.spring;
   }
   return out;
 }

@@ -119,14 +119,17 @@ TEST(Snapshot, RollingSpringsAreStateThatTheSnapshotAndTheHashCarry) {
 
   w->restoreSnapshot(then);
   EXPECT_EQ(w->readStateHash(), stateHash(then));
-  w->substep(50);
-  const std::optional<StateDifference> same = firstDifference(later, w->readSnapshot());
+  // Where 50 substeps from a snapshot (on a grown World) first differ from `later`.
+  auto differenceAfter = [&](const WorldSnapshot& from, bool grow) {
+    w->restoreSnapshot(from);
+    if (grow) w->reserve(200, 800);
+    w->substep(50);
+    return firstDifference(later, w->readSnapshot());
+  };
+  const std::optional<StateDifference> same = differenceAfter(then, false);
   EXPECT_FALSE(same) << same->describe();
   // Grown, the World keeps them (the buffer and the image its kernel writes through move).
-  w->restoreSnapshot(then);
-  w->reserve(200, 800);
-  w->substep(50);
-  const std::optional<StateDifference> grown = firstDifference(later, w->readSnapshot());
+  const std::optional<StateDifference> grown = differenceAfter(then, true);
   EXPECT_FALSE(grown) << grown->describe();
 
   WorldSnapshot unrolled = then;
@@ -135,9 +138,7 @@ TEST(Snapshot, RollingSpringsAreStateThatTheSnapshotAndTheHashCarry) {
   const std::optional<StateDifference> named = firstDifference(then, unrolled);
   ASSERT_TRUE(named);
   EXPECT_NE(named->field.find("rolling"), std::string::npos) << named->field;
-  w->restoreSnapshot(unrolled);
-  w->substep(50);
-  EXPECT_TRUE(firstDifference(later, w->readSnapshot()))
+  EXPECT_TRUE(differenceAfter(unrolled, false))
       << "the rolling springs left no trace in 50 substeps";
 
   WorldSnapshot missing = then;
