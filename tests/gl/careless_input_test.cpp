@@ -152,6 +152,23 @@ TEST(CarelessInput, ASnapshotThatWouldPutNaNIntoTheWorldIsRefusedAndChangesNothi
   }
 }
 
+// With rolling friction the rolling springs are checked too.
+TEST(CarelessInput, ASnapshotWithANaNRollingSpringIsRefusedAndChangesNothing) {
+  WorldSettings settings = testing::smallSettings();
+  settings.material.rollingFriction = 0.1f;
+  testing::TestWorld w(settings);
+  w.addFloor();
+  w.addGranule({0, 0.1f, 0});
+  w.simulate(0.01);
+  WorldSnapshot bad = w->readSnapshot();
+  const std::uint64_t hash = w->readStateHash();
+  ASSERT_FALSE(bad.rolling.empty());
+  bad.rolling[0].springs[0][1] = std::bit_cast<std::uint32_t>(std::nanf(""));
+  EXPECT_MESSAGE_HAS(errorMessageOf([&] { w->restoreSnapshot(bad); }),
+                     "WorldSnapshot.rolling[0].springs[0].y = nan");
+  EXPECT_EQ(w->readStateHash(), hash);
+}
+
 TEST(CarelessInput, PositionsBeyondFloatResolutionAreRefused) {
   testing::TestWorld w;
   const WorldSettings& s = w->settings();
