@@ -237,7 +237,9 @@ void Panel::drawStats(const Session& session, const FrameStats& stats,
   ImGui::Text("granules %u  particles %u", have ? s.granulesAlive : world.granulesSpawned(),
               stats.particles);
   if (world.sleepModel().enabled && have) {
-    ImGui::Text("awake %u  asleep %u", s.granulesAlive - s.granulesAsleep, s.granulesAsleep);
+    // Idle: substeps of this frame skipped because all the sand slept (StepReport::idleSubsteps).
+    ImGui::Text("awake %u  asleep %u  idle substeps %u", s.granulesAlive - s.granulesAsleep,
+                s.granulesAsleep, stats.report.idleSubsteps);
   }
   ImGui::Text("contacts %u  substeps/frame %u", have ? s.contacts : 0u, stats.report.substeps);
   ImGui::Text("dt %.3g s = %.3f t_n  (t_n %.3g s)", static_cast<double>(model.timeStep),

@@ -578,6 +578,94 @@ TEST(Sleep, PassingOverQuietChunksChangesNoBit) {
   });
 }
 
+// World::step skips the substeps of a frame whose first substep finds all the sand asleep and
+// untouched (StepReport::idleSubsteps). Against a World that runs every substep (World::substep),
+// after each kind of event that wakes sand or waits on later substeps, the two keep the same bits
+// frame by frame; and the sleeping pile runs one substep a frame.
+TEST(Sleep, FramesOfSleepingSandRunOneSubstepAndChangeNoBit) {
+  WorldSettings settings = sleepySettings();
+  settings.statsEachFrame = true;  // what tells the next frame that the sand slept
+  const float d = settings.particleDiameter;
+  testing::TestWorld pile(settings);
+  buildPile(*pile);
+  ASSERT_GT(sleepAll(pile, 2.0), 0.0);
+  const WorldSnapshot slept = pile->readSnapshot();
+  const std::vector<BodyState> bodies = pile->readBodies();
+  const BodyState top =
+      *std::ranges::max_element(bodies, {}, [](const BodyState& s) { return s.position.y; });
+  // Frames of 10 ms: three of the sleeping pile, then the event, done to both Worlds, and
+  // `seconds` more; returns the idle substeps skipped after the event.
+  const auto compare = [&](const char* event, double seconds, const auto& doTo) {
+    testing::TestWorld framed(settings);
+    testing::TestWorld every(settings);
+    for (testing::TestWorld* w : {&framed, &every}) {
+      buildPile(**w);
+      (*w)->restoreSnapshot(slept);
+    }
+    std::uint32_t idle = 0;
+    std::uint32_t substeps = 0;
+    const int frames = int(std::lround(seconds / 0.01));
+    for (int frame = -3; frame < frames; ++frame) {
+      if (frame == 0) {
+        doTo(framed);
+        doTo(every);
+        idle = substeps = 0;
+      }
+      const StepReport report = framed->step(0.01f);
+      every->substep(report.substeps);
+      substeps += report.substeps;
+      idle += report.idleSubsteps;
+      if (report.idleSubsteps > 0) {
+        EXPECT_EQ(report.idleSubsteps, report.substeps - 1) << event;
+      }
+      const auto difference = firstDifference(framed->readSnapshot(), every->readSnapshot());
+      if (difference || framed->readStateHash() != every->readStateHash() ||
+          framed->stepCount() != every->stepCount()) {
+        ADD_FAILURE() << event << ", frame " << frame << " after: "
+                      << (difference ? difference->describe() : "the hash or the step count");
+        break;
+      }
+    }
+    std::printf("%s: %u of %u substeps skipped as idle\n", event, idle, substeps);
+    return idle;
+  };
+  const auto nothing = [](testing::TestWorld&) {};
+  // Asleep: every frame runs one substep (the stats of a frame tell the next that the sand
+  // slept).
+  const std::uint32_t perFrame = std::uint32_t(std::lround(0.01 / pile->timeStep()));
+  EXPECT_GE(compare("asleep", 0.1, nothing), 10 * (perFrame - 2));
+  // Events between frames that wake sand, or place bodies, colliders or states: the first
+  // substep of the next frame sees them.
+  compare("a granule dropped on the pile", 0.1, [&](testing::TestWorld& w) {
+    const BodyDesc granule{.position = {0.07f, top.position.y + 3.0f * d, 0.07f},
+                           .velocity = {0, -0.2f, 0}};
+    w->addGranules(std::span(&granule, 1));
+  });
+  compare("the highest sleeper lifted", 0.05, [&](testing::TestWorld& w) {
+    w->setBodyState(top.id, {.position = top.position + Vec3{0.0f, 0.05f * d, 0.0f},
+                             .orientation = top.orientation});
+  });
+  compare("a corner woken", 0.05, [&](testing::TestWorld& w) {
+    w->wake({-1, -1, 0.05f}, {-0.05f, 1, 1});
+  });
+  compare("a paddle set down onto the pile", 0.05, [&](testing::TestWorld& w) {
+    w->addCollider(Box{.center = {-0.05f, top.position.y + 1.3f * d, 0.0f},
+                       .halfExtents = {0.04f, 0.5f * d, 0.08f},
+                       .inside = false});
+  });
+  // CPU work that waits for later substeps: no frame skips while it runs.
+  EXPECT_EQ(compare("an emitter over the pile", 0.05,
+                    [&](testing::TestWorld& w) {
+                      w->addEmitter({.center = {0.0f, top.position.y + 4.0f * d, 0.0f},
+                                     .halfExtentX = 0.05f,
+                                     .halfExtentZ = 0.05f,
+                                     .rate = 100.0f,
+                                     .velocity = {0.0f, -1.0f, 0.0f},
+                                     .maxGranules = 4});
+                    }),
+            0u);
+}
+
 TEST(Sleep, AKinematicBodySetAtRestEveryFrameLeavesTheSandAsleep) {
   // What an engine bridge does with a body that rests: it sets the same pose, at rest, every
   // frame. The sand that settled around it must sleep and stay asleep.

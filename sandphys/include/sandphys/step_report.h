@@ -30,6 +30,12 @@ struct InitialOverlaps {
 /// What one World::step did. `stats` is filled only when WorldSettings::statsEachFrame is on.
 struct StepReport {
   std::uint32_t substeps = 0;  ///< fixed substeps run
+  /// Of those, the substeps that did no GPU work: with sleep, once the first substep of the frame
+  /// found all the sand asleep and untouched (and no large body, emitter or kinematic move in
+  /// the World), the rest would have computed nothing and changed no bit; only the time and the
+  /// substep count advance. Needs WorldSettings::statsEachFrame (or a readStats) to have seen
+  /// the last frame end that way. World::substep runs every substep.
+  std::uint32_t idleSubsteps = 0;
   float simulatedTime = 0.0f;  ///< substeps · timeStep, s
   float droppedTime = 0.0f;    ///< frame time discarded by the substep cap, s
   /// Substeps due but not run because the step stopped at its stopAt (World::step(frameDt,
@@ -49,6 +55,7 @@ struct StepReport {
   /// first part's that found any.
   void append(const StepReport& later) {
     substeps += later.substeps;
+    idleSubsteps += later.idleSubsteps;
     simulatedTime += later.simulatedTime;
     droppedTime += later.droppedTime;
     substepsHeld = later.substepsHeld;

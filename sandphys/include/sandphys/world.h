@@ -131,7 +131,8 @@ class World {
   /// Advances by `frameDt` seconds in whole fixed substeps: an accumulator carries the remainder
   /// to the next call; at most maxSubstepsPerFrame run and the rest is dropped (reported, and a
   /// warning is logged once, setLogHandler). Does not throw; non-finite or negative frameDt runs
-  /// nothing.
+  /// nothing. With sleep, a frame whose first substep finds all the sand asleep and untouched
+  /// runs no GPU work for the others, which would change no bit (StepReport::idleSubsteps).
   StepReport step(float frameDt);
   /// Like step(frameDt), but stops when stepCount() reaches `stopAt`, e.g. to read a body's force
   /// exactly where a move starts (moveKinematic): the frame's substeps due beyond it are held
@@ -139,7 +140,8 @@ class World {
   /// within one cap; step(0.0f, stopAt) runs only them. stopAt <= stepCount() runs nothing and
   /// holds every substep due. StepReport::append joins the parts' reports into the frame's.
   StepReport step(float frameDt, std::uint64_t stopAt);
-  /// Runs exactly `count` substeps, bypassing the accumulator (tests, single stepping).
+  /// Runs exactly `count` substeps, bypassing the accumulator (tests, single stepping), every one
+  /// on the GPU (no idle substep is skipped).
   void substep(std::uint32_t count = 1);
 
   // --- Counts (CPU side, no sync) ----------------------------------------------------------

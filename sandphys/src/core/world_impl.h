@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -189,6 +190,10 @@ struct World::Impl {
   // its start: [overlapCheckBegin, overlapCheckEnd).
   std::uint32_t overlapCheckBegin = 0;
   std::uint32_t overlapCheckEnd = 0;
+  // With sleep: the last substep the CPU saw counted (reduceStats, or a step's check) computed
+  // nothing: the next step checks its first substep and skips the rest if it computed nothing
+  // either (world_step.cpp).
+  bool sandLooksIdle = false;
 
   detail::WorldBuffers buffers;
   detail::WorldKernels kernels;
@@ -278,6 +283,11 @@ struct World::Impl {
   void writeDirtyParticles(const char* name);
   void buildLists();
   void runSubstep();
+  /// The substep count and the simulated time, one substep on (every substep ends with it, run
+  /// or skipped as idle).
+  void advanceClock();
+  /// Whether the last substep computed nothing (computedNothing). Sync point.
+  bool lastSubstepComputedNothing();
   /// `name` nullptr: not timed by the profiler (a pass outside the substeps).
   void dispatch(GLuint program, const char* name, std::uint32_t threads, std::uint32_t groupSize);
   /// A pass whose group counts the GPU wrote into the counters at `commandOffset` (bytes): the
@@ -288,6 +298,13 @@ struct World::Impl {
   /// spawn_check.comp over the `count` granules just added from body slot `firstBody`.
   void checkSpawnPlaces(std::uint32_t firstBody, std::uint32_t count);
   WorldStats reduceStats();
+  /// Whether a substep that computes nothing can stand for the ones after it in a frame: sleep
+  /// is on, no large body is integrated (integrate_large_bodies.comp runs every substep) and no
+  /// CPU work waits for a later substep (an emitter, a kinematic move).
+  bool idleSubstepsRepeat() const;
+  /// Whether the counters (kCounterCount words) show that the last substep listed no body and no
+  /// particle to compute (collect_active.comp).
+  static bool computedNothing(std::span<const std::uint32_t> counters);
   /// The peak overlap of every particle restarts at zero (reset_peak_overlap.comp).
   void resetPeakOverlap();
 };

@@ -237,6 +237,10 @@ void World::Impl::runSubstep() {
     buffers[kCounters].upload(4 * kCounterRecountPairs, 4, &done);
     pairsStale = false;
   }
+  advanceClock();
+}
+
+void World::Impl::advanceClock() {
   ++steps;
   simTime += model.timeStep;
 }
@@ -326,6 +330,7 @@ WorldStats World::Impl::reduceStats() {
     s.movingGridParticles = counters[kCounterGridActive] + counters[kCounterGridRecent];
   }
   s.contacts = std::uint32_t(pairEnds / 2 + wallContacts);
+  sandLooksIdle = computedNothing(counters);
   s.steps = steps;
   s.simulatedTime = simTime;
   return s;

@@ -1,7 +1,9 @@
-// The frame: World::step's accumulator of fixed substeps, and World::substep.
+// The frame: World::step's accumulator of fixed substeps (and the idle ones it skips), and
+// World::substep.
 #include "sandphys/world.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -57,11 +59,21 @@ StepReport World::step(float frameDt, std::uint64_t stopAt) {
   w.resetPeakOverlap();
   if (w.profiler.enabled()) w.profiler.resetTotals();
   w.buffers.bindAll();
-  for (std::uint64_t i = 0; i < run; ++i) {
+  std::uint64_t done = 0;
+  while (done < run) {
     w.emit(dt, &report);
     w.runSubstep();
     w.followMoves();
+    ++done;
+    // Sand that slept through the last frame: if this first substep computed nothing either, the
+    // rest would not, and would change no bit (nothing the CPU does comes between them).
+    if (done == 1 && run > 1 && w.sandLooksIdle && w.idleSubstepsRepeat()) {
+      w.sandLooksIdle = w.lastSubstepComputedNothing();
+      if (w.sandLooksIdle) break;
+    }
   }
+  report.idleSubsteps = std::uint32_t(run - done);
+  for (; done < run; ++done) w.advanceClock();
   report.substeps = std::uint32_t(run);
   report.simulatedTime = float(double(run) * dt);
   report.substepsHeld = std::uint32_t(w.heldSubsteps);
@@ -71,6 +83,26 @@ StepReport World::step(float frameDt, std::uint64_t stopAt) {
     report.hasStats = true;
   }
   return report;
+}
+
+bool World::Impl::idleSubstepsRepeat() const {
+  const bool emitting =
+      std::ranges::any_of(emitters, [](const auto& e) { return e && !e->finished(); });
+  return sleep.enabled && largeBodies.empty() && !emitting && (moves.empty() || steps > movesEnd);
+}
+
+bool World::Impl::computedNothing(std::span<const std::uint32_t> counters) {
+  const auto listed = [&](ActivePass pass) {
+    return counters[kCounterActiveDispatch + 4 * pass + 3];  // the list's length
+  };
+  return listed(kActivePassContacts) == 0 && listed(kActivePassBodies) == 0;
+}
+
+bool World::Impl::lastSubstepComputedNothing() {
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::array<std::uint32_t, kCounterCount> counters{};
+  buffers[kCounters].download(0, sizeof counters, counters.data());
+  return computedNothing(counters);
 }
 
 void World::substep(std::uint32_t count) {
