@@ -593,6 +593,11 @@ TEST(Sleep, FramesOfSleepingSandRunOneSubstepAndChangeNoBit) {
   const std::vector<BodyState> bodies = pile->readBodies();
   const BodyState top =
       *std::ranges::max_element(bodies, {}, [](const BodyState& s) { return s.position.y; });
+  const BodyDesc lifted{.position = top.position + Vec3{0.0f, 0.05f * d, 0.0f},
+                        .orientation = top.orientation};
+  pile->setBodyState(top.id, lifted);
+  pile.simulate(0.02);
+  const WorldSnapshot stirred = pile->readSnapshot();
   // Frames of 10 ms: three of the sleeping pile, then the event, done to both Worlds, and
   // `seconds` more; returns the idle substeps skipped after the event.
   const auto compare = [&](const char* event, double seconds, const auto& doTo) {
@@ -641,10 +646,10 @@ TEST(Sleep, FramesOfSleepingSandRunOneSubstepAndChangeNoBit) {
                            .velocity = {0, -0.2f, 0}};
     w->addGranules(std::span(&granule, 1));
   });
-  compare("the highest sleeper lifted", 0.05, [&](testing::TestWorld& w) {
-    w->setBodyState(top.id, {.position = top.position + Vec3{0.0f, 0.05f * d, 0.0f},
-                             .orientation = top.orientation});
-  });
+  compare("the highest sleeper lifted", 0.05,
+          [&](testing::TestWorld& w) { w->setBodyState(top.id, lifted); });
+  compare("a state restored with that sleeper awake", 0.05,
+          [&](testing::TestWorld& w) { w->restoreSnapshot(stirred); });
   compare("a corner woken", 0.05, [&](testing::TestWorld& w) {
     w->wake({-1, -1, 0.05f}, {-0.05f, 1, 1});
   });
