@@ -164,6 +164,10 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
       ->capture_default_str();
   app.add_option("--chunk", measure.chunk, "substeps per World::substep call")
       ->capture_default_str();
+  app.add_flag("--frames", measure.frames,
+               "time the substeps as a game runs them: World::step frames of --chunk substeps, "
+               "the statistics read after each (WorldSettings::statsEachFrame), so that frames of "
+               "sleeping sand skip their idle substeps (StepReport::idleSubsteps)");
   app.add_option("--pile-cache", measure.pileCache,
                  "folder of settled piles: a size whose pile an earlier run settled with the same "
                  "scene options, granules and settle substeps (and sleep) is restored from there "
@@ -303,6 +307,11 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
     }
     if (measure.sandboxSeconds > 0.0 && measure.rockSpeed > 0.0f) {
       throw UsageError("--sandbox with --rock: the sandbox script drops its own ball");
+    }
+    if (measure.frames && (measure.sandboxSeconds > 0.0 || !measure.compareShaders.empty())) {
+      throw UsageError(
+          "--frames with --sandbox or --compare-shaders: those run their own frames "
+          "or rounds of substeps");
     }
     measure.pile.packing = packing == "crystal" ? Packing::Crystal : Packing::Lattice;
     measure.pile.contactLaw = *scenes::contactLawFromName(law);

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <optional>
 
 #include "pile_cache.h"
@@ -314,8 +315,18 @@ WorldStats timeSubsteps(World& world, const SizePlan& plan, const MeasureOptions
       break;
     }
     const std::uint32_t count = std::min(options.chunk, roundEnd - result.steps);
-    world.substep(count);
-    result.steps += count;
+    if (options.frames) {
+      // A frame a hair longer than `count` substeps, stopped at exactly `count`.
+      const float frameDt = std::nextafter(float(double(count) * world.timeStep()),
+                                           std::numeric_limits<float>::max());
+      const StepReport frame = world.step(frameDt, world.stepCount() + count);
+      world.readStats();
+      result.steps += frame.substeps;
+      result.idleSubsteps += frame.idleSubsteps;
+    } else {
+      world.substep(count);
+      result.steps += count;
+    }
     if (rounds > 1 && result.steps == roundEnd && roundEnd < plan.steps) {
       world.readStateHash();  // the sync that ends the round
       const double roundSeconds = secondsSince(start);

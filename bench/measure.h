@@ -42,6 +42,10 @@ struct MeasureOptions {
   double budgetSeconds = 0.0;
   /// Substeps per World::substep call (and per timer-query collection).
   std::uint32_t chunk = 10;
+  /// The timed substeps as a game runs them: World::step frames of `chunk` substeps, the
+  /// statistics read after each (as WorldSettings::statsEachFrame does), so that frames of
+  /// sleeping sand skip their idle substeps (SizeResult::idleSubsteps).
+  bool frames = false;
   /// After the timed substeps, run `kernelSteps` more with per-kernel GL timer queries
   /// (World::setProfileKernels). The timed substeps run without them, whose cost they would carry.
   bool kernelTimes = true;
@@ -127,6 +131,9 @@ struct SizeResult {
   /// (WorldStats::stillGridBuilds), and the particles the last build sorted into its moving grid.
   std::uint64_t stillGridBuilds = 0;
   std::uint32_t movingGridParticles = 0;
+  /// MeasureOptions::frames: the timed substeps that frames of sleeping sand skipped
+  /// (StepReport::idleSubsteps).
+  std::uint64_t idleSubsteps = 0;
   /// MeasureOptions::rock: the ball's particles (0 without).
   std::uint32_t rockParticles = 0;
   /// MeasureOptions::sandboxSeconds: every frame of the script (empty without).

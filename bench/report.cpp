@@ -151,6 +151,7 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
       {"sleep_wait_substeps", size.sleepWaitSteps},
       {"granules_asleep_at_start", size.asleepAtStart},
       {"granules_asleep_at_end", size.asleepAtEnd},
+      {"idle_substeps", size.idleSubsteps},
       {"still_grid_builds", size.stillGridBuilds},
       {"moving_grid_particles", size.movingGridParticles},
       {"rock_particles", size.rockParticles},
@@ -289,6 +290,7 @@ nlohmann::json reportJson(const BenchOptions& options, const BenchReport& report
   nlohmann::json scene = pileJson(measure);
   nlohmann::json& common = scene["options"];
   common["chunk"] = measure.chunk;
+  common["frames"] = measure.frames;
   common["budget_seconds"] = measure.budgetSeconds;
   common["settle_budget_seconds"] = measure.settleBudgetSeconds;
   common["kernel_times"] = measure.kernelTimes;
@@ -589,6 +591,15 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
                  "sorted the sleepers again, the last sorted %u particles\n",
                  s.granules, s.sleepWaitSteps, s.asleepAtStart, s.asleepAtEnd,
                  static_cast<unsigned long long>(s.stillGridBuilds), s.movingGridParticles);
+  }
+  for (const SizeResult& s : report.sizes) {
+    if (!measure.frames) break;
+    std::fprintf(out,
+                 "  %u granules, frames: the timed substeps in World::step frames of %u, the "
+                 "statistics read after each; %llu of the %u substeps skipped as idle (all the "
+                 "sand asleep)\n",
+                 s.granules, measure.chunk, static_cast<unsigned long long>(s.idleSubsteps),
+                 s.steps);
   }
   for (const SizeResult& s : report.sizes) {
     if (s.rockParticles == 0) continue;
