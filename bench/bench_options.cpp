@@ -162,7 +162,8 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
   app.add_option("--settle-budget-seconds", measure.settleBudgetSeconds,
                  "wall-time cap of the settling per size, s (0 = none)")
       ->capture_default_str();
-  app.add_option("--chunk", measure.chunk, "substeps per World::substep call")
+  app.add_option("--chunk", measure.chunk,
+                 "substeps per World::substep call (per World::step frame with --frames)")
       ->capture_default_str();
   app.add_flag("--frames", measure.frames,
                "time the substeps as a game runs them: World::step frames of --chunk substeps, "

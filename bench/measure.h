@@ -40,7 +40,8 @@ struct MeasureOptions {
   double settleBudgetSeconds = 0.0;
   /// Wall-time cap of the measurement, s; 0 = none (checked between chunks).
   double budgetSeconds = 0.0;
-  /// Substeps per World::substep call (and per timer-query collection).
+  /// Substeps per World::substep call, or per World::step frame with `frames` (and per
+  /// timer-query collection).
   std::uint32_t chunk = 10;
   /// The timed substeps as a game runs them: World::step frames of `chunk` substeps, the
   /// statistics read after each (as WorldSettings::statsEachFrame does), so that frames of

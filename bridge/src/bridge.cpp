@@ -204,6 +204,7 @@ StepReport Bridge::step(float frameDt) {
     const StepReport exchange = m_sand.step(h);
     // The frame's report: totals over the exchanges, the statistics of the last.
     report.substeps += exchange.substeps;
+    report.idleSubsteps += exchange.idleSubsteps;
     report.simulatedTime += exchange.simulatedTime;
     report.droppedTime += exchange.droppedTime;
     report.granulesEmitted += exchange.granulesEmitted;
