@@ -569,7 +569,8 @@ TEST(Sleep, PassingOverQuietChunksChangesNoBit) {
   });
   compare("a paddle let down onto the pile", 0.05, [&](testing::TestWorld& w) {
     const Box paddle{.center = {-0.05f, top.position.y + 2.5f * d, 0.0f},
-                     .halfExtents = {0.04f, 0.5f * d, 0.08f}};
+                     .halfExtents = {0.04f, 0.5f * d, 0.08f},
+                     .inside = false};
     const ColliderId id = w->addCollider(paddle);
     w.simulate(0.005);
     Box lowered = paddle;
