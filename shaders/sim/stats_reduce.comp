@@ -1,19 +1,19 @@
 #version 450
 // Statistics, once per frame (never per substep): a fixed number of workgroups each reduce a
 // fixed stride of particles and bodies in shared memory in a fixed order; the CPU adds the
-// partials in double. Reads only: the largest overlap restarts in reset_peak_overlap.comp.
+// partials in double. Reads only, through the views: the largest overlap restarts in
+// reset_peak_overlap.comp.
 #include "common/layout.glsl"
 
 #define STATS_THREADS 256
 layout(local_size_x = STATS_THREADS) in;
 
-PARTICLE_STATS(readonly)
-BODY_POSITION(readonly)
-BODY_VELOCITY(readonly)
-BODY_ANGULAR_VELOCITY(readonly)
-BODY_ORIENTATION(readonly)
-BODY_INERTIA(readonly)
-BODY_INFO(readonly)
+PARTICLE_STATS_TEXTURE
+BODY_VELOCITY_TEXTURE
+BODY_ANGULAR_VELOCITY_TEXTURE
+BODY_ORIENTATION_TEXTURE
+BODY_INERTIA_TEXTURE
+BODY_INFO_TEXTURE
 STATS_PARTIALS(writeonly)
 #ifdef SLEEPING
 LIST_ORIGIN_TEXTURE
@@ -32,7 +32,7 @@ void main() {
   vec4 s = vec4(0.0);
   uint asleep = 0u;
   for (uint i = gl_GlobalInvocationID.x; i < params.particleCount; i += stride) {
-    uvec4 p = particleStats[i];
+    uvec4 p = texelFetch(particleStatsTexture, int(i));
 #ifdef SLEEPING
     // Only active particles are computed, so a dead body's particles keep their last contacts.
     if (floatBitsToUint(texelFetch(listOriginTexture, int(i)).w) == LIST_DEAD) p.xw = uvec2(0u);
@@ -43,21 +43,23 @@ void main() {
     s.z = max(s.z, uintBitsToFloat(p.y));
   }
   for (uint b = gl_GlobalInvocationID.x; b < params.bodyCount; b += stride) {
-    uvec4 info = bodyInfo[b];
+    uvec4 info = texelFetch(bodyInfoTexture, int(b));
     c.w += info.w;
     if ((info.z & BODY_ALIVE) == 0u) continue;
+    vec4 velocity = texelFetch(bodyVelocityTexture, int(b));
     if ((info.z & BODY_GRANULE) != 0u) {
       s.w += 1.0;
 #ifdef SLEEPING
-      if (floatBitsToUint(bodyVelocity[b].w) >= params.sleepSubsteps) ++asleep;
+      if (floatBitsToUint(velocity.w) >= params.sleepSubsteps) ++asleep;
 #endif
     }
     if (((info.z & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT) != MOTION_DYNAMIC) continue;
-    float mass = bodyInertia[b].w;
-    vec3 v = bodyVelocity[b].xyz;
-    vec3 omegaLocal = quatRotateInverse(bodyOrientation[b], bodyAngularVelocity[b].xyz);
-    s.x += 0.5 * mass * dot(v, v);
-    s.y += 0.5 * dot(omegaLocal, bodyInertia[b].xyz * omegaLocal);
+    vec4 inertia = texelFetch(bodyInertiaTexture, int(b));
+    vec3 v = velocity.xyz;
+    vec3 omegaLocal = quatRotateInverse(texelFetch(bodyOrientationTexture, int(b)),
+                                        texelFetch(bodyAngularVelocityTexture, int(b)).xyz);
+    s.x += 0.5 * inertia.w * dot(v, v);
+    s.y += 0.5 * dot(omegaLocal, inertia.xyz * omegaLocal);
   }
   sharedCounts[local] = c;
   sharedSums[local] = s;
