@@ -503,6 +503,46 @@ TEST(Sleep, AColumnCutAtItsFootRunsOutAsWithoutSleep) {
   EXPECT_NEAR(asleep.runOut, awake.runOut, 2.0 * d);
 }
 
+// The pile of buildPile asleep; its highest granule on the side away from where the events below
+// drop a granule; that granule lifted by less than half the list skin, so that no list build
+// (which scans every chunk) follows; the state 20 ms after the lift; and the time step.
+struct SleptPile {
+  WorldSnapshot slept;
+  BodyState top;
+  BodyDesc lifted;
+  WorldSnapshot stirred;
+  float timeStep = 0.0f;  // s, the World's
+};
+
+void sleepPile(const WorldSettings& settings, SleptPile& out) {
+  testing::TestWorld pile(settings);
+  buildPile(*pile);
+  ASSERT_GT(sleepAll(pile, 2.0), 0.0);
+  out.slept = pile->readSnapshot();
+  const std::vector<BodyState> bodies = pile->readBodies();
+  out.top = *std::ranges::max_element(
+      bodies, {}, [](const BodyState& s) { return s.position.x < 0.0f ? s.position.y : -1.0f; });
+  out.lifted = {.position = out.top.position + Vec3{0.0f, 0.05f * settings.particleDiameter, 0.0f},
+                .orientation = out.top.orientation};
+  pile->setBodyState(out.top.id, out.lifted);
+  pile.simulate(0.02);
+  out.stirred = pile->readSnapshot();
+  out.timeStep = pile->timeStep();
+}
+
+// Events both comparisons below do to the sleeping pile: `compare(event, seconds, doTo)` with
+// the top sleeper set elsewhere, a state restored with it awake, and a corner woken.
+template <class Compare>
+void liftRestoreAndWake(const SleptPile& pile, const Compare& compare) {
+  compare("the highest sleeper lifted", 0.05,
+          [&](testing::TestWorld& w) { w->setBodyState(pile.top.id, pile.lifted); });
+  compare("a state restored with that sleeper awake", 0.05,
+          [&](testing::TestWorld& w) { w->restoreSnapshot(pile.stirred); });
+  compare("a corner woken", 0.05, [&](testing::TestWorld& w) {
+    w->wake({-1, -1, 0.05f}, {-0.05f, 1, 1});
+  });
+}
+
 // collect_active.comp passes over a chunk of bodies it found quiet (none computed) until
 // something may have changed it: an awake particle touching a sleeper in it, the CPU adding,
 // setting or restoring bodies, World::wake, a collider moved. Each of these, done to the sleeping
@@ -510,21 +550,9 @@ TEST(Sleep, AColumnCutAtItsFootRunsOutAsWithoutSleep) {
 // without its part of the invalidation).
 TEST(Sleep, PassingOverQuietChunksChangesNoBit) {
   const float d = sleepySettings().particleDiameter;
-  testing::TestWorld pile(sleepySettings());
-  buildPile(*pile);
-  ASSERT_GT(sleepAll(pile, 2.0), 0.0);
-  const WorldSnapshot slept = pile->readSnapshot();
-  const std::vector<BodyState> bodies = pile->readBodies();
-  // The highest granule on the side away from where the granule is dropped.
-  const BodyState top = *std::ranges::max_element(
-      bodies, {}, [](const BodyState& s) { return s.position.x < 0.0f ? s.position.y : -1.0f; });
-  // Lifted by less than half the list skin, so that no list build (which scans every chunk)
-  // follows.
-  const BodyDesc lifted{.position = top.position + Vec3{0.0f, 0.05f * d, 0.0f},
-                        .orientation = top.orientation};
-  pile->setBodyState(top.id, lifted);
-  pile.simulate(0.02);
-  const WorldSnapshot stirred = pile->readSnapshot();
+  SleptPile pile;
+  ASSERT_NO_FATAL_FAILURE(sleepPile(sleepySettings(), pile));
+  const BodyState& top = pile.top;
   // The sleeping pile, once the chunks are found quiet again: the event, done to both Worlds,
   // then `seconds` compared every 25 ms.
   const auto compare = [&](const char* event, double seconds, const auto& doTo) {
@@ -533,7 +561,7 @@ TEST(Sleep, PassingOverQuietChunksChangesNoBit) {
     testing::scanEveryChunk(*b);
     for (testing::TestWorld* w : {&a, &b}) {
       buildPile(**w);
-      (*w)->restoreSnapshot(slept);
+      (*w)->restoreSnapshot(pile.slept);
       w->simulate(0.005);
       doTo(*w);
     }
@@ -560,13 +588,7 @@ TEST(Sleep, PassingOverQuietChunksChangesNoBit) {
                            .velocity = {0, -0.2f, 0}};
     w->addGranules(std::span(&granule, 1));
   });
-  compare("the highest sleeper lifted", 0.05,
-          [&](testing::TestWorld& w) { w->setBodyState(top.id, lifted); });
-  compare("a state restored with that sleeper awake", 0.05,
-          [&](testing::TestWorld& w) { w->restoreSnapshot(stirred); });
-  compare("a corner woken", 0.05, [&](testing::TestWorld& w) {
-    w->wake({-1, -1, 0.05f}, {-0.05f, 1, 1});
-  });
+  liftRestoreAndWake(pile, compare);
   compare("a paddle let down onto the pile", 0.05, [&](testing::TestWorld& w) {
     const Box paddle{.center = {-0.05f, top.position.y + 2.5f * d, 0.0f},
                      .halfExtents = {0.04f, 0.5f * d, 0.08f},
@@ -587,18 +609,9 @@ TEST(Sleep, FramesOfSleepingSandRunOneSubstepAndChangeNoBit) {
   WorldSettings settings = sleepySettings();
   settings.statsEachFrame = true;  // what tells the next frame that the sand slept
   const float d = settings.particleDiameter;
-  testing::TestWorld pile(settings);
-  buildPile(*pile);
-  ASSERT_GT(sleepAll(pile, 2.0), 0.0);
-  const WorldSnapshot slept = pile->readSnapshot();
-  const std::vector<BodyState> bodies = pile->readBodies();
-  const BodyState top =
-      *std::ranges::max_element(bodies, {}, [](const BodyState& s) { return s.position.y; });
-  const BodyDesc lifted{.position = top.position + Vec3{0.0f, 0.05f * d, 0.0f},
-                        .orientation = top.orientation};
-  pile->setBodyState(top.id, lifted);
-  pile.simulate(0.02);
-  const WorldSnapshot stirred = pile->readSnapshot();
+  SleptPile pile;
+  ASSERT_NO_FATAL_FAILURE(sleepPile(settings, pile));
+  const BodyState& top = pile.top;
   // Frames of 10 ms: three of the sleeping pile, then the event, done to both Worlds, and
   // `seconds` more; returns the idle substeps skipped after the event.
   const auto compare = [&](const char* event, double seconds, const auto& doTo) {
@@ -606,7 +619,7 @@ TEST(Sleep, FramesOfSleepingSandRunOneSubstepAndChangeNoBit) {
     testing::TestWorld every(settings);
     for (testing::TestWorld* w : {&framed, &every}) {
       buildPile(**w);
-      (*w)->restoreSnapshot(slept);
+      (*w)->restoreSnapshot(pile.slept);
     }
     std::uint32_t idle = 0;
     std::uint32_t substeps = 0;
@@ -638,7 +651,7 @@ TEST(Sleep, FramesOfSleepingSandRunOneSubstepAndChangeNoBit) {
   const auto nothing = [](testing::TestWorld&) {};
   // Asleep: every frame runs one substep (the stats of a frame tell the next that the sand
   // slept).
-  const std::uint32_t perFrame = std::uint32_t(std::lround(0.01 / pile->timeStep()));
+  const std::uint32_t perFrame = std::uint32_t(std::lround(0.01 / pile.timeStep));
   EXPECT_GE(compare("asleep", 0.1, nothing), 10 * (perFrame - 2));
   // Events between frames that wake sand, or place bodies, colliders or states: the first
   // substep of the next frame sees them.
@@ -647,13 +660,7 @@ TEST(Sleep, FramesOfSleepingSandRunOneSubstepAndChangeNoBit) {
                            .velocity = {0, -0.2f, 0}};
     w->addGranules(std::span(&granule, 1));
   });
-  compare("the highest sleeper lifted", 0.05,
-          [&](testing::TestWorld& w) { w->setBodyState(top.id, lifted); });
-  compare("a state restored with that sleeper awake", 0.05,
-          [&](testing::TestWorld& w) { w->restoreSnapshot(stirred); });
-  compare("a corner woken", 0.05, [&](testing::TestWorld& w) {
-    w->wake({-1, -1, 0.05f}, {-0.05f, 1, 1});
-  });
+  liftRestoreAndWake(pile, compare);
   compare("a paddle set down onto the pile", 0.05, [&](testing::TestWorld& w) {
     w->addCollider(Box{.center = {-0.05f, top.position.y + 1.3f * d, 0.0f},
                        .halfExtents = {0.04f, 0.5f * d, 0.08f},
