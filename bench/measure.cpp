@@ -319,10 +319,12 @@ WorldStats timeSubsteps(World& world, const SizePlan& plan, const MeasureOptions
       // A frame a hair longer than `count` substeps, stopped at exactly `count`.
       const float frameDt = std::nextafter(float(double(count) * world.timeStep()),
                                            std::numeric_limits<float>::max());
+      const Clock::time_point frameStart = Clock::now();
       const StepReport frame = world.step(frameDt, world.stepCount() + count);
       world.readStats();
       result.steps += frame.substeps;
       result.idleSubsteps += frame.idleSubsteps;
+      if (frame.idleSubsteps > 0) result.idleFrameMs.push_back(1e3 * secondsSince(frameStart));
     } else {
       world.substep(count);
       result.steps += count;

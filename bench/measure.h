@@ -135,6 +135,9 @@ struct SizeResult {
   /// MeasureOptions::frames: the timed substeps that frames of sleeping sand skipped
   /// (StepReport::idleSubsteps).
   std::uint64_t idleSubsteps = 0;
+  /// MeasureOptions::frames: the wall time of each frame that skipped its idle substeps, its
+  /// statistics read included (ms).
+  std::vector<double> idleFrameMs;
   /// MeasureOptions::rock: the ball's particles (0 without).
   std::uint32_t rockParticles = 0;
   /// MeasureOptions::sandboxSeconds: every frame of the script (empty without).

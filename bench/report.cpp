@@ -7,6 +7,8 @@
 
 #include <sandphys/error.h>
 
+#include "timing.h"
+
 namespace sandphys::bench {
 
 namespace {
@@ -152,6 +154,8 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
       {"granules_asleep_at_start", size.asleepAtStart},
       {"granules_asleep_at_end", size.asleepAtEnd},
       {"idle_substeps", size.idleSubsteps},
+      {"idle_frames", size.idleFrameMs.size()},
+      {"idle_frame_ms_median", median(size.idleFrameMs)},
       {"still_grid_builds", size.stillGridBuilds},
       {"moving_grid_particles", size.movingGridParticles},
       {"rock_particles", size.rockParticles},
@@ -597,9 +601,9 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
     std::fprintf(out,
                  "  %u granules, frames: the timed substeps in World::step frames of %u, the "
                  "statistics read after each; %llu of the %u substeps skipped as idle (all the "
-                 "sand asleep)\n",
+                 "sand asleep), in %zu frames of %.3f ms each (median, wall)\n",
                  s.granules, measure.chunk, static_cast<unsigned long long>(s.idleSubsteps),
-                 s.steps);
+                 s.steps, s.idleFrameMs.size(), median(s.idleFrameMs));
   }
   for (const SizeResult& s : report.sizes) {
     if (s.rockParticles == 0) continue;

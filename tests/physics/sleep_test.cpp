@@ -10,6 +10,7 @@
 #include <cstring>
 #include <set>
 #include <span>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -601,10 +602,45 @@ TEST(Sleep, PassingOverQuietChunksChangesNoBit) {
   });
 }
 
+// The first field in which two WorldStats differ, bit for bit, or nullptr.
+const char* firstStatsDifference(const WorldStats& a, const WorldStats& b) {
+  static_assert(sizeof(WorldStats) == 136, "a field was added to WorldStats: compare it below");
+  const std::pair<const char*, bool> same[] = {
+      {"bodies", a.bodies == b.bodies},
+      {"particles", a.particles == b.particles},
+      {"granulesSpawned", a.granulesSpawned == b.granulesSpawned},
+      {"granulesAlive", a.granulesAlive == b.granulesAlive},
+      {"granulesAsleep", a.granulesAsleep == b.granulesAsleep},
+      {"granulesKilled", a.granulesKilled == b.granulesKilled},
+      {"granulesNotBorn", a.granulesNotBorn == b.granulesNotBorn},
+      {"contacts", a.contacts == b.contacts},
+      {"gridBuckets", a.gridBuckets == b.gridBuckets},
+      {"listBuilds", a.listBuilds == b.listBuilds},
+      {"listNearMarkings", a.listNearMarkings == b.listNearMarkings},
+      {"neighbourListOverflows", a.neighbourListOverflows == b.neighbourListOverflows},
+      {"stillGridBuilds", a.stillGridBuilds == b.stillGridBuilds},
+      {"movingGridParticles", a.movingGridParticles == b.movingGridParticles},
+      {"kineticEnergy", a.kineticEnergy == b.kineticEnergy},
+      {"maxOverlap", a.maxOverlap == b.maxOverlap},
+      {"penetrationClamps", a.penetrationClamps == b.penetrationClamps},
+      {"contactSlotOverflows", a.contactSlotOverflows == b.contactSlotOverflows},
+      {"velocityClamps", a.velocityClamps == b.velocityClamps},
+      {"steps", a.steps == b.steps},
+      {"simulatedTime", a.simulatedTime == b.simulatedTime},
+  };
+  for (const auto& [field, equal] : same) {
+    if (!equal) return field;
+  }
+  return nullptr;
+}
+
 // World::step skips the substeps of a frame whose first substep finds all the sand asleep and
-// untouched (StepReport::idleSubsteps). Against a World that runs every substep (World::substep),
-// after each kind of event that wakes sand or waits on later substeps, the two keep the same bits
-// frame by frame; and the sleeping pile runs one substep a frame.
+// untouched (StepReport::idleSubsteps), and then reads the statistics of the last reduce while
+// nothing they read has changed. Against a World that runs every substep (World::substep) and
+// reduces its statistics from every particle each frame, after each kind of event that wakes sand
+// or waits on later substeps, the two keep the same bits frame by frame, and the same statistics
+// (read straight after the event too); and the sleeping pile runs one substep a frame and reduces
+// no statistics.
 TEST(Sleep, FramesOfSleepingSandRunOneSubstepAndChangeNoBit) {
   WorldSettings settings = sleepySettings();
   settings.statsEachFrame = true;  // what tells the next frame that the sand slept
@@ -612,8 +648,12 @@ TEST(Sleep, FramesOfSleepingSandRunOneSubstepAndChangeNoBit) {
   SleptPile pile;
   ASSERT_NO_FATAL_FAILURE(sleepPile(settings, pile));
   const BodyState& top = pile.top;
+  struct Skipped {
+    std::uint32_t idleSubsteps = 0;
+    std::uint64_t statsReductions = 0;
+  };
   // Frames of 10 ms: three of the sleeping pile, then the event, done to both Worlds, and
-  // `seconds` more; returns the idle substeps skipped after the event.
+  // `seconds` more; returns what the framed World skipped after the event.
   const auto compare = [&](const char* event, double seconds, const auto& doTo) {
     testing::TestWorld framed(settings);
     testing::TestWorld every(settings);
@@ -621,19 +661,28 @@ TEST(Sleep, FramesOfSleepingSandRunOneSubstepAndChangeNoBit) {
       buildPile(**w);
       (*w)->restoreSnapshot(pile.slept);
     }
-    std::uint32_t idle = 0;
+    const auto sameStats = [&](const WorldStats& stats, const std::string& when) {
+      const char* field = firstStatsDifference(stats, testing::reduceStats(*every));
+      if (field) ADD_FAILURE() << event << ", " << when << ": WorldStats::" << field;
+      return field == nullptr;
+    };
+    Skipped skipped;
     std::uint32_t substeps = 0;
+    std::uint64_t reductionsBefore = 0;
     const int frames = int(std::lround(seconds / 0.01));
     for (int frame = -3; frame < frames; ++frame) {
       if (frame == 0) {
         doTo(framed);
         doTo(every);
-        idle = substeps = 0;
+        reductionsBefore = testing::statsReductions(*framed);
+        if (!sameStats(framed->readStats(), "read straight after")) break;
+        skipped.idleSubsteps = substeps = 0;
       }
       const StepReport report = framed->step(0.01f);
+      every->resetPeakOverlap();  // as each step does
       every->substep(report.substeps);
       substeps += report.substeps;
-      idle += report.idleSubsteps;
+      skipped.idleSubsteps += report.idleSubsteps;
       if (report.idleSubsteps > 0) {
         EXPECT_EQ(report.idleSubsteps, report.substeps - 1) << event;
       }
@@ -644,17 +693,24 @@ TEST(Sleep, FramesOfSleepingSandRunOneSubstepAndChangeNoBit) {
                       << (difference ? difference->describe() : "the hash or the step count");
         break;
       }
+      if (!report.hasStats || !sameStats(report.stats, "frame " + std::to_string(frame) + " after"))
+        break;
     }
-    std::printf("%s: %u of %u substeps skipped as idle\n", event, idle, substeps);
-    return idle;
+    skipped.statsReductions = testing::statsReductions(*framed) - reductionsBefore;
+    std::printf("%s: %u of %u substeps skipped as idle, %llu of %d frames reduced statistics\n",
+                event, skipped.idleSubsteps, substeps,
+                static_cast<unsigned long long>(skipped.statsReductions), frames);
+    return skipped;
   };
   const auto nothing = [](testing::TestWorld&) {};
-  // Asleep: every frame runs one substep (the stats of a frame tell the next that the sand
-  // slept).
+  // Asleep: every frame runs one substep and reads the statistics it kept (those of a frame tell
+  // the next that the sand slept).
   const std::uint32_t perFrame = std::uint32_t(std::lround(0.01 / pile.timeStep));
-  EXPECT_GE(compare("asleep", 0.1, nothing), 10 * (perFrame - 2));
+  const Skipped asleep = compare("asleep", 0.1, nothing);
+  EXPECT_GE(asleep.idleSubsteps, 10 * (perFrame - 2));
+  EXPECT_EQ(asleep.statsReductions, 0u);
   // Events between frames that wake sand, or place bodies, colliders or states: the first
-  // substep of the next frame sees them.
+  // substep of the next frame sees them, and the statistics are reduced again.
   compare("a granule dropped on the pile", 0.1, [&](testing::TestWorld& w) {
     const BodyDesc granule{.position = {0.07f, top.position.y + 3.0f * d, 0.07f},
                            .velocity = {0, -0.2f, 0}};
@@ -667,16 +723,15 @@ TEST(Sleep, FramesOfSleepingSandRunOneSubstepAndChangeNoBit) {
                        .inside = false});
   });
   // CPU work that waits for later substeps: no frame skips while it runs.
-  EXPECT_EQ(compare("an emitter over the pile", 0.05,
-                    [&](testing::TestWorld& w) {
-                      w->addEmitter({.center = {0.0f, top.position.y + 4.0f * d, 0.0f},
-                                     .halfExtentX = 0.05f,
-                                     .halfExtentZ = 0.05f,
-                                     .rate = 100.0f,
-                                     .velocity = {0.0f, -1.0f, 0.0f},
-                                     .maxGranules = 4});
-                    }),
-            0u);
+  const Skipped emitting = compare("an emitter over the pile", 0.05, [&](testing::TestWorld& w) {
+    w->addEmitter({.center = {0.0f, top.position.y + 4.0f * d, 0.0f},
+                   .halfExtentX = 0.05f,
+                   .halfExtentZ = 0.05f,
+                   .rate = 100.0f,
+                   .velocity = {0.0f, -1.0f, 0.0f},
+                   .maxGranules = 4});
+  });
+  EXPECT_EQ(emitting.idleSubsteps, 0u);
 }
 
 TEST(Sleep, AKinematicBodySetAtRestEveryFrameLeavesTheSandAsleep) {

@@ -28,6 +28,16 @@ void flipVelocityBit(World& world, std::uint32_t body, int axis) {
   velocity.download(offset, sizeof bits, &bits);
   bits ^= 1u;
   velocity.upload(offset, sizeof bits, &bits);
+  detail::WorldAccess::impl(world).stateChanged();
+}
+
+WorldStats reduceStats(World& world) {
+  gpu().makeCurrent();
+  return detail::WorldAccess::impl(world).reduceStats();
+}
+
+std::uint64_t statsReductions(World& world) {
+  return detail::WorldAccess::impl(world).statsReductions;
 }
 
 void scanEveryChunk(World& world) {

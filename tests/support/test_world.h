@@ -28,6 +28,13 @@ void useOneGrid(World& world);
 /// quiet: the oracle of the latter.
 void scanEveryChunk(World& world);
 
+/// The statistics reduced from every particle and body now (World::Impl::reduceStats), never
+/// those of the last reduce kept while nothing changed: the oracle of the latter.
+WorldStats reduceStats(World& world);
+
+/// How many times `world` has reduced its statistics on the GPU.
+std::uint64_t statsReductions(World& world);
+
 /// Makes every substep of `world` take every granule's pair counts (World::Impl::countEveryPair),
 /// not only those whose contact slots changed: the oracle of the latter.
 void countEveryPair(World& world);

@@ -169,7 +169,8 @@ class World {
   std::vector<ParticleState> readParticles() const;
   std::vector<ContactRecord> readContacts() const;
   /// Counts, energies and the peak overlap (WorldStats); changes nothing, so two calls in a row
-  /// agree.
+  /// agree. A sync point, unless nothing it reads has changed since the last call (the second of
+  /// two in a row, or after a step of sleeping sand), which it then repeats.
   WorldStats readStats();
   /// The peak overlap of WorldStats::maxOverlap restarts at zero (step() does this at the start
   /// of every frame, so that a frame's stats hold that frame's peak).

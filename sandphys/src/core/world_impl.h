@@ -194,6 +194,16 @@ struct World::Impl {
   // nothing: the next step checks its first substep and skips the rest if it computed nothing
   // either (world_step.cpp).
   bool sandLooksIdle = false;
+  // The statistics of the last reduce (reduceStats), and the counters it or a step's check last
+  // downloaded. statsCurrent while what the reduce read is as it was then: no substep has computed
+  // anything or built lists since, and the CPU has changed no body, particle or parameter
+  // (stateChanged). A frame of sleeping sand then reads them instead of every particle again.
+  WorldStats reducedStats;
+  std::array<std::uint32_t, detail::kCounterCount> counters{};
+  bool statsCurrent = false;
+  std::uint64_t statsReductions = 0;  // reduceStats calls, for the tests of the above
+  // Every particle's largest overlap is zero: reset, and nothing computed since.
+  bool peaksClear = false;
 
   detail::WorldBuffers buffers;
   detail::WorldKernels kernels;
@@ -286,8 +296,12 @@ struct World::Impl {
   /// The substep count and the simulated time, one substep on (every substep ends with it, run
   /// or skipped as idle).
   void advanceClock();
-  /// Whether the last substep computed nothing (computedNothing). Sync point.
+  /// Whether the last substep computed nothing (computedNothing), from the counters it
+  /// downloads. Sync point.
   bool lastSubstepComputedNothing();
+  /// After a substep that computed nothing (lastSubstepComputedNothing): the statistics and the
+  /// peak overlaps are as current and as clear as they were before it.
+  void substepChangedNothing(bool statsWereCurrent, bool peaksWereClear);
   /// `name` nullptr: not timed by the profiler (a pass outside the substeps).
   void dispatch(GLuint program, const char* name, std::uint32_t threads, std::uint32_t groupSize);
   /// A pass whose group counts the GPU wrote into the counters at `commandOffset` (bytes): the
@@ -297,7 +311,15 @@ struct World::Impl {
   void emit(double dt, StepReport* report);
   /// spawn_check.comp over the `count` granules just added from body slot `firstBody`.
   void checkSpawnPlaces(std::uint32_t firstBody, std::uint32_t count);
+  /// The statistics: those of the last reduce while they are current, else a new reduce.
+  WorldStats readStats();
+  /// stats_reduce.comp over every particle and body, and the counters. Sync point.
   WorldStats reduceStats();
+  /// The fields of `s` that the CPU keeps or the counters hold.
+  void fillKeptFields(WorldStats& s) const;
+  /// Something the statistics read may have changed: the next readStats reduces, and the next
+  /// step resets the peak overlaps.
+  void stateChanged() { statsCurrent = peaksClear = false; }
   /// Whether a substep that computes nothing can stand for the ones after it in a frame: sleep
   /// is on, no large body is integrated (integrate_large_bodies.comp runs every substep) and no
   /// CPU work waits for a later substep (an emitter, a kinematic move).
@@ -305,7 +327,8 @@ struct World::Impl {
   /// Whether the counters (kCounterCount words) show that the last substep listed no body and no
   /// particle to compute (collect_active.comp).
   static bool computedNothing(std::span<const std::uint32_t> counters);
-  /// The peak overlap of every particle restarts at zero (reset_peak_overlap.comp).
+  /// The peak overlap of every particle restarts at zero (reset_peak_overlap.comp; nothing to do
+  /// while peaksClear).
   void resetPeakOverlap();
 };
 

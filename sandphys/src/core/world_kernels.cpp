@@ -13,6 +13,7 @@ namespace sandphys {
 using namespace detail;
 
 void World::Impl::uploadParams() {
+  stateChanged();
   SimParams p{};
   p.gravity = settings.gravity;
   p.dt = model.timeStep;
@@ -100,10 +101,12 @@ void World::Impl::dispatchIndirect(GLuint program, const char* name, std::uint32
 }
 
 void World::Impl::markParticlesDirty(std::uint32_t first, std::uint32_t end) {
+  stateChanged();
   dirtyParticles.add(first, end);
 }
 
 void World::Impl::markBodiesChanged(std::uint32_t first, std::uint32_t end) {
+  stateChanged();
   changedBodies.add(first, end);
 }
 
@@ -147,6 +150,8 @@ void World::Impl::writeDirtyParticles(const char* name) {
 }
 
 void World::Impl::buildLists() {
+  // A build marks the particles of dead bodies, which the statistics then leave out.
+  stateChanged();
   // 2. The build, in passes whose group counts the decision wrote (zero when not due): the
   // extent of the sand the grid is fitted to (when it builds every grid), bucket counts, their
   // prefix sum (blocks of 1024), scatter into buckets, id order inside each bucket, then each
@@ -185,6 +190,7 @@ void World::Impl::searchContacts() {
 }
 
 void World::Impl::runSubstep() {
+  stateChanged();
   const bool sleeping = sleep.enabled && bodyCount > 0;
   if (sleeping) {
     // With sleep: the bodies and particles this substep computes, the awake ones and the
@@ -283,11 +289,21 @@ void World::Impl::checkSpawnPlaces(std::uint32_t firstBody, std::uint32_t count)
 }
 
 void World::Impl::resetPeakOverlap() {
-  if (particleCount == 0) return;
   if (paramsDirty) uploadParams();
+  // What a reduce would now find, whatever else it reads.
+  reducedStats.maxOverlap = 0.0;
+  if (particleCount == 0 || peaksClear) return;
   buffers.bindAll();
   // Unnamed: a per-frame pass, kept out of the per-substep kernel times.
   dispatch(kernels.resetPeakOverlap, nullptr, particleCount, kWorkgroupSize);
+  peaksClear = true;
+}
+
+WorldStats World::Impl::readStats() {
+  if (!statsCurrent || paramsDirty) return reduceStats();
+  WorldStats s = reducedStats;
+  fillKeptFields(s);
+  return s;
 }
 
 WorldStats World::Impl::reduceStats() {
@@ -295,11 +311,11 @@ WorldStats World::Impl::reduceStats() {
   buffers.bindAll();
   glUseProgram(kernels.statsReduce);
   glDispatchCompute(kStatsWorkgroups, 1, 1);
+  ++statsReductions;
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   std::vector<GpuStatsPartial> partials(kStatsWorkgroups);
   buffers[kStatsPartials].download(0, partials.size() * sizeof(GpuStatsPartial), partials.data());
-  std::uint32_t counters[kCounterCount] = {};
-  buffers[kCounters].download(0, sizeof counters, counters);
+  buffers[kCounters].download(0, sizeof counters, counters.data());
 
   WorldStats s;
   std::uint64_t pairEnds = 0;
@@ -315,10 +331,19 @@ WorldStats World::Impl::reduceStats() {
     alive += p.sums.w;
     s.granulesAsleep += p.sleep.x;
   }
+  s.granulesAlive = std::uint32_t(std::llround(alive));
+  s.contacts = std::uint32_t(pairEnds / 2 + wallContacts);
+  fillKeptFields(s);
+  sandLooksIdle = computedNothing(counters);
+  reducedStats = s;
+  statsCurrent = true;
+  return s;
+}
+
+void World::Impl::fillKeptFields(WorldStats& s) const {
   s.bodies = bodyCount;
   s.particles = particleCount;
   s.granulesSpawned = granulesSpawned;
-  s.granulesAlive = std::uint32_t(std::llround(alive));
   s.granulesKilled = counters[kCounterKilled];
   s.granulesNotBorn = counters[kCounterSpawnTaken];
   s.gridBuckets = table.size;
@@ -329,11 +354,8 @@ WorldStats World::Impl::reduceStats() {
     s.stillGridBuilds = counters[kCounterStillBuilds];
     s.movingGridParticles = counters[kCounterGridActive] + counters[kCounterGridRecent];
   }
-  s.contacts = std::uint32_t(pairEnds / 2 + wallContacts);
-  sandLooksIdle = computedNothing(counters);
   s.steps = steps;
   s.simulatedTime = simTime;
-  return s;
 }
 
 }  // namespace sandphys

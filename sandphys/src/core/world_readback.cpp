@@ -247,7 +247,7 @@ InitialOverlaps World::Impl::checkInitialOverlaps() {
 
 WorldStats World::readStats() {
   impl().gpu->makeCurrent();
-  return impl().reduceStats();
+  return impl().readStats();
 }
 
 void World::resetPeakOverlap() {

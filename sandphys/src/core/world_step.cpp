@@ -59,6 +59,8 @@ StepReport World::step(float frameDt, std::uint64_t stopAt) {
   w.resetPeakOverlap();
   if (w.profiler.enabled()) w.profiler.resetTotals();
   w.buffers.bindAll();
+  const bool statsWereCurrent = w.statsCurrent;
+  const bool peaksWereClear = w.peaksClear;
   std::uint64_t done = 0;
   while (done < run) {
     w.emit(dt, &report);
@@ -69,7 +71,10 @@ StepReport World::step(float frameDt, std::uint64_t stopAt) {
     // rest would not, and would change no bit (nothing the CPU does comes between them).
     if (done == 1 && run > 1 && w.sandLooksIdle && w.idleSubstepsRepeat()) {
       w.sandLooksIdle = w.lastSubstepComputedNothing();
-      if (w.sandLooksIdle) break;
+      if (w.sandLooksIdle) {
+        w.substepChangedNothing(statsWereCurrent, peaksWereClear);
+        break;
+      }
     }
   }
   report.idleSubsteps = std::uint32_t(run - done);
@@ -79,7 +84,7 @@ StepReport World::step(float frameDt, std::uint64_t stopAt) {
   report.substepsHeld = std::uint32_t(w.heldSubsteps);
   if (w.profiler.enabled()) w.profiler.collect();
   if (w.settings.statsEachFrame) {
-    report.stats = w.reduceStats();
+    report.stats = w.readStats();
     report.hasStats = true;
   }
   return report;
@@ -100,9 +105,18 @@ bool World::Impl::computedNothing(std::span<const std::uint32_t> counters) {
 
 bool World::Impl::lastSubstepComputedNothing() {
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  std::array<std::uint32_t, kCounterCount> counters{};
   buffers[kCounters].download(0, sizeof counters, counters.data());
   return computedNothing(counters);
+}
+
+void World::Impl::substepChangedNothing(bool statsWereCurrent, bool peaksWereClear) {
+  // It wrote no overlap, and changed nothing the statistics read unless it built lists.
+  peaksClear = peaksWereClear;
+  const auto built = [&](std::uint32_t counter, std::uint64_t reduced) {
+    return counters[counter] != std::uint32_t(reduced);
+  };
+  statsCurrent = statsWereCurrent && !built(kCounterListBuilds, reducedStats.listBuilds) &&
+                 !built(kCounterStillBuilds, reducedStats.stillGridBuilds);
 }
 
 void World::substep(std::uint32_t count) {
