@@ -34,7 +34,8 @@ struct StepReport {
   /// found all the sand asleep and untouched (and no large body, emitter or kinematic move in
   /// the World), the rest would have computed nothing and changed no bit; only the time and the
   /// substep count advance. Needs WorldSettings::statsEachFrame (or a readStats) to have seen
-  /// the last frame end that way. World::substep runs every substep.
+  /// the last frame end that way. The frames after such a frame skip every substep, until the
+  /// CPU changes something. World::substep runs every substep.
   std::uint32_t idleSubsteps = 0;
   float simulatedTime = 0.0f;  ///< substeps · timeStep, s
   float droppedTime = 0.0f;    ///< frame time discarded by the substep cap, s

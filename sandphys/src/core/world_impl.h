@@ -204,6 +204,9 @@ struct World::Impl {
   std::uint64_t statsReductions = 0;  // reduceStats calls, for the tests of the above
   // Every particle's largest overlap is zero: reset, and nothing computed since.
   bool peaksClear = false;
+  // A step's check found that the last substep run computed nothing, and nothing has changed
+  // since: the substeps that follow would compute nothing either, until the CPU changes something.
+  bool idleSinceCheck = false;
 
   detail::WorldBuffers buffers;
   detail::WorldKernels kernels;
@@ -300,7 +303,8 @@ struct World::Impl {
   /// downloads. Sync point.
   bool lastSubstepComputedNothing();
   /// After a substep that computed nothing (lastSubstepComputedNothing): the statistics and the
-  /// peak overlaps are as current and as clear as they were before it.
+  /// peak overlaps are as current and as clear as they were before it, and the substeps after it
+  /// idle until something changes.
   void substepChangedNothing(bool statsWereCurrent, bool peaksWereClear);
   /// `name` nullptr: not timed by the profiler (a pass outside the substeps).
   void dispatch(GLuint program, const char* name, std::uint32_t threads, std::uint32_t groupSize);
@@ -317,9 +321,10 @@ struct World::Impl {
   WorldStats reduceStats();
   /// The fields of `s` that the CPU keeps or the counters hold.
   void fillKeptFields(WorldStats& s) const;
-  /// Something the statistics read may have changed: the next readStats reduces, and the next
-  /// step resets the peak overlaps.
-  void stateChanged() { statsCurrent = peaksClear = false; }
+  /// Something the statistics read may have changed, or the next substep may compute something:
+  /// the next readStats reduces, the next step resets the peak overlaps and runs its first
+  /// substep.
+  void stateChanged() { statsCurrent = peaksClear = idleSinceCheck = false; }
   /// Whether a substep that computes nothing can stand for the ones after it in a frame: sleep
   /// is on, no large body is integrated (integrate_large_bodies.comp runs every substep) and no
   /// CPU work waits for a later substep (an emitter, a kinematic move).

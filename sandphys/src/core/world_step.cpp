@@ -61,8 +61,13 @@ StepReport World::step(float frameDt, std::uint64_t stopAt) {
   w.buffers.bindAll();
   const bool statsWereCurrent = w.statsCurrent;
   const bool peaksWereClear = w.peaksClear;
+  // Nothing changed since a substep that computed nothing: this frame's would not either (a
+  // collider or sink changed makes the parameters dirty, and a build the CPU asks for the lists
+  // stale, without changing a body).
+  const bool idleThrough =
+      w.idleSinceCheck && !w.paramsDirty && !w.listsStale && w.idleSubstepsRepeat();
   std::uint64_t done = 0;
-  while (done < run) {
+  while (!idleThrough && done < run) {
     w.emit(dt, &report);
     w.runSubstep();
     w.followMoves();
@@ -112,6 +117,7 @@ bool World::Impl::lastSubstepComputedNothing() {
 void World::Impl::substepChangedNothing(bool statsWereCurrent, bool peaksWereClear) {
   // It wrote no overlap, and changed nothing the statistics read unless it built lists.
   peaksClear = peaksWereClear;
+  idleSinceCheck = true;
   const auto built = [&](std::uint32_t counter, std::uint64_t reduced) {
     return counters[counter] != std::uint32_t(reduced);
   };
