@@ -61,11 +61,10 @@ StepReport World::step(float frameDt, std::uint64_t stopAt) {
   w.buffers.bindAll();
   const bool statsWereCurrent = w.statsCurrent;
   const bool peaksWereClear = w.peaksClear;
-  // Nothing changed since a substep that computed nothing: this frame's would not either (a
-  // collider or sink changed makes the parameters dirty, and a build the CPU asks for the lists
-  // stale, without changing a body).
-  const bool idleThrough =
-      w.idleSinceCheck && !w.paramsDirty && !w.listsStale && w.idleSubstepsRepeat();
+  // Nothing changed since a substep that computed nothing: this frame's would not either. Dirty
+  // parameters (a collider or sink changed) were uploaded by the reset above, which cleared
+  // idleSinceCheck; a build the CPU asks for makes the lists stale without changing a body.
+  const bool idleThrough = w.idleSinceCheck && !w.listsStale && w.idleSubstepsRepeat();
   std::uint64_t done = 0;
   while (!idleThrough && done < run) {
     w.emit(dt, &report);
