@@ -163,11 +163,13 @@ void Bridge::applySandForces(double weight) {
     if (c.body->getInvMass() == btScalar(0)) continue;
     for (const BodyForce& f : forces) {
       if (!(f.body == c.sandBody)) continue;
-      const Vec3 force = f.meanForce();
-      const Vec3 torque = f.meanTorque();
+      // A body the sand computed in no substep slept in it, with the sand around it: the force
+      // on it is the last one computed.
+      const Vec3 force = f.substeps > 0 ? f.meanForce() : m_lastForce[i];
+      const Vec3 torque = f.substeps > 0 ? f.meanTorque() : m_lastTorque[i];
+      c.body->applyCentralForce(toBullet(force));
+      c.body->applyTorque(toBullet(torque));
       if (f.substeps > 0) {
-        c.body->applyCentralForce(toBullet(force));
-        c.body->applyTorque(toBullet(torque));
         m_lastForce[i] = force;
         m_lastTorque[i] = torque;
         // Sand that pushes a body Bullet put to sleep harder (or less) than it did then wakes it.

@@ -3,7 +3,8 @@
 // substep computes.
 // A body is active when it is alive, not static, and awake or touched by something awake in the
 // last substep (its count is calmTouched(), which this pass takes back to plain asleep); an active
-// granule goes into activeBodies (integrate_bodies.comp), the particles of every active body into
+// granule goes into activeBodies (integrate_bodies.comp), an active large body's entry into
+// activeLargeBodies (integrate_large_bodies.comp), the particles of every active body into
 // activeParticles (contacts.comp). Each thread takes the places of its chunk's entries in the
 // lists with one atomic add per list, if it has any: the lists are in any order, a chunk's
 // entries together in body order (each entry's result is its own); the last workgroup to
@@ -25,6 +26,7 @@ BODY_VELOCITY_TEXTURE
 BODY_VELOCITY(writeonly)
 ACTIVE_BODIES(writeonly)
 ACTIVE_PARTICLES(writeonly)
+ACTIVE_LARGE_BODIES(writeonly)
 BODY_GRID_BUILD(coherent)
 QUIET_CHUNKS(restrict)
 COUNTERS(coherent)
@@ -34,11 +36,11 @@ COUNTERS(coherent)
 // from atomics rather than a scan in shared memory, whose barriers llvmpipe runs as coroutine
 // switches: they cost more than the atomics, and a quiet chunk needs neither.
 
-// The command of `pass` for `entries` threads of WORKGROUP_SIZE, spilling into y as
-// World::Impl::dispatch does; the fourth uint holds `entries`.
-void writeCommand(uint pass, uint entries) {
+// The command of `pass` for `groups` workgroups, spilling into y as World::Impl::dispatch does;
+// the fourth uint holds the list's `entries`.
+void writeCommand(uint pass, uint groups, uint entries) {
   uint at = uint(COUNTER_ACTIVE_DISPATCH) + 4u * pass;
-  writeGroups(at, groupsFor(entries));
+  writeGroups(at, groups);
   counters[at + 3u] = entries;
 }
 
@@ -68,6 +70,7 @@ void main() {
   uint build = counters[COUNTER_LIST_BUILDS] + 1u;  // the number of the build, if one is due
   uint stillBuild = counters[COUNTER_STILL_BUILD];
   uint bodies = 0u;
+  uint larges = 0u;
   uint particles = 0u;
   uint recents = 0u;
   // The thread's chunk, unless it is quiet (the recent sleepers in it are not).
@@ -78,6 +81,7 @@ void main() {
     bool recent;
     if (computed(b, recentDue, stillBuild, info, calm, recent)) {
       if ((info.z & BODY_LARGE) == 0u) ++bodies;
+      else ++larges;
       particles += info.y;
     } else if (recent) {
       recents += info.y;
@@ -89,6 +93,7 @@ void main() {
   uint nextRecent =
       recents == 0u ? 0u : atomicAdd(counters[COUNTER_RECENT_PARTICLES], recents);
   uint nextBody = bodies == 0u ? 0u : atomicAdd(counters[COUNTER_ACTIVE_BODIES], bodies);
+  uint nextLarge = larges == 0u ? 0u : atomicAdd(counters[COUNTER_ACTIVE_LARGE], larges);
   uint nextParticle =
       particles == 0u ? 0u : atomicAdd(counters[COUNTER_ACTIVE_PARTICLES], particles);
   for (uint b = first; b < end && bodies + particles + recents > 0u; ++b) {
@@ -99,6 +104,7 @@ void main() {
       // A touched sleeper's mark is taken back: it is listed now.
       if (calm == calmTouched()) bodyVelocity[b].w = uintBitsToFloat(params.sleepSubsteps);
       if ((info.z & BODY_LARGE) == 0u) activeBodies[nextBody++] = b;
+      else activeLargeBodies[nextLarge++] = info.z >> BODY_ENTRY_SHIFT;
       for (uint k = 0u; k < info.y; ++k) activeParticles[nextParticle++] = info.x + k;
     } else if (recent) {
       for (uint k = 0u; k < info.y; ++k) {
@@ -117,8 +123,11 @@ void main() {
     uint groups = gl_NumWorkGroups.x * gl_NumWorkGroups.y;
     if (atomicAdd(counters[COUNTER_ACTIVE_GROUPS_DONE], 1u) == groups - 1u) {
       uint particles = atomicExchange(counters[COUNTER_ACTIVE_PARTICLES], 0u);
-      writeCommand(ACTIVE_PASS_CONTACTS, particles);
-      writeCommand(ACTIVE_PASS_BODIES, atomicExchange(counters[COUNTER_ACTIVE_BODIES], 0u));
+      writeCommand(ACTIVE_PASS_CONTACTS, groupsFor(particles), particles);
+      uint bodies = atomicExchange(counters[COUNTER_ACTIVE_BODIES], 0u);
+      writeCommand(ACTIVE_PASS_BODIES, groupsFor(bodies), bodies);
+      uint larges = atomicExchange(counters[COUNTER_ACTIVE_LARGE], 0u);
+      writeCommand(ACTIVE_PASS_LARGE, larges, larges);  // its length (layout.glsl)
       counters[COUNTER_ACTIVE_GROUPS_DONE] = 0u;
       // What list_check.comp does without sleep.
       // (Sleep leaves the lists' near part unmarked.)

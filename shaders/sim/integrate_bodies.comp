@@ -8,8 +8,7 @@
 // left to pass 4b. Under SLEEPING (layout.glsl, "Sleep") it runs over the granules
 // collect_active.comp listed: a sleeping one whose partners all sleep returns at once; one that
 // something awake touches is listed for its pair counts as above (its contacts were computed)
-// and wakes if a partner moves, its contacts changed, or the force or torque on it departs from
-// balance by more than the wake acceleration; else it stays put.
+// and wakes if common/rigid_motion.glsl says so (wakesWhenTouched); else it stays put.
 #include "common/layout.glsl"
 #include "common/quaternion.glsl"
 
@@ -111,19 +110,12 @@ void advance(uint t) {
 #endif
 #ifdef SLEEPING
   if (asleep) {
-    float mass = stored.inertia.w;
-    vec3 unbalanced = force / mass + params.gravity;
-    float torqueLimit = mass * stored.spin.w * params.wakeAcceleration;
-    bool wake = neighbourCalm == 0u ||
-                dot(unbalanced, unbalanced) > params.wakeAcceleration * params.wakeAcceleration ||
-                dot(torque, torque) > torqueLimit * torqueLimit;
-    if (!wake) return;
+    if (motion != MOTION_DYNAMIC || !wakesWhenTouched(stored, force, torque, neighbourCalm)) return;
     previousCalm = 0u;
   }
 #endif
-  uint calmLimit = motion == MOTION_DYNAMIC ? params.sleepSubsteps : params.sleepSubsteps - 1u;
-  BodyMotion moved =
-      integrateBody(b, info, stored, force, torque, previousCalm, neighbourCalm, calmLimit);
+  BodyMotion moved = integrateBody(b, info, stored, force, torque, previousCalm, neighbourCalm,
+                                   calmLimit(motion, stored));
   if (!moved.alive) {
 #ifdef SLEEPING
     // A build the motion asks for passes over the dead (they are not active): they leave the

@@ -9,7 +9,11 @@
 // hands back to the engine that moves them. Under ContactLaw::HertzMindlin the torques include
 // friction at the contact points, and the group counts its slots per partner in a table in
 // shared memory (common/contact_pairs.glsl): integer atomics, so the counts are exact and the
-// same on every run, whatever order the threads insert in.
+// same on every run, whatever order the threads insert in. Under SLEEPING (layout.glsl, "Sleep")
+// it runs over the large bodies collect_active.comp listed, as integrate_bodies.comp does over
+// the granules: a sleeping one whose partners all sleep returns at once, one that something
+// awake touches is summed (and its pair counts taken) and wakes as a granule does unless it is
+// kinematic; so a body at rest costs nothing while the sand around it sleeps.
 #include "common/layout.glsl"
 #include "common/quaternion.glsl"
 #include "common/contact_slots.glsl"
@@ -20,10 +24,10 @@ BODY_POSITION(coherent)
 BODY_ORIENTATION(coherent)
 BODY_VELOCITY(coherent)
 BODY_ANGULAR_VELOCITY(coherent)
-BODY_INERTIA(readonly)
+BODY_INERTIA_TEXTURE
 BODY_INFO(coherent)
 PARTICLE_LOCAL_TEXTURE
-PARTICLE_FORCE(readonly)
+PARTICLE_FORCE_TEXTURE
 LIST_ORIGIN_TEXTURE
 #ifndef SLEEPING
 LIST_NEAR_TEXTURE
@@ -33,6 +37,9 @@ PARTICLE_VELOCITY(writeonly)
 SINKS(readonly)
 COUNTERS(coherent)
 LARGE_BODIES(readonly)
+#ifdef SLEEPING
+ACTIVE_LARGE_BODIES(readonly)
+#endif
 LARGE_BODY_FORCES(coherent)
 #if !defined(PAPER_LAW) && defined(SLEEPING)
 PARTICLE_SPIN(writeonly)
@@ -52,7 +59,11 @@ CONTACT_PAIRS(writeonly)
 
 shared vec3 shareForce[WORKGROUP_SIZE];
 shared vec3 shareTorque[WORKGROUP_SIZE];
-// The body after thread 0 moved it (w of the position: alive).
+#ifdef SLEEPING
+shared uint shareCalm[WORKGROUP_SIZE];  // the smallest neighbours' calm (particleForce.w)
+#endif
+// The body after thread 0 moved it (w of the position: 1 when it moved and is alive, so that the
+// group writes its particles).
 shared vec4 movedPosition;
 shared vec4 movedOrientation;
 shared vec3 movedVelocity;
@@ -133,7 +144,12 @@ void countPairs(uint first, uint count, uint t) {
 #endif
 
 void main() {
+#ifdef SLEEPING
+  if (gl_WorkGroupID.x >= activeListLength(ACTIVE_PASS_LARGE)) return;
+  uint entry = activeLargeBodies[gl_WorkGroupID.x];
+#else
   uint entry = gl_WorkGroupID.x;
+#endif
   uint b = largeBodies[entry];
   uvec4 info = bodyInfo[b];
   uint motion = (info.z & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT;
@@ -144,9 +160,14 @@ void main() {
   vec4 q = bodyOrientation[b];
   vec3 force = vec3(0.0);
   vec3 torque = vec3(0.0);
+  uint neighbourCalm = CALM_UNBOUNDED;
   for (uint k = info.x + t; k < info.x + info.y; k += WORKGROUP_SIZE) {
-    vec3 f = particleForce[k].xyz;
+    vec4 onParticle = texelFetch(particleForceTexture, int(k));
+    vec3 f = onParticle.xyz;
     force += f;
+#ifdef SLEEPING
+    neighbourCalm = min(neighbourCalm, floatBitsToUint(onParticle.w));
+#endif
     torque += cross(quatRotate(q, texelFetch(particleLocalTexture, int(k)).xyz), f);
 #ifndef PAPER_LAW
     torque += particleTorque[k].xyz;
@@ -154,16 +175,29 @@ void main() {
   }
   shareForce[t] = force;
   shareTorque[t] = torque;
+#ifdef SLEEPING
+  shareCalm[t] = neighbourCalm;
+  // Read before thread 0 writes it, below.
+  bool asleep = floatBitsToUint(bodyVelocity[b].w) >= params.sleepSubsteps;
+#endif
   memoryBarrierShared();
   barrier();
   for (uint stride = WORKGROUP_SIZE / 2u; stride > 0u; stride >>= 1u) {
     if (t < stride) {
       shareForce[t] += shareForce[t + stride];
       shareTorque[t] += shareTorque[t + stride];
+#ifdef SLEEPING
+      shareCalm[t] = min(shareCalm[t], shareCalm[t + stride]);
+#endif
     }
     memoryBarrierShared();
     barrier();
   }
+#ifdef SLEEPING
+  neighbourCalm = shareCalm[0];
+  // Nothing awake touches it now: it neither moves nor gains a force (the same in every thread).
+  if (asleep && neighbourCalm >= params.sleepSubsteps) return;
+#endif
 #ifndef PAPER_LAW
   countPairs(info.x, info.y, t);
 #endif
@@ -172,18 +206,27 @@ void main() {
     torque = shareTorque[0];
     largeBodyForces[2u * entry] += vec4(force, 1.0);
     largeBodyForces[2u * entry + 1u] += vec4(torque, 0.0);
-    // Not granules: they never sleep (layout.glsl, "Sleep"), but sand can sleep against them.
     StoredBody stored =
         StoredBody(bodyPosition[b], bodyOrientation[b], bodyVelocity[b], bodyAngularVelocity[b],
-                   bodyInertia[b]);
-    BodyMotion moved = integrateBody(b, info, stored, force, torque,
-                                     floatBitsToUint(stored.velocity.w), CALM_UNBOUNDED,
-                                     params.sleepSubsteps - 1u);
-    movedPosition = vec4(moved.position, moved.alive ? 1.0 : 0.0);
-    movedOrientation = moved.orientation;
-    movedVelocity = moved.velocity;
-    movedSpin = moved.spin;
-    movedCalm = moved.calm;
+                   texelFetch(bodyInertiaTexture, int(b)));
+    uint previousCalm = floatBitsToUint(stored.velocity.w);
+    bool moves = true;
+#ifdef SLEEPING
+    if (asleep) {
+      moves = motion == MOTION_DYNAMIC && wakesWhenTouched(stored, force, torque, neighbourCalm);
+      previousCalm = 0u;
+    }
+#endif
+    movedPosition.w = 0.0;
+    if (moves) {
+      BodyMotion moved = integrateBody(b, info, stored, force, torque, previousCalm,
+                                       neighbourCalm, calmLimit(motion, stored));
+      movedPosition = vec4(moved.position, moved.alive ? 1.0 : 0.0);
+      movedOrientation = moved.orientation;
+      movedVelocity = moved.velocity;
+      movedSpin = moved.spin;
+      movedCalm = moved.calm;
+    }
   }
   memoryBarrierShared();
   barrier();

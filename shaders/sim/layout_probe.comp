@@ -43,7 +43,7 @@ layout(std430, binding = 47) readonly buffer ActiveDispatchProbe {
   uint collectChunkProbe[COLLECT_CHUNK];
   uint sleepProbeEnd;
 };
-layout(std430, binding = 48) readonly buffer ActivePassesProbe { uvec4 activePassesProbe[ACTIVE_PASS_COLLIDERS + 1u]; };
+layout(std430, binding = 48) readonly buffer ActivePassesProbe { uvec4 activePassesProbe[ACTIVE_PASS_LARGE + 1u]; };
 
 void main() {
   // Every member of a std140 block is active once the block is used.

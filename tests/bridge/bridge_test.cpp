@@ -122,6 +122,7 @@ struct BedResult {
   bool boxAsleepInBullet = false;     // Bullet had deactivated the box
   bool bridgeSawItAsleep = false;     // Bridge::Coupled::asleep
   std::size_t lastFramePushes = 0;    // what the bridge pushed in the last frame
+  StepReport lastFrame;               // the sand's substeps in it, and those skipped as idle
   std::uint32_t asleepAfterKick = 0;  // granules asleep 0.1 s after the kick
   float kickSpeed = 0.0f;             // the box's speed then, m/s
 };
@@ -129,6 +130,7 @@ struct BedResult {
 BedResult boxOnSandBed(bool sleep) {
   WorldSettings settings = smallSettings(400);
   settings.sleep.enabled = sleep;
+  settings.statsEachFrame = sleep;  // what tells the next frame that the sand slept
   settings.maxParticles = 400 * 4 + 4000;
   settings.maxSpeed = 1.0f;
   settings.material.youngsModulus = 5.0e5f;
@@ -167,8 +169,9 @@ BedResult boxOnSandBed(bool sleep) {
   double forceSum = 0.0;
   int forceFrames = 0;
   const int frames = 300;  // 5 s
+  StepReport report;
   for (int f = 0; f < frames; ++f) {
-    bridge.step(frame);
+    report = bridge.step(frame);
     heights.push_back(float(box->getCenterOfMassPosition().y()));
     if (f >= frames - 60)
       fastest = std::max(fastest, std::abs(float(box->getLinearVelocity().y())));
@@ -206,6 +209,7 @@ BedResult boxOnSandBed(bool sleep) {
   r.boxAsleepInBullet = !box->isActive();
   r.bridgeSawItAsleep = bridge.coupled()[0].asleep;
   r.lastFramePushes = bridge.pushes().size();
+  r.lastFrame = report;
   if (sleep) {
     // Woken in Bullet (as another Bullet body hitting it would), it ploughs into the sand.
     box->activate(true);
@@ -235,10 +239,15 @@ TEST(Bridge, BoxRestsOnASleepingSandBed) {
       "the last frame; 0.1 s after Bullet sent it at 0.3 m/s: %u asleep, box at %.3f m/s\n",
       r.granulesAsleep, int(r.boxAsleepInBullet), int(r.bridgeSawItAsleep), r.lastFramePushes,
       r.asleepAfterKick, r.kickSpeed);
+  std::printf("the last frame: %u of %u substeps skipped as idle\n", r.lastFrame.idleSubsteps,
+              r.lastFrame.substeps);
   EXPECT_GE(r.granulesAsleep, 130u);  // nine in ten of the 144 granules
   EXPECT_TRUE(r.boxAsleepInBullet);
   EXPECT_TRUE(r.bridgeSawItAsleep);
   EXPECT_EQ(r.lastFramePushes, 0u);
+  // The box sleeps in the sand too, with the sand around it: the frame runs no substep, and the
+  // bridge hands Bullet the force it last read (the mean force above is the weight).
+  EXPECT_EQ(r.lastFrame.idleSubsteps, r.lastFrame.substeps);
   // The sand it ploughs into wakes and holds it back.
   EXPECT_LT(r.asleepAfterKick + 10u, r.granulesAsleep);
   EXPECT_LT(r.kickSpeed, 0.3f);

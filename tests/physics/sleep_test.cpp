@@ -733,26 +733,165 @@ TEST(Sleep, FramesOfSleepingSandRunOneSubstepAndChangeNoBit) {
   EXPECT_EQ(emitting.idleSubsteps, 0u);
 }
 
+// Two copies of one World: `framed` runs frames of World::step, which skips idle substeps,
+// `every` the same substeps through World::substep, which skips none. After each frame the two
+// must hold the same bits, and the same force sums on their large bodies (World::takeBodyForces).
+struct Lockstep {
+  testing::TestWorld framed;
+  testing::TestWorld every;
+  explicit Lockstep(const WorldSettings& settings) : framed(settings), every(settings) {}
+
+  template <class DoTo>
+  void both(const DoTo& doTo) {
+    doTo(framed);
+    doTo(every);
+  }
+
+  // One frame of `seconds`; the forces taken from `framed`.
+  StepReport frame(double seconds, const std::string& when, std::vector<BodyForce>& forces) {
+    const StepReport report = framed->step(float(seconds));
+    every->resetPeakOverlap();  // as each step does
+    every->substep(report.substeps);
+    const auto difference = firstDifference(framed->readSnapshot(), every->readSnapshot());
+    EXPECT_FALSE(difference.has_value()) << when << ": " << difference->describe();
+    EXPECT_EQ(framed->readStateHash(), every->readStateHash()) << when;
+    forces = framed->takeBodyForces();
+    const std::vector<BodyForce> oracle = every->takeBodyForces();
+    EXPECT_EQ(forces.size(), oracle.size()) << when;
+    for (std::size_t i = 0; i < std::min(forces.size(), oracle.size()); ++i) {
+      EXPECT_EQ(forces[i].substeps, oracle[i].substeps) << when << ", body " << i;
+      EXPECT_EQ(std::memcmp(&forces[i].force, &oracle[i].force, sizeof(Vec3)), 0) << when;
+      EXPECT_EQ(std::memcmp(&forces[i].torque, &oracle[i].torque, sizeof(Vec3)), 0) << when;
+    }
+    return report;
+  }
+};
+
+// Body `body`'s calm count in `w` (snapshot.h: asleep at SleepModel::substeps).
+std::uint32_t calmOf(World& w, BodyId body) {
+  return w.readSnapshot().bodies.at(body.index).calm;
+}
+
 TEST(Sleep, AKinematicBodySetAtRestEveryFrameLeavesTheSandAsleep) {
   // What an engine bridge does with a body that rests: it sets the same pose, at rest, every
-  // frame. The sand that settled around it must sleep and stay asleep.
-  testing::TestWorld w(sleepySettings());
-  const float d = w->settings().particleDiameter;
+  // frame. The sand that settled around it must sleep and stay asleep. Once the engine stops
+  // setting it (as the bridge does when Bullet puts the body to sleep), the body sleeps too, and
+  // the World's frames run no substep.
+  WorldSettings settings = sleepySettings();
+  settings.statsEachFrame = true;  // what tells the next frame that the sand slept
+  Lockstep w(settings);
+  const float d = settings.particleDiameter;
   const BodyDesc post{{0.0f, 1.5f * d, 0.0f}, {}, {}, {}, Motion::Kinematic};
-  const BodyId body = w->addBody(
-      makeParticleTemplate({{0.0f, 0.0f, 0.0f}}, d, w->settings().material.density), post);
-  buildPile(*w);
-  ASSERT_GT(sleepAll(w, 2.0), 0.0);
-  const std::vector<BodyState> slept = w->readBodies();
+  BodyId body;
+  w.both([&](testing::TestWorld& t) {
+    body =
+        t->addBody(makeParticleTemplate({{0.0f, 0.0f, 0.0f}}, d, settings.material.density), post);
+    buildPile(*t);
+    ASSERT_GT(sleepAll(t, 2.0), 0.0);
+  });
+  const std::vector<BodyState> slept = w.framed->readBodies();
+  std::vector<BodyForce> forces;
   for (int frame = 0; frame < 20; ++frame) {
-    w->setBodyState(body, post);
-    w.simulate(0.02);
+    w.both([&](testing::TestWorld& t) { t->setBodyState(body, post); });
+    w.frame(0.02, "set at rest, frame " + std::to_string(frame), forces);
+    // Set awake, one short of sleep: computed at least once a frame.
+    ASSERT_EQ(forces.size(), 1u);
+    EXPECT_GT(forces[0].substeps, 0u) << frame;
   }
-  EXPECT_EQ(w->readStats().granulesAsleep, kGranules);
-  const std::vector<BodyState> after = w->readBodies();
+  EXPECT_EQ(w.framed->readStats().granulesAsleep, kGranules);
+  const std::vector<BodyState> after = w.framed->readBodies();
   for (std::size_t i = 0; i < after.size(); ++i) {
     EXPECT_EQ(std::memcmp(&after[i].position, &slept[i].position, sizeof(Vec3)), 0) << i;
   }
+  const std::uint32_t sleepSubsteps = w.framed->sleepModel().substeps;
+  EXPECT_GE(calmOf(*w.framed, body), sleepSubsteps);
+  std::uint32_t substeps = 0;
+  std::uint32_t idle = 0;
+  for (int frame = 0; frame < 10; ++frame) {
+    const StepReport report = w.frame(0.02, "left alone, frame " + std::to_string(frame), forces);
+    // The first frame runs one substep, which finds nothing to compute; the rest run none.
+    EXPECT_EQ(report.idleSubsteps, frame == 0 ? report.substeps - 1 : report.substeps) << frame;
+    EXPECT_EQ(forces.at(0).substeps, 0u) << frame;
+    substeps += report.substeps;
+    idle += report.idleSubsteps;
+  }
+  std::printf("the post left alone at rest: %u of %u substeps skipped as idle\n", idle, substeps);
+}
+
+// A rock (a dynamic body of seven particles, not a granule) set down on the sleeping pile comes to
+// rest and falls asleep with the sand it woke; then the World's frames run no substep and the
+// rock gains no force sum. A granule dropped onto it wakes it, and all sleeps again. Every frame
+// is compared bit for bit with a World that runs every substep.
+TEST(Sleep, ARockAtRestSleepsWithTheSandAndWakesWhenTouched) {
+  WorldSettings settings = sleepySettings();
+  settings.statsEachFrame = true;
+  const float d = settings.particleDiameter;
+  SleptPile pile;
+  ASSERT_NO_FATAL_FAILURE(sleepPile(settings, pile));
+  Lockstep w(settings);
+  std::vector<Vec3> ball;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (float side : {-d, d}) {
+      Vec3 offset{};
+      (axis == 0 ? offset.x : axis == 1 ? offset.y : offset.z) = side;
+      ball.push_back(offset);
+    }
+  }
+  ball.push_back({});
+  const Vec3 dropAt{0.02f, pile.top.position.y + 3.0f * d, 0.0f};
+  BodyId rock;
+  w.both([&](testing::TestWorld& t) {
+    buildPile(*t);
+    t->restoreSnapshot(pile.slept);
+    rock = t->addBody(makeParticleTemplate(ball, d, settings.material.density),
+                      {.position = dropAt, .velocity = {0.0f, -0.2f, 0.0f}});
+  });
+  const std::uint32_t sleepSubsteps = w.framed->sleepModel().substeps;
+  // Frames of 10 ms until the rock and every granule sleep, then `idleFrames` more, which must
+  // run no substep but the first's; returns the seconds it took to sleep, or -1.
+  const auto settle = [&](const char* stage, int idleFrames) {
+    std::vector<BodyForce> forces;
+    for (int frame = 0; frame < 300; ++frame) {
+      w.frame(0.01, std::string(stage) + ", frame " + std::to_string(frame), forces);
+      if (::testing::Test::HasFailure()) return -1.0;
+      const WorldStats stats = w.framed->readStats();
+      if (calmOf(*w.framed, rock) < sleepSubsteps || stats.granulesAsleep != stats.granulesAlive)
+        continue;
+      for (int after = 0; after < idleFrames; ++after) {
+        const StepReport report =
+            w.frame(0.01, std::string(stage) + ", asleep, frame " + std::to_string(after), forces);
+        EXPECT_GE(report.idleSubsteps + 1, report.substeps) << stage << ", " << after;
+        if (after > 0) {
+          EXPECT_EQ(report.idleSubsteps, report.substeps) << stage << ", " << after;
+        }
+        EXPECT_EQ(forces.at(0).substeps, 0u) << stage << ", asleep, frame " << after;
+      }
+      return 0.01 * (frame + 1);
+    }
+    return -1.0;
+  };
+  const double restedAfter = settle("the rock set down", 5);
+  ASSERT_GT(restedAfter, 0.0) << "the rock, or the sand, never slept";
+  const Vec3 rested = w.framed->readBodies().at(rock.index).position;
+  // A granule onto the rock: it is touched, computed, and woken by the impact.
+  const BodyDesc granule{.position = rested + Vec3{0.0f, 3.0f * d, 0.0f},
+                         .velocity = {0.0f, -0.5f, 0.0f}};
+  w.both([&](testing::TestWorld& t) { t->addGranules(std::span(&granule, 1)); });
+  bool woke = false;
+  std::vector<BodyForce> forces;
+  for (int frame = 0; frame < 10 && !woke; ++frame) {
+    w.frame(0.01, "a granule dropped on the rock, frame " + std::to_string(frame), forces);
+    woke = calmOf(*w.framed, rock) < sleepSubsteps;
+  }
+  EXPECT_TRUE(woke) << "the granule did not wake the rock";
+  const double restedAgainAfter = settle("the rock hit", 5);
+  EXPECT_GT(restedAgainAfter, 0.0) << "the rock, or the sand, never slept again";
+  const Vec3 end = w.framed->readBodies().at(rock.index).position;
+  std::printf(
+      "the rock slept with the sand %.2f s after it was set down, and again %.2f s after the "
+      "granule; it moved %.3f d\n",
+      restedAfter, restedAgainAfter,
+      std::hypot(end.x - rested.x, end.y - rested.y, end.z - rested.z) / d);
 }
 
 }  // namespace

@@ -30,7 +30,8 @@ struct RenderBuffers {
   unsigned bodyPosition = 0;
   /// vec4 per body: unit quaternion (x, y, z, w) from the body's principal frame to the world.
   unsigned bodyOrientation = 0;
-  /// uvec4 per body: x first particle, y particle count, z flags (kBodyFlag*), w guard count.
+  /// uvec4 per body: x first particle, y particle count, z flags (kBodyFlag*; test them by mask:
+  /// the high bits hold other data), w guard count.
   unsigned bodyInfo = 0;
   /// vec4 per body: xyz velocity (m/s); w the calm count (uint bits; WorldSettings::sleep): the
   /// body is asleep when it is at least sleepSubsteps.

@@ -59,13 +59,17 @@ struct ContactRecord {
 };
 
 /// The sand's push on one body that is not a granule (a sampled mesh, a body coupled to another
-/// engine, a tool): contact forces from granules and colliders, summed on the GPU over every
-/// substep since the previous World::takeBodyForces. Gravity is not included.
+/// engine, a tool): contact forces from granules and colliders, summed on the GPU over the
+/// substeps since the previous World::takeBodyForces that computed the body. Gravity is not
+/// included.
 struct BodyForce {
   BodyId body;
   Vec3 force{};   ///< sum over the substeps of the contact force, N
   Vec3 torque{};  ///< sum over the substeps of the torque about the centre of mass, N m
-  std::uint32_t substeps = 0;  ///< substeps summed
+  /// Substeps summed: those that computed the body. With WorldSettings::sleep a sleeping body is
+  /// computed only while something awake touches it, so this is 0 while it sleeps untouched (the
+  /// force on it is then the last one computed).
+  std::uint32_t substeps = 0;
   /// Mean force and torque over those substeps (zero when there were none).
   Vec3 meanForce() const;
   Vec3 meanTorque() const;

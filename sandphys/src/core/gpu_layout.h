@@ -64,6 +64,7 @@ enum ActivePass : std::uint32_t {
   kActivePassPairs,
   kActivePassSearch,
   kActivePassColliders,
+  kActivePassLarge,  // SLEEPING: the active large bodies' length only (layout.glsl)
   kActivePasses,
 };
 inline constexpr std::uint32_t kCounterCount = kCounterActiveDispatch + 4 * kActivePasses;
@@ -86,9 +87,13 @@ inline constexpr std::uint32_t kBodyAlive = 1u;
 inline constexpr std::uint32_t kBodyGranule = 2u;
 inline constexpr std::uint32_t kBodyLarge = 8u;  // not a granule: integrate_large_bodies.comp
 inline constexpr std::uint32_t kBodyMotionShift = 4u;
+/// From this bit of bodyInfo.z on, a large body's entry in the LargeBodies buffer.
+inline constexpr std::uint32_t kBodyEntryShift = 8u;
 /// Bodies that are not granules (and not static), each summed by a workgroup; the fixed size of
 /// the two buffers that list them and hold their force sums.
 inline constexpr std::uint32_t kMaxLargeBodies = 4096;
+static_assert(std::uint64_t(kMaxLargeBodies) << kBodyEntryShift <= 1ull << 32,
+              "a large body's entry must fit in bodyInfo.z");
 
 struct alignas(16) GpuVec4 {
   float x, y, z, w;

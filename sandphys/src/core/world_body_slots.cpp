@@ -36,12 +36,14 @@ std::uint32_t World::Impl::addBodies(const ParticleTemplate& shape,
   std::vector<GpuVec4> inertia(n);
   std::vector<GpuVec4> local(n * perBody);
   std::vector<std::uint32_t> owner(n * perBody);
+  auto nextEntry = std::uint32_t(largeBodies.size());
   for (std::uint64_t i = 0; i < n; ++i) {
     const Motion motion = descs[i].motion;
     const bool dynamic = motion == Motion::Dynamic;
-    const std::uint32_t flags = kBodyAlive | (isGranule ? kBodyGranule : 0u) |
-                                (isLarge(descs[i]) ? kBodyLarge : 0u) |
-                                (std::uint32_t(motion) << kBodyMotionShift);
+    const std::uint32_t flags =
+        kBodyAlive | (isGranule ? kBodyGranule : 0u) |
+        (isLarge(descs[i]) ? kBodyLarge | nextEntry++ << kBodyEntryShift : 0u) |
+        (std::uint32_t(motion) << kBodyMotionShift);
     info[i] = {std::uint32_t(firstParticle + i * perBody), std::uint32_t(perBody), flags, 0u};
     inertia[i] = toGpu(shape.principalInertia, shape.mass);
     // -1 marks static particles, whose force the contact kernel skips (gpu_buffers.def). The

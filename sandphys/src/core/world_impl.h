@@ -204,6 +204,9 @@ struct World::Impl {
   std::uint64_t statsReductions = 0;  // reduceStats calls, for the tests of the above
   // Every particle's largest overlap is zero: reset, and nothing computed since.
   bool peaksClear = false;
+  // The large bodies' force sums are zero: taken (World::takeBodyForces) and no substep run since,
+  // so the next take reads nothing back (frames of sleeping sand run none).
+  bool bodyForcesClear = false;
   // A step's check found that the last substep run computed nothing, and nothing has changed
   // since: the substeps that follow would compute nothing either, until the CPU changes something.
   bool idleSinceCheck = false;

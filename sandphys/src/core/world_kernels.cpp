@@ -191,6 +191,7 @@ void World::Impl::searchContacts() {
 
 void World::Impl::runSubstep() {
   stateChanged();
+  bodyForcesClear = false;
   const bool sleeping = sleep.enabled && bodyCount > 0;
   if (sleeping) {
     // With sleep: the bodies and particles this substep computes, the awake ones and the
@@ -229,7 +230,8 @@ void World::Impl::runSubstep() {
     // next substep.
     dispatch(kernels.integrateBodies, "integrate_bodies", bodyCount, kWorkgroupSize);
   }
-  // 4b. Every other body: a workgroup each (force sums for read-back, then the same integration).
+  // 4b. Every other body: a workgroup each (force sums for read-back, then the same integration);
+  // with sleep a workgroup for each entry of the active list, the rest return at once.
   if (!largeBodies.empty()) {
     dispatch(kernels.integrateLargeBodies, "integrate_large_bodies",
              std::uint32_t(largeBodies.size()) * kWorkgroupSize, kWorkgroupSize);

@@ -269,10 +269,14 @@ std::vector<BodyForce> World::takeBodyForces() {
   Impl& w = impl();
   std::vector<BodyForce> out;
   if (w.largeBodies.empty()) return out;
-  w.gpu->makeCurrent();
   const auto count = std::uint32_t(w.largeBodies.size());
-  const std::vector<GpuVec4> sums = w.buffers[kLargeBodyForces].downloadArray<GpuVec4>(2 * count);
-  w.buffers[kLargeBodyForces].zero();
+  std::vector<GpuVec4> sums(2 * count);
+  if (!w.bodyForcesClear) {
+    w.gpu->makeCurrent();
+    sums = w.buffers[kLargeBodyForces].downloadArray<GpuVec4>(2 * count);
+    w.buffers[kLargeBodyForces].zero();
+    w.bodyForcesClear = true;
+  }
   out.reserve(count);
   for (std::uint32_t i = 0; i < count; ++i) {
     const std::uint32_t slot = w.largeBodies[i];

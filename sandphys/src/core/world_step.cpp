@@ -97,7 +97,7 @@ StepReport World::step(float frameDt, std::uint64_t stopAt) {
 bool World::Impl::idleSubstepsRepeat() const {
   const bool emitting =
       std::ranges::any_of(emitters, [](const auto& e) { return e && !e->finished(); });
-  return sleep.enabled && largeBodies.empty() && !emitting && (moves.empty() || steps > movesEnd);
+  return sleep.enabled && !emitting && (moves.empty() || steps > movesEnd);
 }
 
 bool World::Impl::computedNothing(std::span<const std::uint32_t> counters) {

@@ -16,6 +16,8 @@
 #define BODY_LARGE 8u
 #define BODY_MOTION_SHIFT 4u
 #define BODY_MOTION_MASK 0x30u
+// From this bit on, a large body's entry in largeBodies and largeBodyForces.
+#define BODY_ENTRY_SHIFT 8u
 #define MOTION_DYNAMIC 0u
 #define MOTION_KINEMATIC 1u
 #define MOTION_STATIC 2u
@@ -101,6 +103,8 @@ struct SinkBox {
 #define COUNTER_NEAR_REQUESTED 23
 // Without sleep: markings of the lists' near part so far (list_near.comp).
 #define COUNTER_NEAR_MARKINGS 24
+// SLEEPING: the large bodies collect_active.comp has listed so far this substep.
+#define COUNTER_ACTIVE_LARGE 25
 // From this uint on: the indirect dispatch commands of the list build, one per pass below (4
 // uints each: groups x, y, z and padding), zero groups when no build is due.
 #define COUNTER_LIST_DISPATCH 28
@@ -118,15 +122,19 @@ struct SinkBox {
 #define LIST_BUILD_PASSES 9
 // After those, the indirect commands of the passes over lists: under SLEEPING the contacts and
 // integrate_bodies passes over the active lists (ACTIVE_PARTICLES, ACTIVE_BODIES), the count_pairs
-// pass over the granules due (PAIRS_DUE), and the contacts passes over the particles that search
-// the grid (SEARCH_DUE) and over those near a collider (COLLIDERS_DUE); the fourth uint of each is
-// the list's length.
+// pass over the granules due (PAIRS_DUE), the contacts passes over the particles that search the
+// grid (SEARCH_DUE) and over those near a collider (COLLIDERS_DUE); the fourth uint of each is the
+// list's length. Under SLEEPING the length of the active large bodies (ACTIVE_LARGE_BODIES) follows
+// them, and its command is not used: integrate_large_bodies is dispatched over every large body,
+// and its workgroups beyond the length return (an indirect dispatch costs llvmpipe a wait, more
+// than a few empty workgroups).
 #define COUNTER_ACTIVE_DISPATCH (COUNTER_LIST_DISPATCH + 4 * LIST_BUILD_PASSES)
 #define ACTIVE_PASS_CONTACTS 0u
 #define ACTIVE_PASS_BODIES 1u
 #define ACTIVE_PASS_PAIRS 2u
 #define ACTIVE_PASS_SEARCH 3u
 #define ACTIVE_PASS_COLLIDERS 4u
+#define ACTIVE_PASS_LARGE 5u
 // The length of the active list a pass runs over (the includer declares COUNTERS).
 #define activeListLength(pass) counters[COUNTER_ACTIVE_DISPATCH + 4u * (pass) + 3u]
 
@@ -147,8 +155,9 @@ struct StatsPartial {
 // speeds have been below the thresholds, but at most params.sleepNeighbourLead more than the
 // smallest count among the bodies it touches: so a body reaches params.sleepSubsteps, and sleeps,
 // only when nothing within kSleepContacts contacts of it moves, and a calm touching group falls
-// asleep together. Only dynamic granules sleep; the count of every other movable body stops at
-// params.sleepSubsteps - 1. The contacts pass leaves in particleForce.w the smallest count among
+// asleep together. Dynamic bodies sleep, and so does a kinematic large body set exactly at rest
+// (sleep stops a body dead, which must not change a kinematic body's motion); the count of every
+// other movable body stops at params.sleepSubsteps - 1. The contacts pass leaves in particleForce.w the smallest count among
 // the particle's partners (CALM_UNBOUNDED: none), 0 when a moving collider touches it or, asleep,
 // when its contacts are not those it fell asleep with. An awake particle marks the sleeping bodies
 // it touches by setting their count (not their particles' copies) to calmTouched(): they are

@@ -27,6 +27,29 @@ struct BodyMotion {
   uint calm;  // its calm count (layout.glsl, "Sleep"; 0 without SLEEPING)
 };
 
+// The most a movable body's calm count reaches (layout.glsl, "Sleep"): params.sleepSubsteps, asleep,
+// for a dynamic body, and for a kinematic one set exactly at rest (sleep stops a body dead, which
+// must then change nothing); one short of it for a kinematic body that moves.
+uint calmLimit(uint motion, StoredBody stored) {
+  bool rests =
+      all(equal(stored.velocity.xyz, vec3(0.0))) && all(equal(stored.spin.xyz, vec3(0.0)));
+  return motion == MOTION_DYNAMIC || rests ? params.sleepSubsteps : params.sleepSubsteps - 1u;
+}
+
+#ifdef SLEEPING
+// Whether a sleeping dynamic body that something awake touched wakes: a partner moves or its
+// contacts changed (`neighbourCalm` 0), or the force or torque on it departs from balance by more
+// than the wake acceleration. A kinematic body wakes only when the CPU sets it.
+bool wakesWhenTouched(StoredBody stored, vec3 force, vec3 torque, uint neighbourCalm) {
+  float mass = stored.inertia.w;
+  vec3 unbalanced = force / mass + params.gravity;
+  float torqueLimit = mass * stored.spin.w * params.wakeAcceleration;
+  return neighbourCalm == 0u ||
+         dot(unbalanced, unbalanced) > params.wakeAcceleration * params.wakeAcceleration ||
+         dot(torque, torque) > torqueLimit * torqueLimit;
+}
+#endif
+
 // Advances body `b` (alive, not static) by one substep under the sum of its particles' contact
 // forces `force` and their torque about its centre of mass `torque`; kinematic bodies keep their
 // velocities and only move. A granule that a sink takes asks for a list build (its particles

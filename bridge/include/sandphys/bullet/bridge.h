@@ -38,7 +38,9 @@ struct CouplingOptions {
 ///  2. the sand runs its substeps for h, moving the body along with those velocities, and sums
 ///     the contact force and torque on it on the GPU;
 ///  3. the sums are read back (World::takeBodyForces, 32 bytes per body) and their means over
-///     the substeps applied in Bullet (applyCentralForce, applyTorque);
+///     the substeps applied in Bullet (applyCentralForce, applyTorque); a body the sand computed
+///     in none of them (it slept there with the sand around it, or the exchange ran no substep)
+///     gets the force of the last exchange that computed it;
 ///  4. Bullet steps h (one fixed step), with its own gravity and contacts.
 /// The scheme is explicit: during an exchange the body moves through the sand as if the sand did
 /// not push it, and the push acts in Bullet one exchange late. Two things bound h:
@@ -95,10 +97,11 @@ class Bridge {
     Vec3 torque{};       ///< mean sand torque about the centre of mass over the last step(), N m
     float reach = 0.0f;  ///< farthest particle surface from the centre of mass, m
     /// Bullet has deactivated the body: the bridge pushed it once at rest and pushes it no more,
-    /// so sand that sleeps around it stays asleep. The sand wakes it (btRigidBody::activate)
-    /// when its force or torque on it departs from what it was when the body fell asleep by
-    /// more than the sand's wake acceleration (SleepModel::wakeAcceleration, or the default
-    /// kSleepWakeAcceleration g without sleep) times its mass (and reach, for the torque).
+    /// so sand that sleeps around it stays asleep, and so does the sand body. The sand wakes it
+    /// (btRigidBody::activate) when its force or torque on it departs from what it was when the
+    /// body fell asleep by more than the sand's wake acceleration (SleepModel::wakeAcceleration, or
+    /// the default kSleepWakeAcceleration g without sleep) times its mass (and reach, for the
+    /// torque).
     bool asleep = false;
     Vec3 restForce{};   ///< the sand force when it fell asleep, N
     Vec3 restTorque{};  ///< the sand torque then, N m
@@ -121,7 +124,7 @@ class Bridge {
   btDiscreteDynamicsWorld& m_dynamics;
   BridgeSettings m_settings;
   float m_wakeAcceleration = 0.0f;  // m/s^2 (Coupled::asleep)
-  std::vector<Vec3> m_lastForce;    // each body's mean sand force of the last exchange, N
+  std::vector<Vec3> m_lastForce;    // each body's mean sand force, the last one computed, N
   std::vector<Vec3> m_lastTorque;   // and torque, N m
   float m_lastStep = 0.0f;
   int m_lastExchanges = 0;
