@@ -130,7 +130,6 @@ struct BedResult {
 BedResult boxOnSandBed(bool sleep) {
   WorldSettings settings = smallSettings(400);
   settings.sleep.enabled = sleep;
-  settings.statsEachFrame = sleep;  // what tells the next frame that the sand slept
   settings.maxParticles = 400 * 4 + 4000;
   settings.maxSpeed = 1.0f;
   settings.material.youngsModulus = 5.0e5f;

@@ -776,9 +776,10 @@ TEST(Sleep, AKinematicBodySetAtRestEveryFrameLeavesTheSandAsleep) {
   // What an engine bridge does with a body that rests: it sets the same pose, at rest, every
   // frame. The sand that settled around it must sleep and stay asleep. Once the engine stops
   // setting it (as the bridge does when Bullet puts the body to sleep), the body sleeps too, and
-  // the World's frames run no substep.
-  WorldSettings settings = sleepySettings();
-  settings.statsEachFrame = true;  // what tells the next frame that the sand slept
+  // the World's frames run no substep. Without statistics each frame (testing::smallSettings), as
+  // a game that reads none.
+  const WorldSettings settings = sleepySettings();
+  ASSERT_FALSE(settings.statsEachFrame);
   Lockstep w(settings);
   const float d = settings.particleDiameter;
   const BodyDesc post{{0.0f, 1.5f * d, 0.0f}, {}, {}, {}, Motion::Kinematic};
@@ -816,6 +817,40 @@ TEST(Sleep, AKinematicBodySetAtRestEveryFrameLeavesTheSandAsleep) {
     idle += report.idleSubsteps;
   }
   std::printf("the post left alone at rest: %u of %u substeps skipped as idle\n", idle, substeps);
+}
+
+// Without statistics each frame, what tells a frame that the last one ended with the sand asleep
+// is a copy of the counters that the frame's end starts and the next frame takes if the GPU has
+// made it, never waiting (World::Impl::idleHint): the sleeping pile's first frame runs whole, the
+// second checks its first substep and skips the rest, and the frames after run none; no
+// statistics are reduced, and every frame has the bits of a World that runs every substep.
+TEST(Sleep, FramesOfSleepingSandSkipWithoutStatisticsEachFrame) {
+  const WorldSettings settings = sleepySettings();
+  ASSERT_FALSE(settings.statsEachFrame);
+  SleptPile pile;
+  ASSERT_NO_FATAL_FAILURE(sleepPile(settings, pile));
+  Lockstep w(settings);
+  w.both([&](testing::TestWorld& t) {
+    buildPile(*t);
+    t->restoreSnapshot(pile.slept);
+  });
+  const std::uint64_t reductions = testing::statsReductions(*w.framed);
+  std::vector<BodyForce> forces;
+  std::uint32_t substeps = 0;
+  std::uint32_t idle = 0;
+  for (int frame = 0; frame < 10; ++frame) {
+    const StepReport report = w.frame(0.01, "frame " + std::to_string(frame), forces);
+    const std::uint32_t expected = frame == 0   ? 0u
+                                   : frame == 1 ? report.substeps - 1
+                                                : report.substeps;
+    EXPECT_EQ(report.idleSubsteps, expected) << "frame " << frame;
+    substeps += report.substeps;
+    idle += report.idleSubsteps;
+  }
+  EXPECT_EQ(testing::statsReductions(*w.framed), reductions);
+  EXPECT_EQ(w.framed->readStats().granulesAsleep, kGranules);
+  std::printf("the sleeping pile without statistics each frame: %u of %u substeps skipped\n", idle,
+              substeps);
 }
 
 // A rock (a dynamic body of seven particles, not a granule) set down on the sleeping pile comes to

@@ -131,6 +131,8 @@ struct WorldSettings {
   std::uint32_t maxColliders = 64;
   /// Reduce and read the small statistics buffer after each World::step (one sync per frame,
   /// never per substep). Off: StepReport carries only CPU-side numbers; use World::readStats.
+  /// Either way, with sleep, frames of sleeping sand are found and skipped (off, from a copy of
+  /// a few counters that the next frame takes if the GPU has made it, never waiting).
   bool statsEachFrame = true;
   /// Record GL timer queries per kernel (costs a little; read with World::kernelTimes).
   bool profileKernels = false;

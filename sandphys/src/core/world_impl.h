@@ -13,6 +13,7 @@
 #include "core/collider_bounds.h"
 #include "core/emitter.h"
 #include "core/gpu_buffers.h"
+#include "gl/async_read.h"
 #include "gl/buffer.h"
 #include "gl/kernel_profiler.h"
 #include "sandphys/kinematic_move.h"
@@ -214,6 +215,10 @@ struct World::Impl {
   detail::WorldBuffers buffers;
   detail::WorldKernels kernels;
   gl::KernelProfiler profiler;
+  // With sleep and without statistics each frame, what tells the next frame whether the sand
+  // slept (sandLooksIdle): the counters after a frame's last substep, copied for the next frame to
+  // take if the GPU has made them, never waiting (world_step.cpp).
+  gl::AsyncRead idleHint{"idle hint"};
 
   Impl(const GpuContext& context, const WorldSettings& s);
   ~Impl();
@@ -305,6 +310,10 @@ struct World::Impl {
   /// Whether the last substep computed nothing (computedNothing), from the counters it
   /// downloads. Sync point.
   bool lastSubstepComputedNothing();
+  /// With sleep and without statistics each frame: the last frame's idleHint, if it is ready,
+  /// sets sandLooksIdle; after a frame that ran substeps and was not found idle, the next hint.
+  void takeIdleHint();
+  void startIdleHint(std::uint64_t substepsRun);
   /// After a substep that computed nothing (lastSubstepComputedNothing): the statistics and the
   /// peak overlaps are as current and as clear as they were before it, and the substeps after it
   /// idle until something changes.

@@ -26,6 +26,7 @@ StepReport World::step(float frameDt, std::uint64_t stopAt) {
   if (!std::isfinite(frameDt) || frameDt < 0.0f) return report;
   if (frameDt == 0.0f && w.heldSubsteps == 0) return report;
   w.gpu->makeCurrent();
+  w.takeIdleHint();
   w.accumulator += frameDt;
   const double dt = w.model.timeStep;
   // Compared in double before any integer conversion: a frame of more substeps than an integer
@@ -81,6 +82,7 @@ StepReport World::step(float frameDt, std::uint64_t stopAt) {
       }
     }
   }
+  w.startIdleHint(done);
   report.idleSubsteps = std::uint32_t(run - done);
   for (; done < run; ++done) w.advanceClock();
   report.substeps = std::uint32_t(run);
@@ -111,6 +113,17 @@ bool World::Impl::lastSubstepComputedNothing() {
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   buffers[kCounters].download(0, sizeof counters, counters.data());
   return computedNothing(counters);
+}
+
+void World::Impl::takeIdleHint() {
+  std::array<std::uint32_t, kCounterCount> hinted{};
+  if (idleHint.take(hinted.data())) sandLooksIdle = computedNothing(hinted);
+}
+
+void World::Impl::startIdleHint(std::uint64_t substepsRun) {
+  // The statistics of each frame tell it already (reduceStats), and a frame found idle needs none.
+  if (!sleep.enabled || settings.statsEachFrame || substepsRun == 0 || idleSinceCheck) return;
+  idleHint.start(buffers[kCounters], 0, sizeof counters);
 }
 
 void World::Impl::substepChangedNothing(bool statsWereCurrent, bool peaksWereClear) {
