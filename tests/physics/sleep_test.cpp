@@ -643,7 +643,7 @@ const char* firstStatsDifference(const WorldStats& a, const WorldStats& b) {
 // found it so, runs no substep and reduces no statistics.
 TEST(Sleep, FramesOfSleepingSandRunOneSubstepAndChangeNoBit) {
   WorldSettings settings = sleepySettings();
-  settings.statsEachFrame = true;  // what tells the next frame that the sand slept
+  settings.statsEachFrame = true;  // the statistics compared each frame, and the idle hint
   const float d = settings.particleDiameter;
   SleptPile pile;
   ASSERT_NO_FATAL_FAILURE(sleepPile(settings, pile));
@@ -859,7 +859,7 @@ TEST(Sleep, FramesOfSleepingSandSkipWithoutStatisticsEachFrame) {
 // is compared bit for bit with a World that runs every substep.
 TEST(Sleep, ARockAtRestSleepsWithTheSandAndWakesWhenTouched) {
   WorldSettings settings = sleepySettings();
-  settings.statsEachFrame = true;
+  settings.statsEachFrame = true;  // the hint from the statistics (the post above: without)
   const float d = settings.particleDiameter;
   SleptPile pile;
   ASSERT_NO_FATAL_FAILURE(sleepPile(settings, pile));
