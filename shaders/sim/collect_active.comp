@@ -36,11 +36,11 @@ COUNTERS(coherent)
 // from atomics rather than a scan in shared memory, whose barriers llvmpipe runs as coroutine
 // switches: they cost more than the atomics, and a quiet chunk needs neither.
 
-// The command of `pass` for `groups` workgroups, spilling into y as World::Impl::dispatch does;
-// the fourth uint holds the list's `entries`.
-void writeCommand(uint pass, uint groups, uint entries) {
+// The command of `pass` for `entries` threads of WORKGROUP_SIZE, spilling into y as
+// World::Impl::dispatch does; the fourth uint holds `entries`.
+void writeCommand(uint pass, uint entries) {
   uint at = uint(COUNTER_ACTIVE_DISPATCH) + 4u * pass;
-  writeGroups(at, groups);
+  writeGroups(at, groupsFor(entries));
   counters[at + 3u] = entries;
 }
 
@@ -123,11 +123,10 @@ void main() {
     uint groups = gl_NumWorkGroups.x * gl_NumWorkGroups.y;
     if (atomicAdd(counters[COUNTER_ACTIVE_GROUPS_DONE], 1u) == groups - 1u) {
       uint particles = atomicExchange(counters[COUNTER_ACTIVE_PARTICLES], 0u);
-      writeCommand(ACTIVE_PASS_CONTACTS, groupsFor(particles), particles);
-      uint bodies = atomicExchange(counters[COUNTER_ACTIVE_BODIES], 0u);
-      writeCommand(ACTIVE_PASS_BODIES, groupsFor(bodies), bodies);
-      uint larges = atomicExchange(counters[COUNTER_ACTIVE_LARGE], 0u);
-      writeCommand(ACTIVE_PASS_LARGE, larges, larges);  // its length (layout.glsl)
+      writeCommand(ACTIVE_PASS_CONTACTS, particles);
+      writeCommand(ACTIVE_PASS_BODIES, atomicExchange(counters[COUNTER_ACTIVE_BODIES], 0u));
+      // Only the length: the pass is not dispatched from a command (layout.glsl).
+      activeListLength(ACTIVE_PASS_LARGE) = atomicExchange(counters[COUNTER_ACTIVE_LARGE], 0u);
       counters[COUNTER_ACTIVE_GROUPS_DONE] = 0u;
       // What list_check.comp does without sleep.
       // (Sleep leaves the lists' near part unmarked.)

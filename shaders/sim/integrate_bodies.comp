@@ -110,7 +110,7 @@ void advance(uint t) {
 #endif
 #ifdef SLEEPING
   if (asleep) {
-    if (motion != MOTION_DYNAMIC || !wakesWhenTouched(stored, force, torque, neighbourCalm)) return;
+    if (!wakesWhenTouched(motion, stored, force, torque, neighbourCalm)) return;
     previousCalm = 0u;
   }
 #endif

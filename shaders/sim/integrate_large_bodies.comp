@@ -213,7 +213,7 @@ void main() {
     bool moves = true;
 #ifdef SLEEPING
     if (asleep) {
-      moves = motion == MOTION_DYNAMIC && wakesWhenTouched(stored, force, torque, neighbourCalm);
+      moves = wakesWhenTouched(motion, stored, force, torque, neighbourCalm);
       previousCalm = 0u;
     }
 #endif

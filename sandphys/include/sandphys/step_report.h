@@ -31,11 +31,12 @@ struct InitialOverlaps {
 struct StepReport {
   std::uint32_t substeps = 0;  ///< fixed substeps run
   /// Of those, the substeps that did no GPU work: with sleep, once the first substep of the frame
-  /// found all the sand asleep and untouched (and no large body, emitter or kinematic move in
-  /// the World), the rest would have computed nothing and changed no bit; only the time and the
-  /// substep count advance. Needs WorldSettings::statsEachFrame (or a readStats) to have seen
-  /// the last frame end that way. The frames after such a frame skip every substep, until the
-  /// CPU changes something. World::substep runs every substep.
+  /// found every body asleep and untouched (and no emitter or kinematic move running), the rest
+  /// would have computed nothing and changed no bit; only the time and the substep count
+  /// advance. The frame checks its first substep when the last frame ended that way (its
+  /// statistics, a readStats, or without WorldSettings::statsEachFrame a copy of the counters
+  /// taken when ready). The frames after such a frame skip every substep, until the CPU changes
+  /// something. World::substep runs every substep.
   std::uint32_t idleSubsteps = 0;
   float simulatedTime = 0.0f;  ///< substeps · timeStep, s
   float droppedTime = 0.0f;    ///< frame time discarded by the substep cap, s

@@ -338,8 +338,7 @@ struct World::Impl {
   /// substep.
   void stateChanged() { statsCurrent = peaksClear = idleSinceCheck = false; }
   /// Whether a substep that computes nothing can stand for the ones after it in a frame: sleep
-  /// is on, no large body is integrated (integrate_large_bodies.comp runs every substep) and no
-  /// CPU work waits for a later substep (an emitter, a kinematic move).
+  /// is on and no CPU work waits for a later substep (an emitter, a kinematic move).
   bool idleSubstepsRepeat() const;
   /// Whether the counters (kCounterCount words) show that the last substep listed no body and no
   /// particle to compute (collect_active.comp).

@@ -125,9 +125,9 @@ struct SinkBox {
 // pass over the granules due (PAIRS_DUE), the contacts passes over the particles that search the
 // grid (SEARCH_DUE) and over those near a collider (COLLIDERS_DUE); the fourth uint of each is the
 // list's length. Under SLEEPING the length of the active large bodies (ACTIVE_LARGE_BODIES) follows
-// them, and its command is not used: integrate_large_bodies is dispatched over every large body,
-// and its workgroups beyond the length return (an indirect dispatch costs llvmpipe a wait, more
-// than a few empty workgroups).
+// them, with no command: integrate_large_bodies is dispatched over every large body, and its
+// workgroups beyond the length return (an indirect dispatch costs llvmpipe a wait, more than a
+// few empty workgroups).
 #define COUNTER_ACTIVE_DISPATCH (COUNTER_LIST_DISPATCH + 4 * LIST_BUILD_PASSES)
 #define ACTIVE_PASS_CONTACTS 0u
 #define ACTIVE_PASS_BODIES 1u
@@ -155,10 +155,10 @@ struct StatsPartial {
 // speeds have been below the thresholds, but at most params.sleepNeighbourLead more than the
 // smallest count among the bodies it touches: so a body reaches params.sleepSubsteps, and sleeps,
 // only when nothing within kSleepContacts contacts of it moves, and a calm touching group falls
-// asleep together. Dynamic bodies sleep, and so does a kinematic large body set exactly at rest
-// (sleep stops a body dead, which must not change a kinematic body's motion); the count of every
-// other movable body stops at params.sleepSubsteps - 1. The contacts pass leaves in particleForce.w the smallest count among
-// the particle's partners (CALM_UNBOUNDED: none), 0 when a moving collider touches it or, asleep,
+// asleep together. Dynamic bodies sleep, and so does a kinematic body set exactly at rest (sleep
+// stops a body dead, which must not change a kinematic body's motion); the count of every other
+// movable body stops at params.sleepSubsteps - 1 (calmLimit in rigid_motion.glsl). The contacts
+// pass leaves in particleForce.w the smallest count among the particle's partners (CALM_UNBOUNDED: none), 0 when a moving collider touches it or, asleep,
 // when its contacts are not those it fell asleep with. An awake particle marks the sleeping bodies
 // it touches by setting their count (not their particles' copies) to calmTouched(): they are
 // computed in the next substep (collect_active.comp takes the mark back to params.sleepSubsteps).

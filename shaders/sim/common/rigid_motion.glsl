@@ -27,9 +27,9 @@ struct BodyMotion {
   uint calm;  // its calm count (layout.glsl, "Sleep"; 0 without SLEEPING)
 };
 
-// The most a movable body's calm count reaches (layout.glsl, "Sleep"): params.sleepSubsteps, asleep,
-// for a dynamic body, and for a kinematic one set exactly at rest (sleep stops a body dead, which
-// must then change nothing); one short of it for a kinematic body that moves.
+// The most a movable body's calm count reaches (layout.glsl, "Sleep"): params.sleepSubsteps,
+// asleep, for a dynamic body, and for a kinematic one set exactly at rest (sleep stops a body
+// dead, which must then change nothing); one short of it for a kinematic body that moves.
 uint calmLimit(uint motion, StoredBody stored) {
   bool rests =
       all(equal(stored.velocity.xyz, vec3(0.0))) && all(equal(stored.spin.xyz, vec3(0.0)));
@@ -37,10 +37,13 @@ uint calmLimit(uint motion, StoredBody stored) {
 }
 
 #ifdef SLEEPING
-// Whether a sleeping dynamic body that something awake touched wakes: a partner moves or its
-// contacts changed (`neighbourCalm` 0), or the force or torque on it departs from balance by more
-// than the wake acceleration. A kinematic body wakes only when the CPU sets it.
-bool wakesWhenTouched(StoredBody stored, vec3 force, vec3 torque, uint neighbourCalm) {
+// Whether a sleeping body that something awake touched wakes: a dynamic one when a partner
+// moves or its contacts changed (`neighbourCalm` 0), or the force or torque on it departs from
+// balance by more than the wake acceleration; a kinematic one never (the CPU wakes it by setting
+// it).
+bool wakesWhenTouched(uint motion, StoredBody stored, vec3 force, vec3 torque,
+                      uint neighbourCalm) {
+  if (motion != MOTION_DYNAMIC) return false;
   float mass = stored.inertia.w;
   vec3 unbalanced = force / mass + params.gravity;
   float torqueLimit = mass * stored.spin.w * params.wakeAcceleration;
