@@ -1,6 +1,7 @@
 // A World's life: creation (its settings checked, kernels compiled, buffers allocated), the
-// accessors, growing its capacities. Bodies, colliders, snapshots and the step have files of
-// their own (world_bodies.cpp, world_colliders.cpp, world_snapshots.cpp, world_step.cpp).
+// accessors, growing its capacities. Bodies, colliders, snapshots, the step and the statistics
+// have files of their own (world_bodies.cpp, world_colliders.cpp, world_snapshots.cpp,
+// world_step.cpp, world_stats.cpp).
 #include "sandphys/world.h"
 
 #include <algorithm>

@@ -327,12 +327,6 @@ struct World::Impl {
   void emit(double dt, StepReport* report);
   /// spawn_check.comp over the `count` granules just added from body slot `firstBody`.
   void checkSpawnPlaces(std::uint32_t firstBody, std::uint32_t count);
-  /// The statistics: those of the last reduce while they are current, else a new reduce.
-  WorldStats readStats();
-  /// stats_reduce.comp over every particle and body, and the counters. Sync point.
-  WorldStats reduceStats();
-  /// The fields of `s` that the CPU keeps or the counters hold.
-  void fillKeptFields(WorldStats& s) const;
   /// Something the statistics read may have changed, or the next substep may compute something:
   /// the next readStats reduces, the next step resets the peak overlaps and runs its first
   /// substep.
@@ -343,6 +337,14 @@ struct World::Impl {
   /// Whether the counters (kCounterCount words) show that the last substep listed no body and no
   /// particle to compute (collect_active.comp).
   static bool computedNothing(std::span<const std::uint32_t> counters);
+
+  // Statistics (world_stats.cpp)
+  /// The statistics: those of the last reduce while they are current, else a new reduce.
+  WorldStats readStats();
+  /// stats_reduce.comp over every particle and body, and the counters. Sync point.
+  WorldStats reduceStats();
+  /// The fields of `s` that the CPU keeps or the counters hold.
+  void fillKeptFields(WorldStats& s) const;
   /// The peak overlap of every particle restarts at zero (reset_peak_overlap.comp; nothing to do
   /// while peaksClear).
   void resetPeakOverlap();

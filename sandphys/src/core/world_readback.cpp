@@ -245,16 +245,6 @@ InitialOverlaps World::Impl::checkInitialOverlaps() {
   return result;
 }
 
-WorldStats World::readStats() {
-  impl().gpu->makeCurrent();
-  return impl().readStats();
-}
-
-void World::resetPeakOverlap() {
-  impl().gpu->makeCurrent();
-  impl().resetPeakOverlap();
-}
-
 Vec3 BodyForce::meanForce() const {
   const float n = substeps > 0 ? float(substeps) : 1.0f;
   return {force.x / n, force.y / n, force.z / n};
