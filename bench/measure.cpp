@@ -396,6 +396,7 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   result.listSkin = world.contactModel().listSkin;
   result.listNearSkin = world.contactModel().listNearSkin;
   result.gpuMemoryBytes = world.gpuMemoryBytes();
+  result.gpuMemoryByBuffer = world.gpuMemoryByBuffer();
   result.built = readPileState(world, pile, world.readStats());
   world.resetPeakOverlap();  // the settled state's peak is the settling's
 

@@ -121,6 +121,7 @@ struct SizeResult {
   float listNearSkin = 0.0f;
   double setupSeconds = 0.0;  ///< World creation (kernel compilation) and build, wall s
   std::uint64_t gpuMemoryBytes = 0;
+  std::vector<BufferMemory> gpuMemoryByBuffer;  ///< World::gpuMemoryByBuffer
 
   std::uint32_t settleSteps = 0;  ///< substeps actually run before measuring
   /// MeasureOptions::sleep: substeps run after the settling until all slept (or the wait ran

@@ -22,6 +22,59 @@ double shortest(float value) {
   return std::strtod(buffer, nullptr);
 }
 
+// Bytes per granule of each buffer, by name.
+nlohmann::json memoryJson(const SizeResult& size) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const BufferMemory& buffer : size.gpuMemoryByBuffer) {
+    out[buffer.name] = size.granules > 0 ? double(buffer.bytes) / size.granules : 0.0;
+  }
+  return out;
+}
+
+// Bytes per granule of the buffer `name` in `size` (0 when it has none).
+double bytesPerGranule(const SizeResult& size, const std::string& name) {
+  for (const BufferMemory& buffer : size.gpuMemoryByBuffer) {
+    if (buffer.name == name && size.granules > 0) return double(buffer.bytes) / size.granules;
+  }
+  return 0.0;
+}
+
+// GPU memory per granule, buffer by buffer: the buffers that hold 0.5% or more of the first size's
+// memory, the largest first, then the others together.
+void printMemory(std::FILE* out, const BenchReport& report) {
+  const SizeResult& first = report.sizes.front();
+  std::vector<BufferMemory> large;
+  for (const BufferMemory& buffer : first.gpuMemoryByBuffer) {
+    if (200 * buffer.bytes >= first.gpuMemoryBytes) large.push_back(buffer);
+  }
+  std::stable_sort(large.begin(), large.end(),
+                   [](const BufferMemory& a, const BufferMemory& b) { return a.bytes > b.bytes; });
+  std::fprintf(out,
+               "\nGPU memory per granule, B, by buffer (World::gpuMemoryByBuffer: those with 0.5%% "
+               "or more of the first size's, the largest first):\n%-20s",
+               "buffer");
+  for (const SizeResult& s : report.sizes) std::fprintf(out, " %10u", s.granules);
+  std::fprintf(out, "\n");
+  for (const BufferMemory& buffer : large) {
+    std::fprintf(out, "%-20s", buffer.name.c_str());
+    for (const SizeResult& s : report.sizes) {
+      std::fprintf(out, " %10.1f", bytesPerGranule(s, buffer.name));
+    }
+    std::fprintf(out, "\n");
+  }
+  std::fprintf(out, "%-20s", "the others");
+  for (const SizeResult& s : report.sizes) {
+    double rest = double(s.gpuMemoryBytes) / s.granules;
+    for (const BufferMemory& buffer : large) rest -= bytesPerGranule(s, buffer.name);
+    std::fprintf(out, " %10.1f", rest);
+  }
+  std::fprintf(out, "\n%-20s", "all");
+  for (const SizeResult& s : report.sizes) {
+    std::fprintf(out, " %10.1f", double(s.gpuMemoryBytes) / s.granules);
+  }
+  std::fprintf(out, "\n");
+}
+
 // Kernel names over all sizes, in dispatch order (the order of first appearance).
 std::vector<std::string> kernelNames(const BenchReport& report) {
   std::vector<std::string> names;
@@ -163,6 +216,7 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
       {"simulated_seconds_per_wall_second", size.simulatedPerWallSecond()},
       {"gpu_memory_bytes", size.gpuMemoryBytes},
       {"gpu_memory_bytes_per_granule", granules > 0 ? size.gpuMemoryBytes / granules : 0.0},
+      {"gpu_memory_bytes_per_granule_by_buffer", memoryJson(size)},
       {"time_step_s", shortest(size.timeStep)},
       {"contact_time_s", shortest(size.contactTime)},
       {"steps", size.steps},
@@ -520,6 +574,8 @@ void printReport(std::FILE* out, const BenchOptions& options, const BenchReport&
     }
     std::fprintf(out, "\n");
   }
+
+  if (!report.sizes.empty() && report.sizes.front().granules > 0) printMemory(out, report);
 
   if (measure.render.width > 0) {
     std::fprintf(out,

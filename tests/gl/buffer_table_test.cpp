@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -154,6 +155,32 @@ TEST(BufferTable, SleepBuffersTakeMemoryOnlyInASleepingWorldAndNearMarksOnlyInAn
     }
   }
   EXPECT_EQ(checked, 14u);
+}
+
+// World::gpuMemoryByBuffer names every buffer of the table, in its order, then the uniform block;
+// each entry is that buffer's size, the sizes add up to gpuMemoryBytes, and the buffers sized by
+// the particles hold the capacity's elements (the contact slots: four of 16 B per particle in each
+// group).
+TEST(BufferTable, MemoryByBufferIsEachBufferAndAddsUpToTheWorldsMemory) {
+  testing::TestWorld world(testing::smallSettings(128));
+  const World::Impl& w = WorldAccess::impl(*world);
+  const std::vector<BufferMemory> memory = world->gpuMemoryByBuffer();
+  ASSERT_EQ(memory.size(), kBindingCount + 1u);
+  std::uint64_t sum = 0;
+  for (unsigned b = 0; b < kBindingCount; ++b) {
+    SCOPED_TRACE(kGpuBuffers[b].array);
+    EXPECT_EQ(memory[b].name, kGpuBuffers[b].array);
+    EXPECT_EQ(memory[b].bytes, w.buffers[Binding(b)].size());
+    sum += memory[b].bytes;
+  }
+  EXPECT_EQ(memory.back().name, "params");
+  EXPECT_EQ(memory.back().bytes, w.buffers.params.size());
+  EXPECT_EQ(sum + memory.back().bytes, world->gpuMemoryBytes());
+  const std::uint64_t particles = world->particleCapacity();
+  EXPECT_EQ(memory[kParticlePosition].bytes, particles * 16u);
+  for (const Binding slots : {kContactSlots0, kContactSlots1, kContactSlots2}) {
+    EXPECT_EQ(memory[slots].bytes, particles * 4u * 16u) << memory[slots].name;
+  }
 }
 
 }  // namespace

@@ -32,6 +32,12 @@ struct KernelTime {
   std::uint32_t dispatches = 0;
 };
 
+/// GPU memory of one of a World's buffers (World::gpuMemoryByBuffer).
+struct BufferMemory {
+  std::string name;  ///< the buffer's array name in the kernels, or "params" (the uniform block)
+  std::uint64_t bytes = 0;
+};
+
 /// A simulation of sand granules and particle-sampled bodies, entirely on the GPU.
 ///
 /// Capacities are fixed at creation (WorldSettings) and grown only by reserve(); nothing is
@@ -154,6 +160,10 @@ class World {
   double simulatedTime() const;
   /// Bytes of GPU memory held by this world's buffers.
   std::uint64_t gpuMemoryBytes() const;
+  /// The same bytes buffer by buffer, in the order of the library's buffer table (the uniform
+  /// block last; buffers a World does not use hold their smallest size). They add up to
+  /// gpuMemoryBytes(). No sync.
+  std::vector<BufferMemory> gpuMemoryByBuffer() const;
   /// Every collider as last given to addCollider/setCollider, indexed by ColliderId::index (for
   /// renderers and debug drawing). A copy of CPU-side descriptors; no sync.
   std::vector<ColliderShape> colliders() const;

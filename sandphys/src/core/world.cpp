@@ -118,6 +118,9 @@ double World::simulatedTime() const {
 std::uint64_t World::gpuMemoryBytes() const {
   return impl().buffers.bytes();
 }
+std::vector<BufferMemory> World::gpuMemoryByBuffer() const {
+  return impl().buffers.byBuffer();
+}
 std::vector<ColliderShape> World::colliders() const {
   return impl().colliderShapes;
 }

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <bit>
+#include <vector>
 
 #include "core/world_impl.h"
 #include "gl/gl_check.h"
@@ -152,9 +153,19 @@ void WorldBuffers::bindAll() const {
   }
 }
 
+std::vector<BufferMemory> WorldBuffers::byBuffer() const {
+  std::vector<BufferMemory> out;
+  out.reserve(kBindingCount + 1);
+  for (std::size_t b = 0; b < kBindingCount; ++b) {
+    out.push_back({kGpuBuffers[b].array, storage[b].size()});
+  }
+  out.push_back({"params", params.size()});
+  return out;
+}
+
 std::uint64_t WorldBuffers::bytes() const {
-  std::uint64_t total = params.size();
-  for (const auto& b : storage) total += b.size();
+  std::uint64_t total = 0;
+  for (const BufferMemory& buffer : byBuffer()) total += buffer.bytes;
   return total;
 }
 

@@ -47,6 +47,8 @@ struct WorldBuffers {
                 std::uint32_t colliders, std::uint32_t bodiesInUse, std::uint32_t particlesInUse,
                 bool history, bool rollingHistory, bool sleeping);
   void bindAll() const;
+  /// Each buffer's size, in binding order, then the uniform block's.
+  std::vector<BufferMemory> byBuffer() const;
   std::uint64_t bytes() const;
 };
 
