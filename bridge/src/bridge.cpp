@@ -180,12 +180,8 @@ void Bridge::applySandForces(double weight) {
           c.body->activate();
         }
       }
-      m_frameForce[i] = {m_frameForce[i].x + float(weight) * force.x,
-                         m_frameForce[i].y + float(weight) * force.y,
-                         m_frameForce[i].z + float(weight) * force.z};
-      m_frameTorque[i] = {m_frameTorque[i].x + float(weight) * torque.x,
-                          m_frameTorque[i].y + float(weight) * torque.y,
-                          m_frameTorque[i].z + float(weight) * torque.z};
+      m_frameForce[i] += float(weight) * force;
+      m_frameTorque[i] += float(weight) * torque;
       break;
     }
   }

@@ -158,10 +158,11 @@ struct StatsPartial {
 // asleep together. Dynamic bodies sleep, and so does a kinematic body set exactly at rest (sleep
 // stops a body dead, which must not change a kinematic body's motion); the count of every other
 // movable body stops at params.sleepSubsteps - 1 (calmLimit in rigid_motion.glsl). The contacts
-// pass leaves in particleForce.w the smallest count among the particle's partners (CALM_UNBOUNDED: none), 0 when a moving collider touches it or, asleep,
-// when its contacts are not those it fell asleep with. An awake particle marks the sleeping bodies
-// it touches by setting their count (not their particles' copies) to calmTouched(): they are
-// computed in the next substep (collect_active.comp takes the mark back to params.sleepSubsteps).
+// pass leaves in particleForce.w the smallest count among the particle's partners
+// (CALM_UNBOUNDED: none), 0 when a moving collider touches it or, asleep, when its contacts are
+// not those it fell asleep with. An awake particle marks the sleeping bodies it touches by setting
+// their count (not their particles' copies) to calmTouched(): they are computed in the next
+// substep (collect_active.comp takes the mark back to params.sleepSubsteps).
 #define CALM_UNBOUNDED 0xffffffffu
 #define calmTouched() (params.sleepSubsteps + 1u)
 // Bodies per thread of collect_active.comp, a chunk of quietChunks each (C++: kCollectChunk).
