@@ -22,11 +22,16 @@ double shortest(float value) {
   return std::strtod(buffer, nullptr);
 }
 
+// `bytes` of GPU memory per granule of `size` (0 without granules).
+double perGranule(const SizeResult& size, std::uint64_t bytes) {
+  return size.granules > 0 ? double(bytes) / size.granules : 0.0;
+}
+
 // Bytes per granule of each buffer, by name.
 nlohmann::json memoryJson(const SizeResult& size) {
   nlohmann::json out = nlohmann::json::object();
   for (const BufferMemory& buffer : size.gpuMemoryByBuffer) {
-    out[buffer.name] = size.granules > 0 ? double(buffer.bytes) / size.granules : 0.0;
+    out[buffer.name] = perGranule(size, buffer.bytes);
   }
   return out;
 }
@@ -34,7 +39,7 @@ nlohmann::json memoryJson(const SizeResult& size) {
 // Bytes per granule of the buffer `name` in `size` (0 when it has none).
 double bytesPerGranule(const SizeResult& size, const std::string& name) {
   for (const BufferMemory& buffer : size.gpuMemoryByBuffer) {
-    if (buffer.name == name && size.granules > 0) return double(buffer.bytes) / size.granules;
+    if (buffer.name == name) return perGranule(size, buffer.bytes);
   }
   return 0.0;
 }
@@ -64,13 +69,13 @@ void printMemory(std::FILE* out, const BenchReport& report) {
   }
   std::fprintf(out, "%-20s", "the others");
   for (const SizeResult& s : report.sizes) {
-    double rest = double(s.gpuMemoryBytes) / s.granules;
+    double rest = perGranule(s, s.gpuMemoryBytes);
     for (const BufferMemory& buffer : large) rest -= bytesPerGranule(s, buffer.name);
     std::fprintf(out, " %10.1f", rest);
   }
   std::fprintf(out, "\n%-20s", "all");
   for (const SizeResult& s : report.sizes) {
-    std::fprintf(out, " %10.1f", double(s.gpuMemoryBytes) / s.granules);
+    std::fprintf(out, " %10.1f", perGranule(s, s.gpuMemoryBytes));
   }
   std::fprintf(out, "\n");
 }
@@ -166,7 +171,6 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
                                      ? kernel.millisecondsPerStep / size.kernelMillisecondsPerStep()
                                      : 0.0}};
   }
-  const double granules = size.granules;
   // Without kernel times there is nothing to count dispatches with: null, not a guess.
   const bool profiled = !size.kernels.empty();
   nlohmann::json layout = {{"spacing_d", size.layout.spacing / d},
@@ -215,7 +219,7 @@ nlohmann::json sizeJson(const SizeResult& size, double d) {
       {"microseconds_per_granule_step", size.microsecondsPerGranuleStep()},
       {"simulated_seconds_per_wall_second", size.simulatedPerWallSecond()},
       {"gpu_memory_bytes", size.gpuMemoryBytes},
-      {"gpu_memory_bytes_per_granule", granules > 0 ? size.gpuMemoryBytes / granules : 0.0},
+      {"gpu_memory_bytes_per_granule", perGranule(size, size.gpuMemoryBytes)},
       {"gpu_memory_bytes_per_granule_by_buffer", memoryJson(size)},
       {"time_step_s", shortest(size.timeStep)},
       {"contact_time_s", shortest(size.contactTime)},
