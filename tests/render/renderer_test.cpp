@@ -379,9 +379,18 @@ TEST_F(RenderScene, EveryQualityShowsThePileAndItsShadowAtItsScale) {
     const Image image = drawImage(settings, &stats, ("quality_" + name + ".png").c_str());
     EXPECT_EQ(stats.renderWidth, int(std::lround(kWidth * settings.renderScale))) << name;
     EXPECT_EQ(stats.renderHeight, int(std::lround(kHeight * settings.renderScale))) << name;
+    // The shadow, measured against the same preset without it: at the low preset it darkens the
+    // floor behind the pile 1.7 times and leaves the lit floor 1.6 times as bright as that (Mesa
+    // 22.3 and 25.0; the pile settles differently on each), where without it the two differ by
+    // under 1.2 (PileShadowsTheFloorBehindIt).
     const double dark = floorLuminance(image, -r, 0.0f);
     const double lit = floorLuminance(image, 0.0f, r);
-    EXPECT_GT(lit, 1.6 * dark) << name << ": lit floor " << lit << ", behind the pile " << dark;
+    render::RenderSettings unshadowed = settings;
+    unshadowed.shadows = false;
+    const double darkNoShadow = floorLuminance(drawImage(unshadowed), -r, 0.0f);
+    EXPECT_GT(darkNoShadow, 1.5 * dark)
+        << name << ": behind the pile " << dark << ", " << darkNoShadow << " without the shadow";
+    EXPECT_GT(lit, 1.4 * dark) << name << ": lit floor " << lit << ", behind the pile " << dark;
     // Same picture as the best preset: compared in blocks of 8x8 pixels, because a grain a few
     // pixels wide is necessarily softer when lit at half the resolution.
     constexpr int kBlock = 8;
