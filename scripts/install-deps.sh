@@ -2,6 +2,10 @@
 # Installs the Debian packages listed in scripts/debian-packages.txt that are not installed yet.
 # Needs root or sudo only when something is missing; runs `apt-get update` only then.
 # Usage: scripts/install-deps.sh [extra-package...]
+# With SANDPHYS_MESA_BACKPORTS=1 on Debian 12, Mesa (EGL, GLX and the drivers, llvmpipe and the
+# GPUs' alike) comes from bookworm-backports, which it adds to apt's sources: Mesa 25.0 where
+# Debian 12 has 22.3, whose llvmpipe runs sandphys faster (bench/README.md, "Mesa from
+# backports"). It upgrades the machine's OpenGL drivers, so it is not the default.
 set -euo pipefail
 
 script_dir="$(cd -- "$(dirname -- "${BASH_SOURCE[0]}")" && pwd)"
@@ -28,12 +32,31 @@ for package in "${packages[@]}"; do
   [[ "${status}" == "installed" ]] || missing+=("${package}")
 done
 
-if ((${#missing[@]} == 0)); then
+# Mesa's packages that are not from backports yet (SANDPHYS_MESA_BACKPORTS=1).
+backports=()
+if [[ "${SANDPHYS_MESA_BACKPORTS:-0}" == 1 ]]; then
+  # shellcheck source=/dev/null
+  codename="$(. /etc/os-release && echo "${VERSION_CODENAME:-}")"
+  if [[ "${codename}" != bookworm ]]; then
+    echo "install-deps: SANDPHYS_MESA_BACKPORTS=1 is for Debian 12 (bookworm), not" \
+      "'${codename:-unknown}'" >&2
+    exit 1
+  fi
+  for package in libgl1-mesa-dri libegl-mesa0 libglx-mesa0; do
+    version="$(dpkg-query --show --showformat='${Version}' "${package}" 2>/dev/null || true)"
+    [[ "${version}" == *bpo12* ]] || backports+=("${package}")
+  done
+fi
+
+if ((${#missing[@]} == 0 && ${#backports[@]} == 0)); then
   echo "install-deps: all ${#packages[@]} Debian packages are installed"
   exit 0
 fi
 
-echo "install-deps: installing ${missing[*]}"
+if ((${#missing[@]} > 0)); then echo "install-deps: installing ${missing[*]}"; fi
+if ((${#backports[@]} > 0)); then
+  echo "install-deps: installing from bookworm-backports: ${backports[*]}"
+fi
 as_root=()
 if ((EUID != 0)); then
   if ! command -v sudo >/dev/null 2>&1; then
@@ -46,5 +69,16 @@ if ((EUID != 0)); then
 fi
 
 apt=("${as_root[@]}" env DEBIAN_FRONTEND=noninteractive apt-get -o DPkg::Lock::Timeout=300)
+if ((${#backports[@]} > 0)) &&
+  ! grep -qrs --include='*.list' --include='*.sources' --include=sources.list bookworm-backports \
+    /etc/apt/; then
+  echo "deb http://deb.debian.org/debian bookworm-backports main" |
+    "${as_root[@]}" tee /etc/apt/sources.list.d/bookworm-backports.list >/dev/null
+fi
 "${apt[@]}" update
-"${apt[@]}" install -y --no-install-recommends "${missing[@]}"
+if ((${#missing[@]} > 0)); then
+  "${apt[@]}" install -y --no-install-recommends "${missing[@]}"
+fi
+if ((${#backports[@]} > 0)); then
+  "${apt[@]}" install -y --no-install-recommends -t bookworm-backports "${backports[@]}"
+fi
