@@ -70,8 +70,8 @@ fi
 
 apt=("${as_root[@]}" env DEBIAN_FRONTEND=noninteractive apt-get -o DPkg::Lock::Timeout=300)
 if ((${#backports[@]} > 0)) &&
-  ! grep -qrs --include='*.list' --include='*.sources' --include=sources.list bookworm-backports \
-    /etc/apt/; then
+  ! grep -qrsE --include='*.list' --include='*.sources' --include=sources.list \
+    '^[^#]*bookworm-backports' /etc/apt/; then
   echo "deb http://deb.debian.org/debian bookworm-backports main" |
     "${as_root[@]}" tee /etc/apt/sources.list.d/bookworm-backports.list >/dev/null
 fi

@@ -191,7 +191,8 @@ constexpr std::uint32_t kBedGranules = 432;
 // Beyond this many diameters from the rock's axis (5.6 rock radii) nothing may wake.
 constexpr double kQuietRadius = 14.0;
 // How long the sand the rock woke takes to sleep again follows the bits of its settling: a
-// second on one driver, 1.5 s on another (Mesa 22.3 and 25.0 on llvmpipe). Counted after two.
+// second on one driver, 1.5 s on another (Mesa 22.3 and 25.0 on llvmpipe). They are counted two
+// seconds after the drop.
 constexpr double kSleepAgainSeconds = 1.0;
 
 // Compares the particle pairs of `contacts` with those a CPU search of every pair of particles of
