@@ -61,7 +61,13 @@ as_root=()
 if ((EUID != 0)); then
   if ! command -v sudo >/dev/null 2>&1; then
     echo "install-deps: not root and sudo is missing; as root, run:" >&2
-    echo "  apt-get update && apt-get install ${missing[*]}" >&2
+    if ((${#missing[@]} > 0)); then
+      echo "  apt-get update && apt-get install ${missing[*]}" >&2
+    fi
+    if ((${#backports[@]} > 0)); then
+      echo "  and, with bookworm-backports in apt's sources:" >&2
+      echo "  apt-get update && apt-get install -t bookworm-backports ${backports[*]}" >&2
+    fi
     exit 1
   fi
   # Without a terminal (CI), fail at once instead of waiting for a password.

@@ -213,6 +213,16 @@ class RenderScene : public ::testing::Test {
     return n ? sum / n : 0.0;
   }
 
+  // The floor `r` beyond the foot of the heap: downwind of the light (-x), in the heap's shadow,
+  // and at the same distance across the light (+z, towards the camera), in full sun.
+  struct FloorLight {
+    double behind = 0.0;
+    double across = 0.0;
+  };
+  static FloorLight floorLight(const Image& image, float r) {
+    return {floorLuminance(image, -r, 0.0f), floorLuminance(image, 0.0f, r)};
+  }
+
   static World* world;
   static std::vector<BodyState> bodies;
 };
@@ -276,23 +286,20 @@ TEST_F(RenderScene, PileIsSandInsideItsProjectedBoxAndBackgroundElsewhere) {
 }
 
 TEST_F(RenderScene, PileShadowsTheFloorBehindIt) {
-  // Floor beyond the foot of the heap: downwind of the light (-x) it lies in the heap's shadow;
-  // at the same distance across the light (+z, towards the camera) it is in full sun.
   const float r = 1.3f * pileRadius();
   ASSERT_LT(r + 2 * kD, kFloorRadius);
   render::RenderSettings settings = lowSun();
-  const Image shadowed = drawImage(settings, nullptr, "pile_shadow.png");
-  const double dark = floorLuminance(shadowed, -r, 0.0f);
-  const double lit = floorLuminance(shadowed, 0.0f, r);
-  EXPECT_GT(lit, 1.6 * dark) << "lit floor " << lit << ", floor behind the pile " << dark;
+  const FloorLight shadowed = floorLight(drawImage(settings, nullptr, "pile_shadow.png"), r);
+  EXPECT_GT(shadowed.across, 1.6 * shadowed.behind)
+      << "lit floor " << shadowed.across << ", floor behind the pile " << shadowed.behind;
 
   // Without the shadow map both regions get the same light: this test measures the shadow.
   settings.shadows = false;
-  const Image unshadowed = drawImage(settings, nullptr, "pile_no_shadow.png");
-  const double darkNoShadow = floorLuminance(unshadowed, -r, 0.0f);
-  const double litNoShadow = floorLuminance(unshadowed, 0.0f, r);
-  EXPECT_LT(litNoShadow, 1.2 * darkNoShadow) << litNoShadow << " vs " << darkNoShadow;
-  EXPECT_GT(darkNoShadow, 1.3 * dark) << "the shadow map made no difference behind the pile";
+  const FloorLight unshadowed = floorLight(drawImage(settings, nullptr, "pile_no_shadow.png"), r);
+  EXPECT_LT(unshadowed.across, 1.2 * unshadowed.behind)
+      << unshadowed.across << " vs " << unshadowed.behind;
+  EXPECT_GT(unshadowed.behind, 1.3 * shadowed.behind)
+      << "the shadow map made no difference behind the pile";
 }
 
 TEST_F(RenderScene, ColliderIsDrawnInANeutralMaterial) {
@@ -383,14 +390,15 @@ TEST_F(RenderScene, EveryQualityShowsThePileAndItsShadowAtItsScale) {
     // floor behind the pile 1.7 times and leaves the lit floor 1.6 times as bright as that (Mesa
     // 22.3 and 25.0; the pile settles differently on each), where without it the two differ by
     // under 1.2 (PileShadowsTheFloorBehindIt).
-    const double dark = floorLuminance(image, -r, 0.0f);
-    const double lit = floorLuminance(image, 0.0f, r);
-    render::RenderSettings unshadowed = settings;
-    unshadowed.shadows = false;
-    const double darkNoShadow = floorLuminance(drawImage(unshadowed), -r, 0.0f);
-    EXPECT_GT(darkNoShadow, 1.5 * dark)
-        << name << ": behind the pile " << dark << ", " << darkNoShadow << " without the shadow";
-    EXPECT_GT(lit, 1.4 * dark) << name << ": lit floor " << lit << ", behind the pile " << dark;
+    const FloorLight shadowed = floorLight(image, r);
+    render::RenderSettings withoutShadows = settings;
+    withoutShadows.shadows = false;
+    const FloorLight unshadowed = floorLight(drawImage(withoutShadows), r);
+    EXPECT_GT(unshadowed.behind, 1.5 * shadowed.behind)
+        << name << ": behind the pile " << shadowed.behind << ", " << unshadowed.behind
+        << " without the shadow";
+    EXPECT_GT(shadowed.across, 1.4 * shadowed.behind)
+        << name << ": lit floor " << shadowed.across << ", behind the pile " << shadowed.behind;
     // Same picture as the best preset: compared in blocks of 8x8 pixels, because a grain a few
     // pixels wide is necessarily softer when lit at half the resolution.
     constexpr int kBlock = 8;
