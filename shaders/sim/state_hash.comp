@@ -1,6 +1,7 @@
 #version 450
 // The state hash of a recording (docs/recording.md), once per recorded frame: each body slot's
-// stored bits are absorbed into two 32-bit lanes seeded with its index, and the lanes are summed
+// stored bits (and its body's id, when that is not its index) are absorbed into two 32-bit lanes
+// seeded with its index, and the lanes are summed
 // over the slots. Integer sums do not depend on the order the threads ran in, so the hash is the
 // same on every run; src/recording/state_hash.cpp computes the same function on the CPU. Under
 // ContactLaw::HertzMindlin every particle's contact slots and pair counts (the history a
@@ -17,6 +18,7 @@ BODY_ORIENTATION(readonly)
 BODY_VELOCITY(readonly)
 BODY_ANGULAR_VELOCITY(readonly)
 BODY_INFO(readonly)
+BODY_IDS(readonly)
 STATE_HASH_PARTIALS(writeonly)
 #ifndef PAPER_LAW
 CONTACT_SLOTS_0(readonly)
@@ -76,6 +78,9 @@ void main() {
     h = absorb3(h, bodyAngularVelocity[b]);
     // The status word (docs/recording.md): alive, and the calm count above it (0 without sleep).
     h = absorb(h, ((bodyInfo[b].z & BODY_ALIVE) != 0u ? 1u : 0u) | (floatBitsToUint(v.w) << 1));
+    // The body's id, where a sort of the granules by place put another body's state in its slot.
+    uint id = bodyIds[b];
+    if (id != b) h = absorb(h, id);
     sum += h;
   }
 #ifndef PAPER_LAW

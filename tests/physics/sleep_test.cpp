@@ -617,7 +617,7 @@ TEST(Sleep, PassingOverQuietChunksChangesNoBit) {
 
 // The first field in which two WorldStats differ, bit for bit, or nullptr.
 const char* firstStatsDifference(const WorldStats& a, const WorldStats& b) {
-  static_assert(sizeof(WorldStats) == 136, "a field was added to WorldStats: compare it below");
+  static_assert(sizeof(WorldStats) == 144, "a field was added to WorldStats: compare it below");
   const std::pair<const char*, bool> same[] = {
       {"bodies", a.bodies == b.bodies},
       {"particles", a.particles == b.particles},
@@ -631,6 +631,7 @@ const char* firstStatsDifference(const WorldStats& a, const WorldStats& b) {
       {"listBuilds", a.listBuilds == b.listBuilds},
       {"listNearMarkings", a.listNearMarkings == b.listNearMarkings},
       {"neighbourListOverflows", a.neighbourListOverflows == b.neighbourListOverflows},
+      {"granuleSorts", a.granuleSorts == b.granuleSorts},
       {"stillGridBuilds", a.stillGridBuilds == b.stillGridBuilds},
       {"movingGridParticles", a.movingGridParticles == b.movingGridParticles},
       {"kineticEnergy", a.kineticEnergy == b.kineticEnergy},

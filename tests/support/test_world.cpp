@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/world_access.h"
+#include "core/world_impl.h"
 
 namespace sandphys::testing {
 
@@ -53,7 +54,7 @@ void searchEveryParticle(World& world) {
   World::Impl& w = detail::WorldAccess::impl(world);
   w.kernels.release();
   w.kernels.compile(w.settings.contactLaw, w.sleep.enabled,
-                    w.settings.material.rollingFriction > 0.0f, true);
+                    w.settings.material.rollingFriction > 0.0f, w.sortsGranules(), true);
   // Without sleep the list build lists the particles the search takes: the next substep builds.
   w.listsStale = true;
 }
@@ -84,6 +85,18 @@ void useOneGrid(World& world) {
   World::Impl& w = detail::WorldAccess::impl(world);
   w.oneGrid = true;
   w.paramsDirty = true;
+}
+
+void sortGranulesNow(World& world) {
+  gpu().makeCurrent();
+  World::Impl& w = detail::WorldAccess::impl(world);
+  w.buffers.bindAll();
+  w.sortGranules();
+}
+
+std::vector<ContactRecord> contactsFromBothSides(World& world) {
+  World::Impl& w = detail::WorldAccess::impl(world);
+  return w.listContacts(0, w.particleCount, 0.0f, true);
 }
 
 WorldSettings smallSettings(std::uint32_t maxBodies) {

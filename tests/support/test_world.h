@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace sandphys::testing {
 
@@ -51,6 +52,14 @@ std::uint32_t particlesLeftToSearch(World& world);
 /// code: those a list build found near a collider, and those with more contact slots in use than
 /// the contacts pass loads.
 std::uint32_t particlesLeftToColliders(World& world);
+
+/// Sorts the granules of `world` by place now (World::Impl::sortGranules), as a substep at a
+/// multiple of WorldSettings::sortInterval does before its contacts; `world` must sort.
+void sortGranulesNow(World& world);
+
+/// Every contact of `world` from each of its particles' sides (World::readContacts gives a pair
+/// once, from its lower particle's side).
+std::vector<ContactRecord> contactsFromBothSides(World& world);
 
 /// Settings for small test scenes: default material, capacity for `maxBodies` bodies.
 WorldSettings smallSettings(std::uint32_t maxBodies = 256);

@@ -103,6 +103,9 @@ struct WorldStats {
   /// (total over builds). Their further partners are found in the grid each substep: exact, only
   /// slower.
   std::uint64_t neighbourListOverflows = 0;
+  /// Sorts of the granules by place so far (total; WorldSettings::sortInterval, 0 without): one
+  /// at every multiple of the interval, counted in substeps from the World's start.
+  std::uint64_t granuleSorts = 0;
   /// WorldSettings::sleep (0 without): the builds that sorted the sleepers into a grid again
   /// (total: the CPU changed the bodies, or enough sleepers had moved since), and the particles
   /// the last build sorted into its moving grid, the awake ones and the sleepers that moved

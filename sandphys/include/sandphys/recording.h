@@ -82,6 +82,8 @@ class RecordingWriter {
 
  private:
   void writeRecord(std::uint32_t tag, const std::vector<std::uint8_t>& payload);
+  /// The ROLL record of `snapshot`'s rolling springs.
+  void addRolling(const WorldSnapshot& snapshot);
 
   std::filesystem::path m_file;
   std::ofstream m_out;

@@ -120,6 +120,13 @@ struct WorldSettings {
   /// [kMinListSkin, kMaxListSkin] · d); otherwise in (0, d]. It changes the cost only: contacts
   /// are summed in partner order whenever the lists were built, so no bit of the result.
   float listSkin = 0.0f;
+  /// Substeps between sorts of the granules by place; 0: never. Sand that flows or is poured
+  /// ends up with neighbours far apart in memory, which costs every contact pass (LAMMPS sorts its
+  /// atoms every 1000 steps for the same reason). A sort moves the states of the free, living
+  /// granules among their slots so that slot order follows a walk through the grid; BodyIds stay
+  /// the bodies' own. The sum over a particle's contacts then runs in another order, so the bits
+  /// of the result depend on it (deterministically). Not with sleep (yet).
+  std::uint32_t sortInterval = 0;
   /// Substeps one call of World::step may run; > 0. Time beyond it is dropped and reported.
   std::uint32_t maxSubstepsPerFrame = 512;
   /// Capacity of bodies (granules, sampled bodies, rough floors); fixed at creation, grown only

@@ -91,6 +91,10 @@ struct WorldSnapshot {
   /// With sleep (WorldSettings::sleep), every particle slot in use; empty without, where every
   /// substep computes every particle's force before it is used.
   std::vector<StoredForces> forces;
+  /// The id (BodyId::index) of the body in each slot, once the sort of the granules by place
+  /// (WorldSettings::sortInterval) has moved any; empty while every slot holds the body of its
+  /// own index.
+  std::vector<std::uint32_t> bodyIds;
 };
 
 /// The hash World::readStateHash computes on the GPU, computed here on the CPU from the same bits

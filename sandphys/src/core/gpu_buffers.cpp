@@ -13,6 +13,10 @@ std::string generatedBufferDeclarations() {
            "(access) layout(std430, binding = " + std::to_string(b) + ") access buffer " +
            spec.name + "Buffer { " + header + spec.element + " " + spec.array + "[]; };\n";
   }
+  // The one binding past the table's: the buffer the sort of the granules moves at the time
+  // (common/granule_order.glsl), as words.
+  out += "#define ORDER_TARGET(access) layout(std430, binding = " + std::to_string(kOrderTarget) +
+         ") access buffer OrderTargetBuffer { uint orderTarget[]; };\n";
   for (const GpuBufferSpec& spec : kGpuBuffers) {
     if (spec.textureUnit == kNoTextureUnit) continue;
     const char* sampler =

@@ -20,6 +20,8 @@ namespace sandphys::detail {
 /// RollingHistory: the particles when it also keeps rolling springs (rolling friction), else one;
 /// SleepBodies, SleepParticles: the bodies, the particles with sleep, else one unit; SleepChunks:
 /// collect_active.comp's chunks of kCollectChunk bodies with sleep, else one unit.
+/// OrderBodies: the bodies when the granules are sorted by place (WorldSettings::sortInterval),
+/// else one unit.
 /// AwakeLists: the particles without sleep, else one unit, rebuilt from the lists.
 enum class SizedBy {
   Bodies,
@@ -27,6 +29,7 @@ enum class SizedBy {
   SleepBodies,
   SleepParticles,
   SleepChunks,
+  OrderBodies,
   Lists,
   AwakeLists,
   History,
@@ -45,6 +48,9 @@ enum Binding : unsigned {
 #include "core/gpu_buffers.def"
   kBindingCount
 };
+/// The storage binding past the table's: whichever buffer the sort of the granules by place moves
+/// (World::Impl::sortGranules).
+inline constexpr unsigned kOrderTarget = kBindingCount;
 
 /// Texture units of the read-only buffer-texture views (View in gpu_buffers.def). On llvmpipe an
 /// SSBO load at a per-invocation offset runs lane by lane, while a texel fetch is one vector

@@ -25,9 +25,9 @@ World::Impl::Impl(const GpuContext& context, const WorldSettings& s) : gpu(&cont
   granule = tetrahedronTemplate(settings.particleDiameter, settings.material.density);
 
   context.makeCurrent();
-  kernels.compile(settings.contactLaw, sleep.enabled, keepsRollingHistory());
+  kernels.compile(settings.contactLaw, sleep.enabled, keepsRollingHistory(), sortsGranules());
   buffers.allocate(bodyCapacity, particleCapacity, tableCapacity, settings.maxColliders, 0, 0,
-                   keepsHistory(), keepsRollingHistory(), sleep.enabled);
+                   keepsHistory(), keepsRollingHistory(), sleep.enabled, sortsGranules());
   profiler.setEnabled(settings.profileKernels);
   uploadParams();
 }
@@ -87,7 +87,7 @@ void World::reserve(std::uint32_t maxBodies, std::uint32_t maxParticles) {
   w.tableCapacity = HashTable::sizeFor(w.particleCapacity);
   w.buffers.allocate(w.bodyCapacity, w.particleCapacity, w.tableCapacity, w.settings.maxColliders,
                      w.bodyCount, w.particleCount, w.keepsHistory(), w.keepsRollingHistory(),
-                     w.sleep.enabled);
+                     w.sleep.enabled, w.sortsGranules());
   w.paramsDirty = true;
   // A grown table, and grown lists, are new, empty buffers.
   w.gridValid = false;

@@ -165,11 +165,12 @@ void World::setBodyState(BodyId id, const BodyDesc& state) {
   requireFiniteVec("BodyDesc.velocity", state.velocity);
   requireFiniteVec("BodyDesc.angularVelocity", state.angularVelocity);
   Impl& w = impl();
-  requireResolvable("BodyDesc.position", state.position, w.boundingRadii[id.index],
+  const std::uint32_t slot = w.slotOf(id.index);
+  requireResolvable("BodyDesc.position", state.position, w.boundingRadii[slot],
                     w.settings.particleDiameter);
   BodyDesc d = state;
   d.orientation = normalised(state.orientation, "BodyDesc.orientation");
-  const Motion added = w.bodyMotions[id.index];
+  const Motion added = w.bodyMotions[slot];
   if (state.motion != added) {
     throw InvalidArgument("BodyDesc.motion = " + std::to_string(unsigned(state.motion)) +
                           " for body " + std::to_string(id.index) +
@@ -177,7 +178,7 @@ void World::setBodyState(BodyId id, const BodyDesc& state) {
                           std::to_string(unsigned(added)) + "; 0 dynamic, 1 kinematic, 2 static)");
   }
   w.gpu->makeCurrent();
-  w.placeBody(id.index, d);
+  w.placeBody(slot, d);
 }
 
 }  // namespace sandphys

@@ -70,6 +70,7 @@ std::uint32_t World::Impl::addBodies(const ParticleTemplate& shape,
   }
   bodyCount += std::uint32_t(n);
   particleCount += std::uint32_t(n * perBody);
+  addIds(firstBody, bodyCount);
   generations.resize(bodyCount, 0);
   principalRotations.resize(bodyCount, shape.principalRotation);
   for (const BodyDesc& d : descs) bodyMotions.push_back(d.motion);
@@ -171,7 +172,8 @@ void World::Impl::requireImpenetrableSurface(const ParticleTemplate& shape) cons
 BodyId World::Impl::bodyId(std::uint32_t slot) const {
   SANDPHYS_ASSERT(slot < bodyCount, "body slot " + std::to_string(slot) + " of " +
                                         std::to_string(bodyCount) + " in use");
-  return BodyId{slot, generations[slot]};
+  const std::uint32_t id = idOf(slot);
+  return BodyId{id, generations[id]};
 }
 
 void World::Impl::requireBody(BodyId id) const {

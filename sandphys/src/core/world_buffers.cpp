@@ -48,7 +48,7 @@ HashTable HashTable::forParticles(std::uint32_t particles) {
 void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::uint32_t tableSize,
                             std::uint32_t colliders, std::uint32_t bodiesInUse,
                             std::uint32_t particlesInUse, bool history, bool rollingHistory,
-                            bool sleeping) {
+                            bool sleeping, bool sorting) {
   const std::uint32_t grids = sleeping ? 2u : 1u;
   for (unsigned b = 0; b < kBindingCount; ++b) {
     const GpuBufferSpec& spec = kGpuBuffers[b];
@@ -74,6 +74,9 @@ void WorldBuffers::allocate(std::uint32_t bodies, std::uint32_t particles, std::
       case SizedBy::SleepChunks:
         // A cache, taken back to "scan" whenever bodies change (World::Impl::prepareBodies).
         count = sleeping ? (std::size_t(bodies) + kCollectChunk - 1) / kCollectChunk : 1;
+        break;
+      case SizedBy::OrderBodies:
+        count = sorting ? bodies : 1;  // written anew by each sort
         break;
       case SizedBy::Lists:
         count = particles;
@@ -169,7 +172,8 @@ std::uint64_t WorldBuffers::bytes() const {
   return total;
 }
 
-void WorldKernels::compile(ContactLaw law, bool sleeping, bool rollingFriction, bool searchEvery) {
+void WorldKernels::compile(ContactLaw law, bool sleeping, bool rollingFriction, bool sorting,
+                           bool searchEvery) {
   gl::ShaderLibrary library;
   std::vector<std::string> defines;
   if (law == ContactLaw::PaperViscous) defines.push_back("PAPER_LAW 1");
@@ -209,6 +213,15 @@ void WorldKernels::compile(ContactLaw law, bool sleeping, bool rollingFriction, 
     wakeRegion = compile("sim/wake_region.comp");
     collectActive = compile("sim/collect_active.comp");
   }
+  if (sorting) {
+    orderSequence = compile("sim/order_sequence.comp");
+    orderSources = compile("sim/order_sources.comp");
+    orderSlots = compile("sim/order_slots.comp");
+    orderMoves = compile("sim/order_moves.comp");
+    orderPack = compile("sim/order_pack.comp");
+    orderGather = compile("sim/order_gather.comp");
+    if (law == ContactLaw::HertzMindlin) orderKeys = compile("sim/order_keys.comp");
+  }
 }
 
 void WorldKernels::release() {
@@ -235,7 +248,14 @@ void WorldKernels::release() {
                    stateHash,
                    spawnCheck,
                    wakeRegion,
-                   collectActive}) {
+                   collectActive,
+                   orderSequence,
+                   orderSources,
+                   orderSlots,
+                   orderMoves,
+                   orderPack,
+                   orderGather,
+                   orderKeys}) {
     if (p) glDeleteProgram(p);
   }
   *this = {};

@@ -91,6 +91,18 @@ void requireRestorable(const WorldSnapshot& snapshot) {
     requireUnit(slot + ".principalOrientation", b.principalOrientation);
     require(b.calm < (1u << 30), slot + ".calm", b.calm, "must be < 2^30");
   }
+  if (!snapshot.bodyIds.empty()) {
+    require(snapshot.bodyIds.size() == snapshot.bodies.size(), "WorldSnapshot.bodyIds.size()",
+            double(snapshot.bodyIds.size()),
+            "must be 0 or the number of bodies, " + std::to_string(snapshot.bodies.size()));
+    std::vector<bool> seen(snapshot.bodyIds.size());
+    for (std::size_t i = 0; i < snapshot.bodyIds.size(); ++i) {
+      const std::uint32_t id = snapshot.bodyIds[i];
+      require(id < seen.size() && !seen[id], "WorldSnapshot.bodyIds[" + std::to_string(i) + "]", id,
+              "must be below the number of bodies and name no body twice");
+      seen[id] = true;
+    }
+  }
   for (std::size_t p = 0; p < snapshot.contacts.size(); ++p) {
     const StoredContacts& c = snapshot.contacts[p];
     const std::uint32_t used = std::min(c.pairs[3], kContactSlots);

@@ -42,10 +42,11 @@ struct WorldBuffers {
   /// `history`: the contact law keeps contact state (the contact slots and what goes with them);
   /// `rollingHistory`: it keeps rolling springs too (rolling friction); `sleeping`: sleeping sand
   /// (its lists of what a substep computes, what goes with them, and the list build's second grid:
-  /// a moving and a still one, common/grid.glsl).
+  /// a moving and a still one, common/grid.glsl); `sorting`: the granules are sorted by place
+  /// (the sort's plan).
   void allocate(std::uint32_t bodies, std::uint32_t particles, std::uint32_t tableSize,
                 std::uint32_t colliders, std::uint32_t bodiesInUse, std::uint32_t particlesInUse,
-                bool history, bool rollingHistory, bool sleeping);
+                bool history, bool rollingHistory, bool sleeping, bool sorting);
   void bindAll() const;
   /// Each buffer's size, in binding order, then the uniform block's.
   std::vector<BufferMemory> byBuffer() const;
@@ -80,13 +81,22 @@ struct WorldKernels {
   GLuint spawnCheck = 0;
   GLuint wakeRegion = 0;     // with sleeping only
   GLuint collectActive = 0;  // with sleeping only
+  // The sort of the granules by place (WorldSettings::sortInterval), compiled only with it.
+  GLuint orderSequence = 0;
+  GLuint orderSources = 0;
+  GLuint orderSlots = 0;
+  GLuint orderMoves = 0;
+  GLuint orderPack = 0;
+  GLuint orderGather = 0;
+  GLuint orderKeys = 0;
 
   /// Compiles every kernel for `law` (PAPER_LAW defined for ContactLaw::PaperViscous), with
   /// `sleeping` for sleeping sand (SLEEPING defined), with `rollingFriction` for a non-zero
   /// Material::rollingFriction (ROLLING_FRICTION defined, so that a World without it runs no
   /// code for it); with `searchEvery` (a test's oracle), the contacts pass leaves every particle
-  /// to the grid search (SEARCH_EVERY).
-  void compile(ContactLaw law, bool sleeping, bool rollingFriction, bool searchEvery = false);
+  /// to the grid search (SEARCH_EVERY); with `sorting`, the sort of the granules by place.
+  void compile(ContactLaw law, bool sleeping, bool rollingFriction, bool sorting,
+               bool searchEvery = false);
   void release();
 };
 
@@ -140,13 +150,20 @@ struct World::Impl {
   std::uint32_t bodyCount = 0;
   std::uint32_t particleCount = 0;
   std::uint32_t granulesSpawned = 0;
-  std::vector<std::uint32_t> generations;   // per body slot
+  std::vector<std::uint32_t> generations;   // per body id
   std::vector<Quat> principalRotations;     // per body slot: template frame -> principal frame
   std::vector<Motion> bodyMotions;          // per body slot, as added
   std::vector<float> bodyMasses;            // per body slot, kg
   std::vector<float> boundingRadii;         // per body slot, m
   std::vector<std::uint32_t> particleEnds;  // per body slot: one past its last particle
   std::vector<std::uint32_t> largeBodies;   // body slots flagged kBodyLarge (layout.glsl)
+  // The ids of the bodies in the slots and the slots of the ids (WorldSettings::sortInterval),
+  // as the GPU last held them when not orderStale (a sort ran since, or a restore); both empty
+  // while every slot holds the body of its own index (world_order.cpp). The per-slot arrays above
+  // are alike for every granule a sort moves, so they stay per slot.
+  mutable std::vector<std::uint32_t> idsOfSlots;
+  mutable std::vector<std::uint32_t> slotsOfIds;
+  mutable bool orderStale = false;
   std::vector<detail::GpuCollider> colliders;
   std::vector<ColliderShape> colliderShapes;  // the descriptors of `colliders`, for renderers
   std::vector<detail::GpuSink> sinks;
@@ -230,6 +247,8 @@ struct World::Impl {
   bool keepsHistory() const { return settings.contactLaw == ContactLaw::HertzMindlin; }
   /// It keeps a rolling spring per contact slot too (Material::rollingFriction, which only
   /// HertzMindlin takes).
+  /// The granules are sorted by place every WorldSettings::sortInterval substeps.
+  bool sortsGranules() const { return settings.sortInterval > 0; }
   bool keepsRollingHistory() const {
     return keepsHistory() && settings.material.rollingFriction > 0.0f;
   }
@@ -266,6 +285,27 @@ struct World::Impl {
   /// The particles of the bodies from slot `firstBody` on, just added from the CPU, are checked
   /// for deep initial overlaps at the next step.
   void checkOverlapsFrom(std::uint32_t firstBody);
+
+  // The order of the bodies in their slots (world_order.cpp)
+  /// The slot of body id `id` (< bodyCount) and the id of the body in slot `slot`; the first call
+  /// after a sort reads the ids back (a sync point), which only a World that sorts ever needs.
+  std::uint32_t slotOf(std::uint32_t id) const;
+  std::uint32_t idOf(std::uint32_t slot) const;
+  /// The ids of bodies [first, end), just added in the slots of the same indices.
+  void addIds(std::uint32_t first, std::uint32_t end);
+  /// Puts `ids` (the id of each slot; empty: each its own) in the GPU's and the CPU's tables.
+  void setIds(std::span<const std::uint32_t> ids);
+  /// Every slot's id, or none while each slot holds the body of its own index. Sync point after a
+  /// sort.
+  std::span<const std::uint32_t> slotIds() const;
+  /// The sort of the granules by place, when the substep count calls for one (after the lists of
+  /// a substep were built: every particle in use is in the grid); the lists are built again.
+  void sortGranulesIfDue();
+  void sortGranules();
+  /// One buffer's words moved to their new slots: `particles` says whether an item is a particle
+  /// or a body; each item has `stride` words, of which [first, first + words) move.
+  void moveWords(detail::Binding buffer, bool particles, std::uint32_t stride, std::uint32_t first,
+                 std::uint32_t words);
 
   // Colliders (world_colliders.cpp)
   // Wakes the sleeping granules whose centres lie in `box` (wake_region.comp); nothing without

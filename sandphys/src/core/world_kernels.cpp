@@ -202,6 +202,7 @@ void World::Impl::runSubstep() {
     buildLists();
   } else {
     prepareContacts();
+    sortGranulesIfDue();
   }
   // The first substep after the bodies changed or were restored takes every granule's pair counts
   // (a read-back's list build in between must not take that from it: the CPU says it, not the

@@ -39,7 +39,9 @@ BodyDesc poseAt(const KinematicPath& path, std::uint64_t step) {
 KinematicMovePlan World::moveKinematic(BodyId id, const KinematicMove& move) {
   Impl& w = impl();
   w.requireBody(id);
-  const Motion motion = w.bodyMotions[id.index];
+  // A kinematic body is never sorted: its slot is its id's.
+  const std::uint32_t slot = w.slotOf(id.index);
+  const Motion motion = w.bodyMotions[slot];
   if (motion != Motion::Kinematic) {
     throw InvalidArgument("World::moveKinematic: body " + std::to_string(id.index) +
                           " has motion " + std::to_string(unsigned(motion)) +
@@ -49,8 +51,8 @@ KinematicMovePlan World::moveKinematic(BodyId id, const KinematicMove& move) {
   requireFiniteVec("KinematicMove.from", move.from);
   requireFiniteVec("KinematicMove.to", move.to);
   const float d = w.settings.particleDiameter;
-  requireResolvable("KinematicMove.from", move.from, w.boundingRadii[id.index], d);
-  requireResolvable("KinematicMove.to", move.to, w.boundingRadii[id.index], d);
+  requireResolvable("KinematicMove.from", move.from, w.boundingRadii[slot], d);
+  requireResolvable("KinematicMove.to", move.to, w.boundingRadii[slot], d);
   const double dt = w.model.timeStep;
   requireNonNegative("KinematicMove.duration", move.duration, "(s)");
   require(move.duration / dt < kMaxMoveSubsteps, "KinematicMove.duration", move.duration,
@@ -65,7 +67,7 @@ KinematicMovePlan World::moveKinematic(BodyId id, const KinematicMove& move) {
               "), and a move starts at the first substep at or after its startTime");
 
   KinematicPath path;
-  path.body = id.index;
+  path.body = slot;
   path.move = move;
   path.move.orientation = normalised(move.orientation, "KinematicMove.orientation");
   const auto steps = std::max<std::uint64_t>(1, std::uint64_t(std::llround(move.duration / dt)));
@@ -76,7 +78,7 @@ KinematicMovePlan World::moveKinematic(BodyId id, const KinematicMove& move) {
                         float((double(move.to.y) - double(move.from.y)) / seconds),
                         float((double(move.to.z) - double(move.from.z)) / seconds)};
 
-  const auto same = [&](const KinematicPath& p) { return p.body == id.index; };
+  const auto same = [&](const KinematicPath& p) { return p.body == slot; };
   std::erase_if(w.moves, same);
   w.moves.push_back(path);
   w.movesEnd = 0;

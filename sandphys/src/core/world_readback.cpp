@@ -51,8 +51,9 @@ std::vector<BodyState> World::readBodies() const {
   const StoredBodies stored = downloadBodies(w, "World::readBodies");
   std::vector<BodyState> out(w.bodyCount);
   for (std::uint32_t i = 0; i < w.bodyCount; ++i) {
-    BodyState& s = out[i];
-    s.id = w.bodyId(i);
+    const BodyId id = w.bodyId(i);
+    BodyState& s = out[id.index];
+    s.id = id;
     s.position = xyz(stored.position[i]);
     s.orientation = fromGpu(stored.orientation[i]) * conjugate(w.principalRotations[i]);
     s.velocity = xyz(stored.velocity[i]);
@@ -86,6 +87,8 @@ WorldSnapshot World::readSnapshot() const {
     b.alive = (stored.info[i].z & kBodyAlive) != 0;
     b.calm = std::bit_cast<std::uint32_t>(v.w);
   }
+  const std::span<const std::uint32_t> ids = w.slotIds();
+  snapshot.bodyIds.assign(ids.begin(), ids.end());
   if (w.keepsHistory()) snapshot.contacts = downloadContacts(w.buffers, w.particleCount);
   if (w.keepsRollingHistory()) snapshot.rolling = downloadRolling(w.buffers, w.particleCount);
   if (w.sleep.enabled) snapshot.forces = downloadForces(w.buffers, w.particleCount);

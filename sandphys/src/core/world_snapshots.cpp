@@ -76,6 +76,13 @@ void World::restoreSnapshot(const WorldSnapshot& snapshot) {
   if (w.keepsHistory()) uploadContacts(w.buffers, snapshot.contacts, w.particleCount);
   if (w.keepsRollingHistory()) uploadRolling(w.buffers, snapshot.rolling, w.particleCount);
   uploadForces(w.buffers, snapshot.forces);
+  // The snapshot's slots hold the bodies of its ids; a slot added after it, its own.
+  std::vector<std::uint32_t> ids;
+  if (!snapshot.bodyIds.empty()) {
+    ids = snapshot.bodyIds;
+    for (std::uint32_t slot = slots; slot < w.bodyCount; ++slot) ids.push_back(slot);
+  }
+  w.setIds(ids);
   gl::check("World::restoreSnapshot");
   w.steps = snapshot.steps;
   w.simTime = snapshot.simulatedTime;

@@ -55,6 +55,9 @@ constexpr std::uint32_t kSnapshotTag = tag("SNAP");
 // The rolling springs of the snapshot just before it (rolling friction only), so that a recording
 // without rolling friction is laid out as before rolling friction kept state.
 constexpr std::uint32_t kRollingTag = tag("ROLL");
+// The body ids of the snapshot just before it, once a sort of the granules by place moved any
+// (WorldSettings::sortInterval), so that a recording without sorts is laid out as before.
+constexpr std::uint32_t kBodyIdsTag = tag("BIDS");
 constexpr std::uint32_t kEndTag = tag("END!");
 
 std::string tagText(std::uint32_t value) {
@@ -244,6 +247,24 @@ void readRolling(Reader& in, const std::string& context, WorldSnapshot* snapshot
   }
 }
 
+// A BIDS record: the body ids of `snapshot`, the one read just before it.
+void readBodyIds(Reader& in, const std::string& context, WorldSnapshot* snapshot) {
+  const auto frame = in.get<std::uint64_t>();
+  const std::uint32_t bodies = in.get<std::uint32_t>();
+  if (!snapshot || snapshot->frame != frame || !snapshot->bodyIds.empty() ||
+      bodies != snapshot->bodies.size()) {
+    throw RecordingError(context + " is malformed: body ids of frame " + std::to_string(frame) +
+                         " for " + std::to_string(bodies) +
+                         " bodies do not follow that frame's snapshot of as many bodies");
+  }
+  const std::vector<std::uint8_t> raw = decompressRest(
+      in, std::size_t(bodies) * 4, context, "the body ids of frame " + std::to_string(frame),
+      std::to_string(bodies) + " bodies'");
+  Reader words(raw.data(), raw.size(), context);
+  snapshot->bodyIds.resize(bodies);
+  for (std::uint32_t& id : snapshot->bodyIds) id = words.get<std::uint32_t>();
+}
+
 WorldSnapshot readSnapshot(Reader& in, const std::string& context) {
   WorldSnapshot snapshot;
   snapshot.frame = in.get<std::uint64_t>();
@@ -412,7 +433,21 @@ void RecordingWriter::addSnapshot(const WorldSnapshot& snapshot) {
                       std::to_string(snapshot.contacts.size()) + " particles' contacts");
   writeRecord(kSnapshotTag, out.data());
   ++m_snapshots;
-  if (snapshot.rolling.empty()) return;
+  if (!snapshot.rolling.empty()) addRolling(snapshot);
+  if (snapshot.bodyIds.empty()) return;
+  SANDPHYS_ASSERT(snapshot.bodyIds.size() == snapshot.bodies.size(),
+                  std::to_string(snapshot.bodyIds.size()) + " body ids for " +
+                      std::to_string(snapshot.bodies.size()) + " bodies");
+  Bytes words;
+  for (std::uint32_t id : snapshot.bodyIds) words.put(id);
+  Bytes ids;
+  ids.put(snapshot.frame);
+  ids.put(std::uint32_t(snapshot.bodyIds.size()));
+  putCompressed(ids, words.data(), m_file);
+  writeRecord(kBodyIdsTag, ids.data());
+}
+
+void RecordingWriter::addRolling(const WorldSnapshot& snapshot) {
   Bytes springs;
   for (const StoredRolling& r : snapshot.rolling) {
     for (const auto& spring : r.springs) {
@@ -564,6 +599,9 @@ Recording readRecording(const std::filesystem::path& file) {
       recording.snapshots.push_back(readSnapshot(payload, name));
     } else if (recordTag == kRollingTag) {
       readRolling(payload, name,
+                  recording.snapshots.empty() ? nullptr : &recording.snapshots.back());
+    } else if (recordTag == kBodyIdsTag) {
+      readBodyIds(payload, name,
                   recording.snapshots.empty() ? nullptr : &recording.snapshots.back());
     } else {
       throw RecordingError(name + " is malformed: unknown record '" + tagText(recordTag) +

@@ -101,6 +101,7 @@ std::uint64_t stateHash(const WorldSnapshot& snapshot) {
     for (float v : b.velocity) h = absorb(h, v);
     for (float v : b.angularVelocity) h = absorb(h, v);
     h = absorb(h, statusWord(b));
+    if (!snapshot.bodyIds.empty() && snapshot.bodyIds[i] != i) h = absorb(h, snapshot.bodyIds[i]);
     low += h.x;
     high += h.y;
   }
@@ -143,7 +144,7 @@ std::string StateDifference::describe() const {
   std::string text = std::string(subject == Subject::Particle ? "particle " : "body ") +
                      std::to_string(body) + " " + field + ": recorded ";
   if (integer || field == "body count" || field == "alive" || field == "calm" || field == "body" ||
-      field == "motion") {
+      field == "body id" || field == "motion") {
     return text + std::to_string(static_cast<long long>(recorded)) + ", replayed " +
            std::to_string(static_cast<long long>(replayed));
   }
@@ -166,6 +167,12 @@ std::optional<StateDifference> firstDifference(const WorldSnapshot& recorded,
     }
     if (a.calm != b.calm) {
       return StateDifference{std::uint32_t(i), "calm", double(a.calm), double(b.calm)};
+    }
+    const auto id = [&](const WorldSnapshot& s) {
+      return s.bodyIds.empty() ? double(i) : double(s.bodyIds[i]);
+    };
+    if (id(recorded) != id(replayed)) {
+      return StateDifference{std::uint32_t(i), "body id", id(recorded), id(replayed)};
     }
   }
   if (recorded.bodies.size() != replayed.bodies.size()) {

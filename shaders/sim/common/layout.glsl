@@ -105,6 +105,8 @@ struct SinkBox {
 #define COUNTER_NEAR_MARKINGS 24
 // SLEEPING: the large bodies collect_active.comp has listed so far this substep.
 #define COUNTER_ACTIVE_LARGE 25
+// The granules the last sort by place found in the grid's order (order_sources.comp).
+#define COUNTER_ORDER_SEQUENCE 26
 // From this uint on: the indirect dispatch commands of the list build, one per pass below (4
 // uints each: groups x, y, z and padding), zero groups when no build is due.
 #define COUNTER_LIST_DISPATCH 28

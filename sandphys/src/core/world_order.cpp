@@ -1,0 +1,122 @@
+// The order of the bodies in their slots: the sort of the granules by place
+// (WorldSettings::sortInterval; docs/architecture.md, "Granule order") and the ids that stay the
+// bodies' own while their states move.
+#include <numeric>
+#include <string>
+
+#include "core/assert.h"
+#include "core/world_impl.h"
+
+namespace sandphys {
+
+using namespace detail;
+
+std::span<const std::uint32_t> World::Impl::slotIds() const {
+  if (orderStale) {
+    gpu->makeCurrent();
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    idsOfSlots = buffers[kBodyIds].downloadArray<std::uint32_t>(bodyCount);
+    slotsOfIds.assign(bodyCount, 0);
+    for (std::uint32_t slot = 0; slot < bodyCount; ++slot) slotsOfIds[idsOfSlots[slot]] = slot;
+    orderStale = false;
+  }
+  return idsOfSlots;
+}
+
+std::uint32_t World::Impl::slotOf(std::uint32_t id) const {
+  return slotIds().empty() ? id : slotsOfIds[id];
+}
+
+std::uint32_t World::Impl::idOf(std::uint32_t slot) const {
+  const std::span<const std::uint32_t> ids = slotIds();
+  return ids.empty() ? slot : ids[slot];
+}
+
+void World::Impl::addIds(std::uint32_t first, std::uint32_t end) {
+  std::vector<std::uint32_t> own(end - first);
+  std::iota(own.begin(), own.end(), first);
+  buffers[kBodyIds].upload(first * 4ull, own.size() * 4, own.data());
+  if (slotIds().empty()) return;
+  idsOfSlots.insert(idsOfSlots.end(), own.begin(), own.end());
+  slotsOfIds.insert(slotsOfIds.end(), own.begin(), own.end());
+}
+
+void World::Impl::setIds(std::span<const std::uint32_t> ids) {
+  SANDPHYS_ASSERT(ids.empty() || ids.size() == bodyCount,
+                  std::to_string(ids.size()) + " ids for " + std::to_string(bodyCount) + " bodies");
+  std::vector<std::uint32_t> all(ids.begin(), ids.end());
+  if (all.empty()) {
+    all.resize(bodyCount);
+    std::iota(all.begin(), all.end(), 0u);
+  }
+  buffers[kBodyIds].upload(0, all.size() * 4, all.data());
+  idsOfSlots.clear();
+  slotsOfIds.clear();
+  orderStale = !ids.empty();
+}
+
+void World::Impl::sortGranulesIfDue() {
+  if (!sortsGranules() || steps == 0 || steps % settings.sortInterval != 0) return;
+  sortGranules();
+  // The lists, the particles and the pair counts of the sorted slots, before this substep's
+  // contacts.
+  prepareContacts();
+}
+
+void World::Impl::moveWords(Binding buffer, bool particles, std::uint32_t stride,
+                            std::uint32_t first, std::uint32_t words) {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOrderTarget, buffers[buffer].id());
+  const std::uint32_t items = particles ? particleCount : bodyCount;
+  for (GLuint program : {kernels.orderPack, kernels.orderGather}) {
+    glUseProgram(program);
+    glUniform4ui(0, particles ? 1u : 0u, stride, first, words);
+    dispatch(program, nullptr, items, kWorkgroupSize);
+  }
+}
+
+void World::Impl::sortGranules() {
+  stateChanged();
+  const auto scan = [&] {
+    const std::uint32_t blocks = table.size / kScanBlock;
+    dispatch(kernels.scanBlocks, nullptr, blocks * 256, 256);
+    dispatch(kernels.scanBlockSums, nullptr, 1024, 1024);
+    dispatch(kernels.scanAdd, nullptr, blocks * 256, 256);
+  };
+  // The granules in the order of the last build's grid, numbered; their slots, numbered; each
+  // slot's source and each granule's destination (granule_order.glsl).
+  dispatch(kernels.orderSequence, "order_sequence", particleCount, kWorkgroupSize);
+  scan();
+  dispatch(kernels.orderSources, "order_sources", particleCount, kWorkgroupSize);
+  dispatch(kernels.orderSlots, "order_slots", bodyCount, kWorkgroupSize);
+  scan();
+  dispatch(kernels.orderMoves, "order_moves", bodyCount, kWorkgroupSize);
+  // The states that differ from granule to granule move; what all of them share (mass, inertia,
+  // particle offsets, flags) stays. The particles' positions and velocities follow their bodies
+  // (bodies_to_particles, below); the lists and the grid are built again.
+  for (Binding b : {kBodyPosition, kBodyOrientation, kBodyVelocity, kBodyAngularVelocity}) {
+    moveWords(b, false, 4, 0, 4);
+  }
+  moveWords(kBodyInfo, false, 4, 3, 1);  // the speed-guard count
+  moveWords(kBodyIds, false, 1, 0, 1);
+  for (Binding b : {kParticleForce, kParticleStats}) moveWords(b, true, 4, 0, 4);
+  if (keepsHistory()) {
+    moveWords(kParticleTorque, true, 4, 0, 4);
+    moveWords(kContactPairs, true, 4, 0, 4);
+    for (std::uint32_t group = 0; group < kContactSlotGroups; ++group) {
+      moveWords(Binding(kContactSlots0 + group), true, 16, 0, 16);
+    }
+    dispatch(kernels.orderKeys, "order_keys", particleCount, kWorkgroupSize);
+  }
+  if (keepsRollingHistory()) {
+    // Twelve slots of four words per particle, in the neighbour lists' room of sixteen words.
+    for (std::uint32_t part = 0; part < 3; ++part)
+      moveWords(kRollingSlots, true, 48, 16 * part, 16);
+  }
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOrderTarget, 0);
+  markParticlesDirty(0, particleCount);
+  listsStale = true;
+  gridValid = false;
+  orderStale = true;
+}
+
+}  // namespace sandphys

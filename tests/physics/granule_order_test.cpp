@@ -1,0 +1,200 @@
+// The sort of the granules by place (WorldSettings::sortInterval): it moves the granules' states
+// among their slots so that slot order follows place, and changes nothing else: every body keeps
+// its id and state, every contact its force and history, and a run with sorts is replayed bit for
+// bit from its snapshots.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <random>
+#include <tuple>
+#include <vector>
+
+#include "support/test_world.h"
+
+namespace sandphys {
+namespace {
+
+constexpr std::uint32_t kSide = 8;
+constexpr std::uint32_t kLayers = 4;
+
+// A lattice of granules falling into a box 20 d wide, each layer faster than the one below, added
+// in a shuffled order: their slots follow no place.
+void addShuffledPile(World& world) {
+  const float d = world.settings().particleDiameter;
+  world.addCollider(Plane{});
+  world.addCollider(
+      Box{.center = {0, 10 * d, 0}, .halfExtents = {10 * d, 10 * d, 10 * d}, .inside = true});
+  std::vector<BodyDesc> granules;
+  const float spacing = 2.4f * d;
+  for (std::uint32_t j = 0; j < kLayers; ++j) {
+    for (std::uint32_t k = 0; k < kSide; ++k) {
+      for (std::uint32_t i = 0; i < kSide; ++i) {
+        const float angle = 0.7f * float(i + 3 * j + 5 * k);
+        granules.push_back({.position = {(float(i) - 3.5f) * spacing, 1.5f * d + float(j) * spacing,
+                                         (float(k) - 3.5f) * spacing},
+                            .orientation = fromAxisAngle(normalized(Vec3{0.3f, 1.0f, 0.2f}), angle),
+                            .velocity = {0, -0.2f - 0.4f * float(j), 0}});
+      }
+    }
+  }
+  std::shuffle(granules.begin(), granules.end(), std::mt19937(7));
+  world.addGranules(granules);
+}
+
+WorldSettings sortingSettings(std::uint32_t interval, float rollingFriction = 0.0f,
+                              ContactLaw law = ContactLaw::HertzMindlin) {
+  WorldSettings s = testing::smallSettings(2 * kSide * kSide * kLayers);
+  s.sortInterval = interval;
+  s.material.rollingFriction = rollingFriction;
+  s.contactLaw = law;
+  return s;
+}
+
+bool sameBits(const void* a, const void* b, std::size_t size) {
+  return std::memcmp(a, b, size) == 0;
+}
+
+bool identical(const BodyState& a, const BodyState& b) {
+  return a.id == b.id && sameBits(&a.position, &b.position, sizeof(Vec3)) &&
+         sameBits(&a.orientation, &b.orientation, sizeof(Quat)) &&
+         sameBits(&a.velocity, &b.velocity, sizeof(Vec3)) &&
+         sameBits(&a.angularVelocity, &b.angularVelocity, sizeof(Vec3)) && a.alive == b.alive;
+}
+
+// The contacts by their bodies and place, each pair from each side (World::readContacts takes a
+// pair from its lower particle's side, which a sort may change): what a sort must not change.
+std::vector<ContactRecord> contactsByBody(World& world) {
+  std::vector<ContactRecord> contacts = testing::contactsFromBothSides(world);
+  const auto key = [](const ContactRecord& c) {
+    return std::make_tuple(c.bodyA.index, c.bodyB.index, c.collider.index, c.point.x, c.point.y,
+                           c.point.z);
+  };
+  std::sort(contacts.begin(), contacts.end(),
+            [&](const ContactRecord& a, const ContactRecord& b) { return key(a) < key(b); });
+  return contacts;
+}
+
+bool sameContact(const ContactRecord& a, const ContactRecord& b) {
+  return a.bodyA == b.bodyA && a.bodyB == b.bodyB && a.collider == b.collider &&
+         sameBits(&a.point, &b.point, sizeof(Vec3)) &&
+         sameBits(&a.normal, &b.normal, sizeof(Vec3)) &&
+         sameBits(&a.normalForce, &b.normalForce, sizeof(float)) &&
+         sameBits(&a.tangentialForce, &b.tangentialForce, sizeof(Vec3)) &&
+         sameBits(&a.tangentialDisplacement, &b.tangentialDisplacement, sizeof(Vec3)) &&
+         sameBits(&a.rollingTorque, &b.rollingTorque, sizeof(Vec3)) &&
+         sameBits(&a.rollingDisplacement, &b.rollingDisplacement, sizeof(Vec3));
+}
+
+// Mean distance in slots between the granules of each particle contact (four particles a slot).
+double meanSlotGap(const std::vector<ContactRecord>& contacts) {
+  double sum = 0.0;
+  std::uint32_t count = 0;
+  for (const ContactRecord& c : contacts) {
+    if (c.particleB == ContactRecord::kNone) continue;
+    sum += std::abs(double(c.particleA / 4) - double(c.particleB / 4));
+    ++count;
+  }
+  return count ? sum / count : 0.0;
+}
+
+struct Law {
+  const char* name;
+  float rollingFriction;
+  ContactLaw law;
+};
+
+class GranuleOrder : public ::testing::TestWithParam<Law> {};
+
+// Mid-fall, with contacts everywhere: the sort moves most granules to other slots, and every body
+// (by id) and every contact (force, tangential and rolling springs) is the same bit for bit.
+TEST_P(GranuleOrder, ASortMovesTheSlotsAndChangesNoBodyNorContact) {
+  testing::TestWorld w(sortingSettings(1u << 30, GetParam().rollingFriction, GetParam().law));
+  addShuffledPile(*w);
+  w->substep(1500);
+  const std::vector<BodyState> before = w->readBodies();
+  const std::vector<ContactRecord> contactsBefore = contactsByBody(*w);
+  ASSERT_GT(contactsBefore.size(), 150u);
+  testing::sortGranulesNow(*w);
+  const std::vector<BodyState> after = w->readBodies();
+  const std::vector<ContactRecord> contactsAfter = contactsByBody(*w);
+
+  ASSERT_EQ(after.size(), before.size());
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    ASSERT_TRUE(identical(before[i], after[i])) << "body " << i;
+  }
+  ASSERT_EQ(contactsAfter.size(), contactsBefore.size());
+  for (std::size_t i = 0; i < contactsBefore.size(); ++i) {
+    ASSERT_TRUE(sameContact(contactsBefore[i], contactsAfter[i]))
+        << "contact of bodies " << contactsBefore[i].bodyA.index << " and "
+        << contactsBefore[i].bodyB.index;
+  }
+  // The particles in slot order now belong to other bodies, and touching granules lie closer in
+  // slots than in the shuffled order.
+  const std::vector<ParticleState> particles = w->readParticles();
+  std::uint32_t moved = 0;
+  for (std::uint32_t p = 0; p < particles.size(); p += 4) moved += particles[p].body.index != p / 4;
+  EXPECT_GT(moved, before.size() / 2);
+  const double gapBefore = meanSlotGap(contactsBefore);
+  const double gapAfter = meanSlotGap(contactsAfter);
+  EXPECT_LT(gapAfter, 0.5 * gapBefore) << "mean slot gap " << gapBefore << " -> " << gapAfter;
+}
+
+INSTANTIATE_TEST_SUITE_P(Laws, GranuleOrder,
+                         ::testing::Values(Law{"HertzMindlin", 0.0f, ContactLaw::HertzMindlin},
+                                           Law{"RollingFriction", 0.1f, ContactLaw::HertzMindlin},
+                                           Law{"PaperViscous", 0.0f, ContactLaw::PaperViscous}),
+                         [](const auto& test) { return std::string(test.param.name); });
+
+// A run that sorts every 100 substeps, restored from a snapshot taken after two sorts into a
+// World built alike, goes on bit for bit as the original; the snapshot carries the ids, and its
+// hash is the World's.
+TEST(GranuleOrderRun, IsReplayedBitForBitFromASnapshot) {
+  testing::TestWorld original(sortingSettings(100));
+  addShuffledPile(*original);
+  original->substep(250);
+  const WorldSnapshot snapshot = original->readSnapshot();
+  ASSERT_EQ(snapshot.bodyIds.size(), snapshot.bodies.size());
+  EXPECT_EQ(stateHash(snapshot), original->readStateHash());
+  original->substep(250);
+  EXPECT_EQ(original->readStats().granuleSorts, 5u);
+
+  testing::TestWorld replay(sortingSettings(100));
+  addShuffledPile(*replay);
+  replay->restoreSnapshot(snapshot);
+  EXPECT_EQ(replay->readStateHash(), stateHash(snapshot));
+  replay->substep(250);
+  EXPECT_EQ(replay->readStateHash(), original->readStateHash());
+  const std::vector<BodyState> a = original->readBodies();
+  const std::vector<BodyState> b = replay->readBodies();
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) ASSERT_TRUE(identical(a[i], b[i])) << "body " << i;
+}
+
+// A body set by id after sorts is that body: its new pose reads back under its id.
+TEST(GranuleOrderRun, BodiesAreSetAndReadByTheirIds) {
+  testing::TestWorld w(sortingSettings(50));
+  addShuffledPile(*w);
+  w->substep(120);
+  const BodyId id{17, 0};
+  const float d = w->settings().particleDiameter;
+  const BodyDesc lifted{.position = {0.0f, 30 * d, 0.0f}};
+  w->setBodyState(id, lifted);
+  const BodyState state = w->readBody(id);
+  EXPECT_EQ(state.id, id);
+  EXPECT_EQ(state.position.y, lifted.position.y);
+  w->substep(60);                                 // one more sort
+  EXPECT_GT(w->readBody(id).position.y, 25 * d);  // still the body up there, falling
+}
+
+TEST(GranuleOrderRun, IsRefusedWithSleep) {
+  WorldSettings s = sortingSettings(100);
+  s.sleep.enabled = true;
+  const std::string message = testing::errorMessageOf([&] { World world(testing::gpu(), s); });
+  EXPECT_NE(message.find("WorldSettings.sortInterval"), std::string::npos) << message;
+  EXPECT_NE(message.find("sleep"), std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace sandphys
