@@ -184,6 +184,12 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
                  "guard, WorldSettings::listSkin); it changes the cost, not the result")
       ->check(CLI::Range(0.0f, 1.0f))
       ->capture_default_str();
+  app.add_option("--sort-interval", measure.sortInterval,
+                 "substeps between sorts of the granules by place (WorldSettings::sortInterval; "
+                 "0: none)");
+  app.add_flag("--shuffle", measure.shuffled,
+               "the pile's granules added in a random order, the same poses: sand whose order in "
+               "memory no longer follows place");
   app.add_option("--lammps-ranks", measure.lammpsRanks,
                  "after each size, run the same pile in LAMMPS for as many steps (exported at the "
                  "start of timing: fix rigid/small, pair granular), once per number of MPI ranks "

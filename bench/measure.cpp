@@ -7,6 +7,8 @@
 #include <fstream>
 #include <limits>
 #include <optional>
+#include <random>
+#include <variant>
 
 #include "pile_cache.h"
 #include "timing.h"
@@ -199,6 +201,7 @@ WorldSettings timedSettings(const BenchPile& pile, const MeasureOptions& options
     settings.maxBodies = std::max(settings.maxBodies, options.reserveParticles / 4u);
   }
   settings.listSkin = options.listSkin * d;
+  settings.sortInterval = options.sortInterval;
   settings.sleep.enabled = options.sleep;
   settings.maxBodies += rockParticles > 0 ? 1u : 0u;
   settings.maxParticles += rockParticles;
@@ -223,6 +226,31 @@ void printBuilt(const std::string& tag, const SizeResult& result, float d) {
                tag.c_str(), result.setupSeconds, result.granules, result.layout.columns,
                result.layout.fullLayers, result.layout.topLayerGranules,
                result.layout.columnTop / d, container, double(result.timeStep));
+}
+
+// Builds `pile` in `world`, or with --shuffle the same colliders and granules, the granules in a
+// random order: the pile is built in a World of its own, whose granules are then added to `world`
+// shuffled.
+void buildPile(const GpuContext& gpu, const BenchPile& pile, const MeasureOptions& options,
+               World& world) {
+  if (!options.shuffled) {
+    pile.build(world);
+    return;
+  }
+  World built(gpu, world.settings());
+  pile.build(built);
+  for (const ColliderShape& shape : built.colliders()) {
+    std::visit([&](const auto& collider) { world.addCollider(collider); }, shape);
+  }
+  std::vector<BodyDesc> granules;
+  for (const BodyState& body : built.readBodies()) {
+    if (!body.granule)
+      throw InvalidArgument("--shuffle: the pile holds bodies that are not granules");
+    granules.push_back(
+        {body.position, body.orientation, body.velocity, body.angularVelocity, body.motion});
+  }
+  std::shuffle(granules.begin(), granules.end(), std::mt19937_64(0x5eed));
+  world.addGranules(granules);
 }
 
 // Settles the pile, or restores the one an earlier run settled with the same options
@@ -385,7 +413,7 @@ SizeResult measureSize(const GpuContext& gpu, const SizePlan& plan, const Measur
   const SandboxScript sandbox{};
   const WorldSettings settings = timedSettings(pile, options, std::uint32_t(rock.size()), sandbox);
   World world(gpu, settings);
-  pile.build(world);
+  buildPile(gpu, pile, options, world);
   result.setupSeconds = secondsSince(setupStart);
   result.granules = world.granulesSpawned();
   result.particles = world.particleCount();

@@ -27,12 +27,15 @@ std::string exact(double value) {
 }  // namespace
 
 std::string settledPileKey(const MeasureOptions& options, const SizePlan& plan, World& world) {
-  const nlohmann::json key = {{"pile", pileJson(options)["options"]},
-                              {"granules", plan.granules},
-                              {"settle_substeps", plan.settleSteps},
-                              {"sleep", options.sleep},
-                              {"sleep_wait_factor", options.sleepWaitFactor},
-                              {"built_state_hash", hex(world.readStateHash())}};
+  nlohmann::json key = {{"pile", pileJson(options)["options"]},
+                        {"granules", plan.granules},
+                        {"settle_substeps", plan.settleSteps},
+                        {"sleep", options.sleep},
+                        {"sleep_wait_factor", options.sleepWaitFactor},
+                        {"built_state_hash", hex(world.readStateHash())}};
+  // Only when it sorts, so that the keys of the piles settled without sorts stay; a shuffled
+  // pile differs in its built state.
+  if (options.sortInterval > 0) key["sort_interval"] = options.sortInterval;
   return key.dump();
 }
 

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <random>
+#include <span>
 #include <tuple>
 #include <vector>
 
@@ -19,13 +20,13 @@ namespace {
 constexpr std::uint32_t kSide = 8;
 constexpr std::uint32_t kLayers = 4;
 
-// A lattice of granules falling into a box 20 d wide, each layer faster than the one below, added
-// in a shuffled order: their slots follow no place.
+// A lattice of granules falling into a box 20 d wide and 60 d high, each layer faster than the one
+// below, added in a shuffled order: their slots follow no place.
 void addShuffledPile(World& world) {
   const float d = world.settings().particleDiameter;
   world.addCollider(Plane{});
   world.addCollider(
-      Box{.center = {0, 10 * d, 0}, .halfExtents = {10 * d, 10 * d, 10 * d}, .inside = true});
+      Box{.center = {0, 30 * d, 0}, .halfExtents = {10 * d, 30 * d, 10 * d}, .inside = true});
   std::vector<BodyDesc> granules;
   const float spacing = 2.4f * d;
   for (std::uint32_t j = 0; j < kLayers; ++j) {
@@ -172,7 +173,8 @@ TEST(GranuleOrderRun, IsReplayedBitForBitFromASnapshot) {
   for (std::size_t i = 0; i < a.size(); ++i) ASSERT_TRUE(identical(a[i], b[i])) << "body " << i;
 }
 
-// A body set by id after sorts is that body: its new pose reads back under its id.
+// A body set by id after sorts is that body: its new pose reads back under its id, and so does a
+// granule added after them, under the id it was given.
 TEST(GranuleOrderRun, BodiesAreSetAndReadByTheirIds) {
   testing::TestWorld w(sortingSettings(50));
   addShuffledPile(*w);
@@ -184,8 +186,15 @@ TEST(GranuleOrderRun, BodiesAreSetAndReadByTheirIds) {
   const BodyState state = w->readBody(id);
   EXPECT_EQ(state.id, id);
   EXPECT_EQ(state.position.y, lifted.position.y);
-  w->substep(60);                                 // one more sort
-  EXPECT_GT(w->readBody(id).position.y, 25 * d);  // still the body up there, falling
+  const BodyDesc added{.position = {5 * d, 40 * d, 5 * d}};
+  const std::vector<BodyId> ids = w->addGranules(std::span<const BodyDesc>(&added, 1));
+  ASSERT_EQ(ids.size(), 1u);
+  EXPECT_EQ(w->readBody(ids[0]).position.y, added.position.y);
+  w->substep(60);  // one more sort
+  // Still the bodies up there, falling.
+  EXPECT_GT(w->readBody(id).position.y, 25 * d);
+  EXPECT_GT(w->readBody(ids[0]).position.y, 35 * d);
+  EXPECT_LT(w->readBody(ids[0]).position.y, 40 * d);
 }
 
 TEST(GranuleOrderRun, IsRefusedWithSleep) {

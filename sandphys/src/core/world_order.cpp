@@ -36,7 +36,8 @@ void World::Impl::addIds(std::uint32_t first, std::uint32_t end) {
   std::vector<std::uint32_t> own(end - first);
   std::iota(own.begin(), own.end(), first);
   buffers[kBodyIds].upload(first * 4ull, own.size() * 4, own.data());
-  if (slotIds().empty()) return;
+  // Tables that are stale are read whole when next needed; empty ones mean each its own.
+  if (orderStale || idsOfSlots.empty()) return;
   idsOfSlots.insert(idsOfSlots.end(), own.begin(), own.end());
   slotsOfIds.insert(slotsOfIds.end(), own.begin(), own.end());
 }
