@@ -208,13 +208,15 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
                  "with --lammps-ranks: folder of the decks and LAMMPS's output, one per size "
                  "(kept)")
       ->capture_default_str();
-  app.add_option("--compare-shaders", measure.compareShaders,
-                 "after each size's timed substeps, run the pile as timing started under each of "
-                 "these kernel versions (shader folders as SANDPHYS_SHADER_DIR takes them, or "
-                 "built-in: the library's own; comma-separated), one World each, in one process, "
-                 "--compare-rounds rounds of --steps / --compare-rounds substeps each in turn; "
-                 "reports each version's ms per substep and whether its state stayed bit for bit "
-                 "the first's")
+  app.add_option(
+         "--compare-shaders", measure.compareShaders,
+         "after each size's timed substeps, run the pile as timing started under each of "
+         "these kernel versions (shader folders as SANDPHYS_SHADER_DIR takes them, or "
+         "built-in: the library's own; comma-separated; FOLDER:sorted: that World sorts its "
+         "granules by place in its first substep), one World each, in one process, "
+         "--compare-rounds rounds of --steps / --compare-rounds substeps each in turn; "
+         "reports each version's ms per substep and whether its state stayed bit for bit "
+         "the first's")
       ->delimiter(',');
   app.add_option("--compare-rounds", measure.compareRounds,
                  "with --compare-shaders: rounds of each version")
@@ -397,11 +399,13 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
     if (!measure.lammpsRanks.empty() && measure.sandboxSeconds > 0.0) {
       throw UsageError("--lammps-ranks with --sandbox: LAMMPS runs timed substeps, not the script");
     }
-    for (const std::string& folder : measure.compareShaders) {
+    for (const std::string& version : measure.compareShaders) {
+      const std::string folder = versionFolder(version);
       std::error_code error;
       if (folder != kBuiltInShaders && !std::filesystem::is_directory(folder, error)) {
-        throw UsageError("--compare-shaders " + folder + ": not a folder (a shader folder as " +
-                         "SANDPHYS_SHADER_DIR takes it, or " + kBuiltInShaders + ")");
+        throw UsageError("--compare-shaders " + version + ": not a folder (a shader folder as " +
+                         "SANDPHYS_SHADER_DIR takes it, or " + kBuiltInShaders + ", either " +
+                         "optionally followed by " + std::string(kSortedSuffix) + ")");
       }
     }
     if (!measure.compareShaders.empty() &&

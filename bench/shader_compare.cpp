@@ -38,18 +38,21 @@ class ShaderDirectory {
   std::optional<std::string> m_before;
 };
 
-// A World of `folder`'s kernels holding `pile` as it was at `start`.
-std::unique_ptr<World> worldOf(const std::string& folder, const GpuContext& gpu,
-                               const WorldSettings& settings, const BenchPile& pile,
+// A World of `version`'s kernels holding `pile` as it was at `start` (sorted by place in its first
+// substep, for a version with kSortedSuffix).
+std::unique_ptr<World> worldOf(const std::string& version, const GpuContext& gpu,
+                               WorldSettings settings, const BenchPile& pile,
                                const WorldSnapshot& start) {
   try {
-    const ShaderDirectory directory(folder);
+    bool sorted = false;
+    const ShaderDirectory directory(versionFolder(version, &sorted));
+    if (sorted) settings.sortInterval = std::uint32_t(start.steps + 1);
     auto world = std::make_unique<World>(gpu, settings);
     pile.build(*world);
     world->restoreSnapshot(start);
     return world;
   } catch (const Error& error) {
-    throw Error("--compare-shaders " + folder + ": " + error.what());
+    throw Error("--compare-shaders " + version + ": " + error.what());
   }
 }
 
@@ -66,6 +69,12 @@ void run(World& world, std::uint32_t steps, std::uint32_t chunk,
 }
 
 }  // namespace
+
+std::string versionFolder(const std::string& version, bool* sorted) {
+  const bool hasSuffix = version.ends_with(kSortedSuffix);
+  if (sorted) *sorted = hasSuffix;
+  return hasSuffix ? version.substr(0, version.size() - kSortedSuffix.size()) : version;
+}
 
 double ShaderRun::medianMilliseconds() const {
   return median(roundMilliseconds);

@@ -5,6 +5,7 @@
 // (bench/README.md, "Comparing kernel versions").
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <sandphys/sandphys.h>
@@ -16,6 +17,13 @@ namespace sandphys::bench {
 
 /// The folder name that stands for the kernels built into the library (no SANDPHYS_SHADER_DIR).
 inline constexpr const char* kBuiltInShaders = "built-in";
+/// After a version's folder: that World sorts its granules by place in its first substep
+/// (WorldSettings::sortInterval), so that the versions may differ in the order of the granules
+/// rather than in the kernels.
+inline constexpr std::string_view kSortedSuffix = ":sorted";
+
+/// A version's folder without kSortedSuffix, and whether it had it.
+std::string versionFolder(const std::string& version, bool* sorted = nullptr);
 
 /// One version's runs.
 struct ShaderRun {

@@ -47,7 +47,8 @@ constexpr GLuint kParticleBodyBinding = 4;
 constexpr GLuint kBodyVelocityBinding = 5;
 // The renderer's own: shaders/render/particles.vert's surfaceBodies.
 constexpr GLuint kSurfaceBodiesBinding = 6;
-constexpr GLint kVertexStorageBlocks = 7;
+constexpr GLuint kBodyIdsBinding = 7;
+constexpr GLint kVertexStorageBlocks = 8;
 constexpr GLuint kFrameParamsBinding = 0;
 
 // Timestamps per frame: before the shadow pass, then after each of the three passes.
@@ -483,6 +484,7 @@ void Renderer::Impl::draw(const World& world, const Camera& camera,
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kParticleBodyBinding, buffers.particleBody);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBodyVelocityBinding, buffers.bodyVelocity);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSurfaceBodiesBinding, surfaceBodies);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBodyIdsBinding, buffers.bodyIds);
   const GLuint asleepFrom = settings.tintSleeping ? buffers.sleepSubsteps : 0u;
   for (GLuint program : {pointsScene, particlesScene}) {
     glProgramUniform1ui(program, glGetUniformLocation(program, "asleepFrom"), asleepFrom);

@@ -15,7 +15,8 @@
 flat out vec3 vCentre;  // view space
 flat out vec3 vAlbedo;
 
-// Integer hash (a variant of Wang's) for per-granule colour: stable for a body's lifetime.
+// Integer hash (a variant of Wang's) for per-granule colour: of the body's id, so stable for its
+// lifetime, wherever a sort of the granules puts it.
 uint hashUint(uint x) {
   x = (x ^ 61u) ^ (x >> 16);
   x *= 9u;
@@ -104,7 +105,7 @@ void main() {
   bool fitsPoint = size <= maxPointSize;
   vCentre = centre;
   // Rough floors and sampled bodies are not sand: a neutral stone colour.
-  vAlbedo = (info.z & BODY_GRANULE) != 0u ? granuleAlbedo(body) : pow(vec3(0.45, 0.43, 0.40), vec3(2.2));
+  vAlbedo = (info.z & BODY_GRANULE) != 0u ? granuleAlbedo(bodyIds[body]) : pow(vec3(0.45, 0.43, 0.40), vec3(2.2));
 #ifndef SHADOW_PASS
   if (asleepFrom != 0u && (info.z & BODY_GRANULE) != 0u &&
       floatBitsToUint(bodyVelocity[body].w) >= asleepFrom) {

@@ -538,6 +538,62 @@ TEST_F(RenderScene, PlaneSeenFromItsSolidSideHidesNothing) {
                                  << " without";
 }
 
+// A granule's colour is its body's (a hash of its id), wherever a sort of the granules by place
+// puts its state: a World of granules added in a random order, drawn before and after a sort that
+// moves most of them to other slots, gives the same image.
+TEST(RenderSorted, GranulesKeepTheirColoursWhenSortedByPlace) {
+  WorldSettings s = smallSettings(256);
+  s.particleDiameter = kD;
+  s.sortInterval = 1u << 30;  // sorted by sortGranulesNow alone
+  World sorted(gpu(), s);
+  sorted.addCollider(Plane{});
+  std::vector<BodyDesc> granules;
+  for (int k = 0; k < 8; ++k) {
+    for (int i = 0; i < 8; ++i) {
+      granules.push_back(
+          {.position = {(float(i) - 3.5f) * 3 * kD, 2 * kD, (float(k) - 3.5f) * 3 * kD},
+           .orientation = fromAxisAngle({0.0f, 1.0f, 0.0f}, 0.4f * float(i + 8 * k))});
+    }
+  }
+  // Reversed rows, each reversed: the slots run against the grid's order.
+  std::reverse(granules.begin(), granules.end());
+  sorted.addGranules(granules);
+  sorted.substep(1);  // the lists (and grid) a sort orders by
+  const auto draw = [&] {
+    render::OffscreenTarget target(kWidth, kHeight);
+    render::Renderer renderer;
+    render::Camera view;
+    view.target = {0.0f, 0.0f, 0.0f};
+    view.distance = 0.9f;
+    view.pitch = 0.9f;
+    target.bind();
+    renderer.draw(sorted, view, {{-0.15f, -kD, -0.15f}, {0.15f, 0.1f, 0.15f}}, kWidth, kHeight);
+    return target.readRgba();
+  };
+  const Image before = draw();
+  const std::vector<ParticleState> particlesBefore = sorted.readParticles();
+  sortGranulesNow(sorted);
+  const std::vector<ParticleState> particlesAfter = sorted.readParticles();
+  std::uint32_t moved = 0;
+  for (std::size_t p = 0; p < particlesAfter.size(); p += 4) {
+    moved += particlesAfter[p].body != particlesBefore[p].body;
+  }
+  ASSERT_GT(moved, 32u);
+  const Image after = draw();
+  std::uint32_t sand = 0;
+  std::uint32_t differ = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      sand += sandColoured(pixelAt(before, x, y));
+      const Pixel a = pixelAt(before, x, y);
+      const Pixel b = pixelAt(after, x, y);
+      differ += a.r != b.r || a.g != b.g || a.b != b.b;
+    }
+  }
+  EXPECT_GT(sand, 2000u);
+  EXPECT_EQ(differ, 0u);
+}
+
 TEST(RenderPng, UnwritablePathThrowsNamingIt) {
   const Image pixels(4 * 4 * 4, 128);
   const std::string path = "/nonexistent-sandphys-dir/shot.png";

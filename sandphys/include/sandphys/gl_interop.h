@@ -36,6 +36,10 @@ struct RenderBuffers {
   /// vec4 per body: xyz velocity (m/s); w the calm count (uint bits; WorldSettings::sleep): the
   /// body is asleep when it is at least sleepSubsteps.
   unsigned bodyVelocity = 0;
+  /// uint per body: the id (BodyId::index) of the body in the slot. A sort of the granules by
+  /// place (WorldSettings::sortInterval) moves a body's state and id to another slot, so what
+  /// should stay with a body (its colour) follows the id, not the slot.
+  unsigned bodyIds = 0;
   /// vec4 per particle: xyz centre in the body's principal frame (m); w inverse particle mass.
   /// World position = bodyPosition.xyz + rotate(bodyOrientation, particleLocal.xyz).
   unsigned particleLocal = 0;

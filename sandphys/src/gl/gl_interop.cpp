@@ -16,6 +16,7 @@ RenderBuffers renderBuffers(const World& world) {
   b.bodyOrientation = w.buffers[detail::kBodyOrientation].id();
   b.bodyInfo = w.buffers[detail::kBodyInfo].id();
   b.bodyVelocity = w.buffers[detail::kBodyVelocity].id();
+  b.bodyIds = w.buffers[detail::kBodyIds].id();
   b.particleLocal = w.buffers[detail::kParticleLocal].id();
   b.particleBody = w.buffers[detail::kParticleBody].id();
   b.particlePosition = w.buffers[detail::kParticlePosition].id();

@@ -7,6 +7,8 @@ layout(std430, binding = 3) readonly buffer ParticleLocalBuffer { vec4 particleL
 layout(std430, binding = 4) readonly buffer ParticleBodyBuffer { uint particleBody[]; };
 // xyz: velocity; w: calm count (uint bits), asleep from RenderBuffers::sleepSubsteps on.
 layout(std430, binding = 5) readonly buffer BodyVelocityBuffer { vec4 bodyVelocity[]; };
+// The id of the body in each slot (RenderBuffers::bodyIds), which a sort of the granules moves.
+layout(std430, binding = 7) readonly buffer BodyIdsBuffer { uint bodyIds[]; };
 
 #define BODY_ALIVE 1u
 #define BODY_GRANULE 2u
