@@ -68,20 +68,24 @@ void World::Impl::moveWords(Binding buffer, bool particles, std::uint32_t stride
                             std::uint32_t first, std::uint32_t words) {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOrderTarget, buffers[buffer].id());
   const std::uint32_t items = particles ? particleCount : bodyCount;
-  for (GLuint program : {kernels.orderPack, kernels.orderGather}) {
-    glUseProgram(program);
-    glUniform4ui(0, particles ? 1u : 0u, stride, first, words);
-    dispatch(program, nullptr, items, kWorkgroupSize);
-  }
+  glUseProgram(kernels.orderPack);
+  glUniform4ui(0, particles ? 1u : 0u, stride, first, words);
+  dispatch(kernels.orderPack, "order_pack", items, kWorkgroupSize);
+  glUseProgram(kernels.orderGather);
+  glUniform4ui(0, particles ? 1u : 0u, stride, first, words);
+  dispatch(kernels.orderGather, "order_gather", items, kWorkgroupSize);
 }
 
 void World::Impl::sortGranules() {
   stateChanged();
+  // The list build's prefix sum of cellCount into cellStart over the table in use: a workgroup of
+  // kScanBlock / 4 threads per block of kScanBlock entries, then one of 1024 over the blocks.
   const auto scan = [&] {
+    const std::uint32_t threads = kScanBlock / 4;
     const std::uint32_t blocks = table.size / kScanBlock;
-    dispatch(kernels.scanBlocks, nullptr, blocks * 256, 256);
-    dispatch(kernels.scanBlockSums, nullptr, 1024, 1024);
-    dispatch(kernels.scanAdd, nullptr, blocks * 256, 256);
+    dispatch(kernels.scanBlocks, "order_scan", blocks * threads, threads);
+    dispatch(kernels.scanBlockSums, "order_scan", 1024, 1024);
+    dispatch(kernels.scanAdd, "order_scan", blocks * threads, threads);
   };
   // The granules in the order of the last build's grid, numbered; their slots, numbered; each
   // slot's source and each granule's destination (granule_order.glsl).
