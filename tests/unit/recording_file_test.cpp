@@ -11,6 +11,7 @@
 #include <functional>
 #include <iterator>
 #include <limits>
+#include <optional>
 
 #include <sandphys/sandphys.h>
 #include <zstd.h>
@@ -108,6 +109,14 @@ bool sameBits(float a, float b) {
   return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
+// Writes `snapshot`, then a plain snapshot of the next frame with as many bodies, to `file`.
+void writeSnapshotAndPlainOne(const std::filesystem::path& file, const WorldSnapshot& snapshot) {
+  RecordingWriter writer(file, {{"scene", "box-drop"}});
+  writer.addSnapshot(snapshot);
+  writer.addSnapshot(snapshotOf(snapshot.frame + 1, std::uint32_t(snapshot.bodies.size())));
+  writer.finish(1.0);
+}
+
 TEST(RecordingFile, ReadsBackWhatWasWrittenBitForBit) {
   const std::filesystem::path file = writeSample("sample.sprec");
   const Recording r = readRecording(file);
@@ -158,12 +167,7 @@ TEST(RecordingFile, RollingSpringsComeBackWithTheirSnapshot) {
                                       std::bit_cast<std::uint32_t>(-0.0f), 1u};
   }
   const std::filesystem::path file = tempFile("rolling.sprec");
-  {
-    RecordingWriter writer(file, {{"scene", "box-drop"}});
-    writer.addSnapshot(snapshot);
-    writer.addSnapshot(snapshotOf(4, 2));  // one without: no ROLL record follows it
-    writer.finish(1.0);
-  }
+  writeSnapshotAndPlainOne(file, snapshot);  // no ROLL record follows the second
   const Recording r = readRecording(file);
   ASSERT_EQ(r.snapshots.size(), 2u);
   EXPECT_FALSE(firstDifference(snapshot, r.snapshots[0]))
@@ -192,6 +196,33 @@ TEST(RecordingFile, RollingSpringsComeBackWithTheirSnapshot) {
   EXPECT_NE(message.find("is malformed: rolling springs of frame 4 for 4 particles"),
             std::string::npos)
       << message;
+}
+
+// Once a sort of the granules by place has moved any, a snapshot carries the id of each slot's
+// body (a BIDS record after it); the ids are state: in the hash and named as a difference.
+TEST(RecordingFile, BodyIdsComeBackWithTheirSnapshot) {
+  WorldSnapshot snapshot = snapshotOf(3, 4);
+  snapshot.bodyIds = {2, 0, 3, 1};
+  const std::filesystem::path file = tempFile("ids.sprec");
+  writeSnapshotAndPlainOne(file, snapshot);  // no BIDS record follows the second
+  const Recording r = readRecording(file);
+  ASSERT_EQ(r.snapshots.size(), 2u);
+  EXPECT_EQ(r.snapshots[0].bodyIds, snapshot.bodyIds);
+  EXPECT_EQ(stateHash(snapshot), stateHash(r.snapshots[0]));
+  EXPECT_TRUE(r.snapshots[1].bodyIds.empty());
+
+  WorldSnapshot own = snapshot;
+  own.bodyIds.clear();  // each slot its own body
+  EXPECT_NE(stateHash(own), stateHash(snapshot));
+  const std::optional<StateDifference> difference = firstDifference(own, snapshot);
+  ASSERT_TRUE(difference);
+  EXPECT_EQ(difference->body, 0u);
+  EXPECT_EQ(difference->field, "body id");
+  EXPECT_EQ(difference->describe(), "body 0 body id: recorded 0, replayed 2");
+  // Ids that are every slot's own hash as none.
+  WorldSnapshot identity = own;
+  identity.bodyIds = {0, 1, 2, 3};
+  EXPECT_EQ(stateHash(identity), stateHash(own));
 }
 
 TEST(RecordingFile, KeepsThePrincipalOrientationInTheGpusWordOrder) {

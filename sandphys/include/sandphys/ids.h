@@ -5,7 +5,9 @@
 
 namespace sandphys {
 
-/// A rigid body (granule, sampled mesh, rough floor) in a World: slot index plus generation.
+/// A rigid body (granule, sampled mesh, rough floor) in a World: its index, the slot it was added
+/// in (a sort of the granules by place, WorldSettings::sortInterval, moves its state to another
+/// slot, never its id), plus generation.
 /// A default id is invalid; an id whose body was removed is stale and rejected with InvalidId.
 struct BodyId {
   static constexpr std::uint32_t kInvalidIndex = 0xffffffffu;

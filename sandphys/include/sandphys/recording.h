@@ -19,7 +19,7 @@ namespace sandphys {
 /// A body state set from outside the sand during a frame (a Bullet bridge's push, a tool): an
 /// input of a recording.
 struct RecordedInput {
-  std::uint32_t body = 0;  ///< body slot (BodyId::index)
+  std::uint32_t body = 0;  ///< the body's id (BodyId::index)
   BodyDesc state;
 };
 

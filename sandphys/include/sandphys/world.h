@@ -169,8 +169,8 @@ class World {
   std::vector<ColliderShape> colliders() const;
 
   // --- Read-back (every one is a sync point) ------------------------------------------------
-  /// One state per body slot, in slot order (readBodies()[id.index] is body `id`), each with its
-  /// typed id.
+  /// One state per body, in id order (readBodies()[id.index] is body `id`), each with its typed
+  /// id.
   std::vector<BodyState> readBodies() const;
   /// Throws InvalidId for an invalid or stale id.
   BodyState readBody(BodyId id) const;
