@@ -288,7 +288,8 @@ struct World::Impl {
 
   // The order of the bodies in their slots (world_order.cpp)
   /// The slot of body id `id` (< bodyCount) and the id of the body in slot `slot`; the first call
-  /// after a sort reads the ids back (a sync point), which only a World that sorts ever needs.
+  /// after a sort that needs a dynamic body's slot reads the ids back (a sync point), which only a
+  /// World that sorts ever needs.
   std::uint32_t slotOf(std::uint32_t id) const;
   std::uint32_t idOf(std::uint32_t slot) const;
   /// The ids of bodies [first, end), just added in the slots of the same indices.

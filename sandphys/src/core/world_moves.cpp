@@ -39,7 +39,6 @@ BodyDesc poseAt(const KinematicPath& path, std::uint64_t step) {
 KinematicMovePlan World::moveKinematic(BodyId id, const KinematicMove& move) {
   Impl& w = impl();
   w.requireBody(id);
-  // A kinematic body is never sorted: its slot is its id's.
   const std::uint32_t slot = w.slotOf(id.index);
   const Motion motion = w.bodyMotions[slot];
   if (motion != Motion::Kinematic) {

@@ -24,6 +24,9 @@ std::span<const std::uint32_t> World::Impl::slotIds() const {
 }
 
 std::uint32_t World::Impl::slotOf(std::uint32_t id) const {
+  // Only dynamic granules trade slots, so a slot added with another motion still holds the body of
+  // its index: a kinematic body that an engine sets every frame costs no read-back after a sort.
+  if (bodyMotions[id] != Motion::Dynamic) return id;
   return slotIds().empty() ? id : slotsOfIds[id];
 }
 
