@@ -185,8 +185,8 @@ std::optional<int> parseCommandLine(int argc, char** argv, BenchOptions& options
       ->check(CLI::Range(0.0f, 1.0f))
       ->capture_default_str();
   app.add_option("--sort-interval", measure.sortInterval,
-                 "substeps between sorts of the granules by place (WorldSettings::sortInterval; "
-                 "0: none)");
+                 "substeps between sorts of the granules by place (WorldSettings::sortInterval: 0 "
+                 "derives it, kNeverSortGranules never sorts)");
   app.add_flag("--shuffle", measure.shuffled,
                "the pile's granules added in a random order, the same poses: sand whose order in "
                "memory no longer follows place");

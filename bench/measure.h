@@ -60,7 +60,7 @@ struct MeasureOptions {
   std::uint32_t reserveParticles = 0;
   /// Skin of the neighbour lists in particle diameters (WorldSettings::listSkin); 0: derived.
   float listSkin = 0.0f;
-  /// Substeps between sorts of the granules by place (WorldSettings::sortInterval); 0: none.
+  /// Substeps between sorts of the granules by place (WorldSettings::sortInterval); 0: derived.
   std::uint32_t sortInterval = 0;
   /// The pile's granules added in a random order (the same poses): sand whose order in memory
   /// no longer follows place, as after a long flow.

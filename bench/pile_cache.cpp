@@ -35,7 +35,9 @@ std::string settledPileKey(const MeasureOptions& options, const SizePlan& plan, 
                         {"built_state_hash", hex(world.readStateHash())}};
   // Only when it sorts, so that the keys of the piles settled without sorts stay; a shuffled
   // pile differs in its built state.
-  if (options.sortInterval > 0) key["sort_interval"] = options.sortInterval;
+  if (const std::uint32_t interval = granuleSortInterval(world.settings()); interval > 0) {
+    key["sort_interval"] = interval;
+  }
   return key.dump();
 }
 

@@ -46,7 +46,9 @@ std::unique_ptr<World> worldOf(const std::string& version, const GpuContext& gpu
   try {
     bool sorted = false;
     const ShaderDirectory directory(versionFolder(version, &sorted));
-    if (sorted) settings.sortInterval = std::uint32_t(start.steps + 1);
+    // A version either sorts once, in its first substep, or never, so that each round times one
+    // order of the granules.
+    settings.sortInterval = sorted ? std::uint32_t(start.steps + 1) : kNeverSortGranules;
     auto world = std::make_unique<World>(gpu, settings);
     pile.build(*world);
     world->restoreSnapshot(start);

@@ -19,7 +19,7 @@ namespace sandphys::bench {
 inline constexpr const char* kBuiltInShaders = "built-in";
 /// After a version's folder: that World sorts its granules by place in its first substep
 /// (WorldSettings::sortInterval), so that the versions may differ in the order of the granules
-/// rather than in the kernels.
+/// rather than in the kernels; a version without it never sorts.
 inline constexpr std::string_view kSortedSuffix = ":sorted";
 
 /// A version's folder without kSortedSuffix, and whether it had it.

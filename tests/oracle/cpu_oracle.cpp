@@ -138,6 +138,7 @@ OracleBody OracleBody::from(const BodyState& state, const ParticleTemplate& shap
   b.motion = motion;
   for (const Vec3& o : shape.offsets) b.offsets.push_back(toDouble(o));
   b.principalRotation = toDouble(shape.principalRotation);
+  b.id = state.id.index;
   return b;
 }
 

@@ -129,6 +129,9 @@ struct OracleBody {
   Motion motion = Motion::Dynamic;
   std::vector<Vec3d> offsets;  ///< particle centres in the principal frame, m
   QuatD principalRotation{};   ///< the template's principal frame in its original frame
+  /// Its BodyId::index in the World. The oracle holds the bodies in the World's slot order, which
+  /// a sort of the granules by place makes differ from the ids.
+  std::uint32_t id = 0;
 
   /// A body from a read-back state and the template it was built from. BodyState's orientation
   /// is the template's original frame; the principal frame is that times principalRotation (the

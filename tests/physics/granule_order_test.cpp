@@ -111,7 +111,8 @@ class GranuleOrder : public ::testing::TestWithParam<Law> {};
 // Mid-fall, with contacts everywhere: the sort moves most granules to other slots, and every body
 // (by id) and every contact (force, tangential and rolling springs) is the same bit for bit.
 TEST_P(GranuleOrder, ASortMovesTheSlotsAndChangesNoBodyNorContact) {
-  testing::TestWorld w(sortingSettings(1u << 30, GetParam().rollingFriction, GetParam().law));
+  testing::TestWorld w(
+      sortingSettings(kNeverSortGranules - 1, GetParam().rollingFriction, GetParam().law));
   addShuffledPile(*w);
   w->substep(1500);
   const std::vector<BodyState> before = w->readBodies();
@@ -195,6 +196,37 @@ TEST(GranuleOrderRun, BodiesAreSetAndReadByTheirIds) {
   EXPECT_GT(w->readBody(id).position.y, 25 * d);
   EXPECT_GT(w->readBody(ids[0]).position.y, 35 * d);
   EXPECT_LT(w->readBody(ids[0]).position.y, 40 * d);
+}
+
+// Left at 0, the interval is kSortInterval without sleep: the shuffled pile's granules have moved
+// to other slots after two sorts. With sleep, or with kNeverSortGranules, every slot still holds
+// the body added in it.
+TEST(GranuleOrderRun, SortsEveryThousandSubstepsByDefaultButNotWithSleep) {
+  struct Case {
+    bool sleep;
+    std::uint32_t interval;
+    bool sorts;
+  };
+  for (const Case c :
+       {Case{false, 0, true}, Case{true, 0, false}, Case{false, kNeverSortGranules, false}}) {
+    SCOPED_TRACE(::testing::Message() << "sleep " << c.sleep << ", interval " << c.interval);
+    WorldSettings s = sortingSettings(c.interval);
+    s.sleep.enabled = c.sleep;
+    testing::TestWorld w(s);
+    addShuffledPile(*w);
+    w->substep(2 * kSortInterval);
+    const std::vector<ParticleState> particles = w->readParticles();
+    std::uint32_t moved = 0;
+    for (std::uint32_t p = 0; p < particles.size(); p += 4)
+      moved += particles[p].body.index != p / 4;
+    if (c.sorts) {
+      EXPECT_GT(moved, particles.size() / 8);
+      EXPECT_EQ(w->readStats().granuleSorts, 2u);
+    } else {
+      EXPECT_EQ(moved, 0u);
+      EXPECT_EQ(w->readStats().granuleSorts, 0u);
+    }
+  }
 }
 
 TEST(GranuleOrderRun, IsRefusedWithSleep) {

@@ -544,7 +544,7 @@ TEST_F(RenderScene, PlaneSeenFromItsSolidSideHidesNothing) {
 TEST(RenderSorted, GranulesKeepTheirColoursWhenSortedByPlace) {
   WorldSettings s = smallSettings(256);
   s.particleDiameter = kD;
-  s.sortInterval = 1u << 30;  // sorted by sortGranulesNow alone
+  s.sortInterval = kNeverSortGranules - 1;  // sorted by sortGranulesNow alone
   World sorted(gpu(), s);
   sorted.addCollider(Plane{});
   std::vector<BodyDesc> granules;

@@ -2,10 +2,11 @@
 // through a slot piles up in the sump until it buries the slot, and that pile stands clearly
 // steeper with more friction (the paper's Figs. 15 and 22).
 //
-// What the small version trades for time (about two minutes on two llvmpipe cores): 600 granules
-// in a container 12 d deep, a reservoir 12 d wide on a ledge 8 d high, a slot 10 d high (a lower
-// one jams at mu = 0.5: at 4 d only 34 granules passed), the fewest substeps per contact a World
-// accepts. The pile in the sump is about 10 d high and has tens of surface cells on its flank.
+// What the small version trades for time (a fill takes 10-15 s on two llvmpipe cores, and the test
+// runs six): 600 granules in a container 12 d deep, a reservoir 12 d wide on a ledge 8 d high, a
+// slot 10 d high (a lower one jams at mu = 0.5: at 4 d only 34 granules passed), the fewest
+// substeps per contact a World accepts. The pile in the sump is about 10 d high and has tens of
+// surface cells on its flank.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -29,7 +30,7 @@ struct Sump {
   ReposeScupper::GranuleCounts granules;
 };
 
-Sump drain(float friction) {
+Sump drain(float friction, std::uint64_t seed) {
   ReposeScupper::Config config;
   config.granules = kGranules;
   config.friction = friction;
@@ -39,6 +40,7 @@ Sump drain(float friction) {
   config.ledge = kLedge;
   config.sumpLength = 32.0f;
   config.stepsPerContact = kMinStepsPerContact;
+  config.seed = seed;
   ReposeScupper scene(config);
   World world(testing::gpu(), scene.settings());
   scene.build(world);
@@ -49,9 +51,10 @@ Sump drain(float friction) {
   sump.granules = scene.countGranules(bodies);
   sump.angle = scene.heapAngle(bodies);
   std::printf(
-      "mu %.1f: %s at %.2f s (released at %.2f s), %u granules in the reservoir, %u in the sump, "
+      "mu %.1f, seed %u: %s at %.2f s (released at %.2f s), %u granules in the reservoir, %u in "
+      "the sump, "
       "%u alive; angle %.2f deg (R2 %.3f over %zu surface cells), height %.2f d\n",
-      friction, scene.status().c_str(), world.simulatedTime(), scene.releasedAt(),
+      friction, unsigned(seed), scene.status().c_str(), world.simulatedTime(), scene.releasedAt(),
       sump.granules.reservoir, sump.granules.sump, sump.granules.alive, sump.angle.degrees,
       sump.angle.fit.line.rSquared, sump.angle.radius.size(),
       sump.angle.peakHeight / config.particleDiameter);
@@ -97,27 +100,38 @@ TEST(ReposeScupper, TheFillStartsClearOfTheWalls) {
   }
 }
 
+// One fill is one realisation: the angle at mu = 0.5 ranged from 29 to 41 degrees over six (three
+// seeds, with and without sorts of the granules), the gap to mu = 0.1 from 7 to 17. So the gap is
+// taken as the mean over three seeds, whose spread is about 2 degrees.
 TEST(ReposeScupper, TheSumpPileBuriesTheSlotAndStandsSteeperWithMoreFriction) {
-  const Sump rough = drain(0.5f);
-  const Sump smooth = drain(0.1f);
-  for (const Sump* sump : {&rough, &smooth}) {
-    EXPECT_TRUE(sump->settled);
-    // Every granule left is in the reservoir or the sump: none went through a wall or stuck in
-    // the slot. A few roll off the sump's end into the sink (13 at mu = 0.1), not many.
-    EXPECT_EQ(sump->granules.reservoir + sump->granules.sump, sump->granules.alive);
-    EXPECT_GT(sump->granules.alive, kGranules - kGranules / 20);
-    EXPECT_GT(sump->granules.sump, 150u) << "a pile formed in the sump";
-    // The flow stops because the pile buries the slot, whose foot is the ledge's top: the pile
-    // reaches that high (its top centres lie half a granule below the surface).
-    EXPECT_GT(sump->angle.peakHeight, (kLedge - 1.0f) * 0.02f);
-    EXPECT_GE(sump->angle.radius.size(), 10u) << "a flank of at least ten surface cells";
-    // A straight flank: on a pile about 10 d high, surface cells scattered by a granule's size
-    // (about 1 d) about the line give R² of 0.75 to 0.95; a pile that is no slope gives ~0.
-    EXPECT_GT(sump->angle.fit.line.rSquared, 0.6) << "the flank is straight";
+  double gap = 0.0;
+  constexpr std::uint64_t kSeeds = 3;
+  for (std::uint64_t seed = 1; seed <= kSeeds; ++seed) {
+    SCOPED_TRACE(::testing::Message() << "seed " << seed);
+    const Sump rough = drain(0.5f, seed);
+    const Sump smooth = drain(0.1f, seed);
+    for (const Sump* sump : {&rough, &smooth}) {
+      EXPECT_TRUE(sump->settled);
+      // Every granule left is in the reservoir or the sump: none went through a wall or stuck in
+      // the slot. A few roll off the sump's end into the sink, not many.
+      EXPECT_EQ(sump->granules.reservoir + sump->granules.sump, sump->granules.alive);
+      EXPECT_GT(sump->granules.alive, kGranules - kGranules / 20);
+      EXPECT_GT(sump->granules.sump, 150u) << "a pile formed in the sump";
+      // The flow stops because the pile buries the slot, whose foot is the ledge's top: the pile
+      // reaches that high (its top centres lie half a granule below the surface).
+      EXPECT_GT(sump->angle.peakHeight, (kLedge - 1.0f) * 0.02f);
+      EXPECT_GE(sump->angle.radius.size(), 10u) << "a flank of at least ten surface cells";
+      // A straight flank: on a pile about 10 d high, surface cells scattered by a granule's size
+      // (about 1 d) about the line give R² of 0.75 to 0.95; a pile that is no slope gives ~0.
+      EXPECT_GT(sump->angle.fit.line.rSquared, 0.6) << "the flank is straight";
+    }
+    EXPECT_GT(smooth.angle.degrees, 5.0) << "a pile, not a spread";
+    gap += (rough.angle.degrees - smooth.angle.degrees) / double(kSeeds);
   }
-  // The paper's Fig. 22 has about 10 degrees between mu = 0.1 and 0.5; 'clearly' is 10 here.
-  EXPECT_GT(rough.angle.degrees, smooth.angle.degrees + 10.0);
-  EXPECT_GT(smooth.angle.degrees, 5.0) << "a pile, not a spread";
+  // The paper's Fig. 22 has about 10 degrees between mu = 0.1 and 0.5, the six fills above 12.4 on
+  // average (standard deviation 3.8, so 2.2 for a mean of three): 5 is half the paper's gap and
+  // over three such spreads below what was measured, and a friction that changed nothing fails.
+  EXPECT_GT(gap, 5.0) << "mean gap between mu = 0.5 and 0.1, degrees";
 }
 
 }  // namespace

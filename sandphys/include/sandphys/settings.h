@@ -120,12 +120,14 @@ struct WorldSettings {
   /// [kMinListSkin, kMaxListSkin] · d); otherwise in (0, d]. It changes the cost only: contacts
   /// are summed in partner order whenever the lists were built, so no bit of the result.
   float listSkin = 0.0f;
-  /// Substeps between sorts of the granules by place; 0: never. Sand that flows or is poured
-  /// ends up with neighbours far apart in memory, which costs every contact pass (LAMMPS sorts its
-  /// atoms every 1000 steps for the same reason). A sort moves the states of the free, living
-  /// granules among their slots so that slot order follows a walk through the grid; BodyIds stay
-  /// the bodies' own. The sum over a particle's contacts then runs in another order, so the bits
-  /// of the result depend on it (deterministically). Not with sleep (yet).
+  /// Substeps between sorts of the granules by place. Sand that flows or is poured ends up with
+  /// neighbours far apart in memory, which costs every contact pass; LAMMPS sorts its atoms every
+  /// 1000 steps for the same reason. A sort moves the states of the free, living granules among
+  /// their slots so that slot order follows a walk through the grid; BodyIds stay the bodies' own.
+  /// The sum over a particle's contacts then runs in another order, so the bits of the result
+  /// depend on it (deterministically). 0 derives it: kSortInterval without sleep, never with it
+  /// (sleeping sand is not sorted yet, and any other value is refused with sleep);
+  /// kNeverSortGranules: never.
   std::uint32_t sortInterval = 0;
   /// Substeps one call of World::step may run; > 0. Time beyond it is dropped and reported.
   std::uint32_t maxSubstepsPerFrame = 512;
@@ -169,6 +171,21 @@ inline constexpr float kMaxStepsPerContact = 1.0e4f;
 /// (about 84,000 d) is refused, since contacts there would be resolved in steps coarser than their
 /// overlaps.
 inline constexpr float kMaxPositionSpacing = 0.01f;
+
+/// Substeps between sorts of the granules by place when WorldSettings::sortInterval is 0 and
+/// sleep is off: LAMMPS's default (`atom_modify sort 1000`).
+inline constexpr std::uint32_t kSortInterval = 1000;
+/// WorldSettings::sortInterval of a World that never sorts its granules: the largest value the
+/// field takes.
+inline constexpr std::uint32_t kNeverSortGranules = 1u << 30;
+
+/// Substeps between sorts of the granules by place in a World of `settings`
+/// (WorldSettings::sortInterval, derived); 0: never.
+inline std::uint32_t granuleSortInterval(const WorldSettings& settings) {
+  if (settings.sortInterval == kNeverSortGranules) return 0;
+  if (settings.sortInterval > 0) return settings.sortInterval;
+  return settings.sleep.enabled ? 0 : kSortInterval;
+}
 
 /// The derived skin of the neighbour lists (WorldSettings::listSkin = 0): 2 · kListSkinSubsteps ·
 /// maxSpeed · timeStep, so that a particle at the speed guard keeps its list that many substeps,

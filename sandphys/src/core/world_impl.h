@@ -247,8 +247,10 @@ struct World::Impl {
   bool keepsHistory() const { return settings.contactLaw == ContactLaw::HertzMindlin; }
   /// It keeps a rolling spring per contact slot too (Material::rollingFriction, which only
   /// HertzMindlin takes).
-  /// The granules are sorted by place every WorldSettings::sortInterval substeps.
-  bool sortsGranules() const { return settings.sortInterval > 0; }
+  /// Substeps between sorts of the granules by place (WorldSettings::sortInterval, derived);
+  /// 0: never.
+  std::uint32_t sortInterval() const { return granuleSortInterval(settings); }
+  bool sortsGranules() const { return sortInterval() > 0; }
   bool keepsRollingHistory() const {
     return keepsHistory() && settings.material.rollingFriction > 0.0f;
   }

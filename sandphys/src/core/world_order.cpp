@@ -60,7 +60,7 @@ void World::Impl::setIds(std::span<const std::uint32_t> ids) {
 }
 
 void World::Impl::sortGranulesIfDue() {
-  if (!sortsGranules() || steps == 0 || steps % settings.sortInterval != 0) return;
+  if (!sortsGranules() || steps == 0 || steps % sortInterval() != 0) return;
   sortGranules();
   // The lists, the particles and the pair counts of the sorted slots, before this substep's
   // contacts.

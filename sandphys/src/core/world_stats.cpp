@@ -83,7 +83,7 @@ void World::Impl::fillKeptFields(WorldStats& s) const {
   s.listBuilds = counters[kCounterListBuilds];
   s.listNearMarkings = counters[kCounterNearMarkings];
   s.neighbourListOverflows = counters[kCounterListOverflows];
-  s.granuleSorts = sortsGranules() ? steps / settings.sortInterval : 0;
+  s.granuleSorts = sortsGranules() ? steps / sortInterval() : 0;
   if (sleep.enabled) {
     s.stillGridBuilds = counters[kCounterStillBuilds];
     s.movingGridParticles = counters[kCounterGridActive] + counters[kCounterGridRecent];
