@@ -91,6 +91,8 @@ void sortGranulesNow(World& world) {
   gpu().makeCurrent();
   World::Impl& w = detail::WorldAccess::impl(world);
   w.buffers.bindAll();
+  w.listsStale = true;
+  w.prepareContacts();
   w.sortGranules();
 }
 

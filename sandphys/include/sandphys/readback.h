@@ -104,7 +104,8 @@ struct WorldStats {
   /// slower.
   std::uint64_t neighbourListOverflows = 0;
   /// Sorts of the granules by place so far (total; WorldSettings::sortInterval, 0 without): one
-  /// at every multiple of the interval, counted in substeps from the World's start.
+  /// in each substep that the World's earlier substeps number a multiple of the interval (with
+  /// 1000: the 1001st, the 2001st, ...).
   std::uint64_t granuleSorts = 0;
   /// WorldSettings::sleep (0 without): the builds that sorted the sleepers into a grid again
   /// (total: the CPU changed the bodies, or enough sleepers had moved since), and the particles

@@ -301,9 +301,11 @@ struct World::Impl {
   /// Every slot's id, or none while each slot holds the body of its own index. Sync point after a
   /// sort.
   std::span<const std::uint32_t> slotIds() const;
-  /// The sort of the granules by place, when the substep count calls for one (after the lists of
-  /// a substep were built: every particle in use is in the grid); the lists are built again.
-  void sortGranulesIfDue();
+  /// The substep count calls for a sort of the granules by place.
+  bool granuleSortDue() const;
+  /// prepareContacts with a sort of the granules by place: every list built, the granules sorted
+  /// in the order of that build's grid (every particle in use is in it), the lists built again.
+  void prepareContactsAndSort();
   void sortGranules();
   /// One buffer's words moved to their new slots: `particles` says whether an item is a particle
   /// or a body; each item has `stride` words, of which [first, first + words) move.

@@ -201,8 +201,11 @@ void World::Impl::runSubstep() {
              (bodyCount + kCollectChunk - 1) / kCollectChunk, kWorkgroupSize);
     buildLists();
   } else {
-    prepareContacts();
-    sortGranulesIfDue();
+    if (granuleSortDue()) {
+      prepareContactsAndSort();
+    } else {
+      prepareContacts();
+    }
   }
   // The first substep after the bodies changed or were restored takes every granule's pair counts
   // (a read-back's list build in between must not take that from it: the CPU says it, not the

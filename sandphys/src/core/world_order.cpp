@@ -59,8 +59,17 @@ void World::Impl::setIds(std::span<const std::uint32_t> ids) {
   orderStale = !ids.empty();
 }
 
-void World::Impl::sortGranulesIfDue() {
-  if (!sortsGranules() || steps == 0 || steps % sortInterval() != 0) return;
+bool World::Impl::granuleSortDue() const {
+  return sortsGranules() && steps > 0 && steps % sortInterval() == 0;
+}
+
+void World::Impl::prepareContactsAndSort() {
+  // The order comes from a grid built for it from this substep's positions, not from whichever
+  // build came last (builds follow the motion since the last one, and restores and read-backs
+  // ask for their own): so it follows from the state alone, and a World restored from a snapshot
+  // sorts as the original did.
+  listsStale = true;
+  prepareContacts();
   sortGranules();
   // The lists, the particles and the pair counts of the sorted slots, before this substep's
   // contacts.

@@ -83,7 +83,8 @@ void World::Impl::fillKeptFields(WorldStats& s) const {
   s.listBuilds = counters[kCounterListBuilds];
   s.listNearMarkings = counters[kCounterNearMarkings];
   s.neighbourListOverflows = counters[kCounterListOverflows];
-  s.granuleSorts = sortsGranules() ? steps / sortInterval() : 0;
+  // A substep sorts when the count of the substeps before it is a multiple of the interval.
+  s.granuleSorts = sortsGranules() && steps > 0 ? (steps - 1) / sortInterval() : 0;
   if (sleep.enabled) {
     s.stillGridBuilds = counters[kCounterStillBuilds];
     s.movingGridParticles = counters[kCounterGridActive] + counters[kCounterGridRecent];
