@@ -91,9 +91,7 @@ void sortGranulesNow(World& world) {
   gpu().makeCurrent();
   World::Impl& w = detail::WorldAccess::impl(world);
   w.buffers.bindAll();
-  w.listsStale = true;
-  w.prepareContacts();
-  w.sortGranules();
+  w.prepareContactsAndSort();
 }
 
 std::vector<ContactRecord> contactsFromBothSides(World& world) {

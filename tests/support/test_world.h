@@ -53,9 +53,8 @@ std::uint32_t particlesLeftToSearch(World& world);
 /// the contacts pass loads.
 std::uint32_t particlesLeftToColliders(World& world);
 
-/// Sorts the granules of `world` by place now (World::Impl::sortGranules, after a build of every
-/// list), as a substep at a multiple of WorldSettings::sortInterval does before its contacts;
-/// `world` must sort.
+/// Sorts the granules of `world` by place now (World::Impl::prepareContactsAndSort), as a substep
+/// after a multiple of WorldSettings::sortInterval does before its contacts; `world` must sort.
 void sortGranulesNow(World& world);
 
 /// Every contact of `world` from each of its particles' sides (World::readContacts gives a pair

@@ -247,13 +247,13 @@ struct World::Impl {
   bool keepsHistory() const { return settings.contactLaw == ContactLaw::HertzMindlin; }
   /// It keeps a rolling spring per contact slot too (Material::rollingFriction, which only
   /// HertzMindlin takes).
+  bool keepsRollingHistory() const {
+    return keepsHistory() && settings.material.rollingFriction > 0.0f;
+  }
   /// Substeps between sorts of the granules by place (WorldSettings::sortInterval, derived);
   /// 0: never.
   std::uint32_t sortInterval() const { return granuleSortInterval(settings); }
   bool sortsGranules() const { return sortInterval() > 0; }
-  bool keepsRollingHistory() const {
-    return keepsHistory() && settings.material.rollingFriction > 0.0f;
-  }
   /// The contacts pass leaves the particles near a collider to contacts_colliders (without sleep;
   /// with it contacts keeps the collider code): a collider changed needs a list build then.
   bool collidersInOwnPass() const { return !sleep.enabled; }
