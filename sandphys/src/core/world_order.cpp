@@ -3,6 +3,7 @@
 // bodies' own while their states move.
 #include <numeric>
 #include <string>
+#include <utility>
 
 #include "core/assert.h"
 #include "core/world_impl.h"
@@ -80,12 +81,13 @@ void World::Impl::moveWords(Binding buffer, bool particles, std::uint32_t stride
                             std::uint32_t first, std::uint32_t words) {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOrderTarget, buffers[buffer].id());
   const std::uint32_t items = particles ? particleCount : bodyCount;
-  glUseProgram(kernels.orderPack);
-  glUniform4ui(0, particles ? 1u : 0u, stride, first, words);
-  dispatch(kernels.orderPack, "order_pack", items, kWorkgroupSize);
-  glUseProgram(kernels.orderGather);
-  glUniform4ui(0, particles ? 1u : 0u, stride, first, words);
-  dispatch(kernels.orderGather, "order_gather", items, kWorkgroupSize);
+  const std::pair<GLuint, const char*> passes[] = {{kernels.orderPack, "order_pack"},
+                                                   {kernels.orderGather, "order_gather"}};
+  for (const auto& [program, name] : passes) {
+    glUseProgram(program);
+    glUniform4ui(0, particles ? 1u : 0u, stride, first, words);
+    dispatch(program, name, items, kWorkgroupSize);
+  }
 }
 
 void World::Impl::sortGranules() {
