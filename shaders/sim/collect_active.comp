@@ -13,6 +13,10 @@
 // stamps the bodies that go into its moving grid (BODY_GRID_BUILD): the computed ones and, unless
 // the still grid is built again, the recent sleepers, whose particles it lists from the end of
 // activeParticles (common/grid.glsl).
+// In a substep that sorts the granules by place (COUNTER_GRANULE_SORT) it writes the sort's
+// commands (COUNTER_SORT_DISPATCH): when it listed something to compute, full, with a build of
+// every list, whose moving grid the sort follows; otherwise zero, so that sleeping sand is not
+// sorted (as a frame that skips the substep does not sort it).
 // So the passes that follow cost what the awake sand costs, and nothing is read back. A chunk
 // whose last scan listed nothing is marked quiet (QUIET_CHUNKS) and passed over until something
 // may have changed it, but at a build that lists the recent sleepers: so this pass, too, costs
@@ -44,6 +48,16 @@ void writeCommand(uint pass, uint entries) {
   counters[at + 3u] = entries;
 }
 
+// The sort's commands (World::Impl::sortGranules): over the particles, the bodies, the blocks of
+// the grid's table and one workgroup for the block sums; none unless `sorts`.
+void writeSortCommands(bool sorts) {
+  uint groups[SORT_PASSES] = uint[](groupsFor(params.particleCount), groupsFor(params.bodyCount),
+                                    params.hashSize / SCAN_BLOCK, 1u);
+  for (uint pass = 0u; pass < uint(SORT_PASSES); ++pass) {
+    writeGroups(uint(COUNTER_SORT_DISPATCH) + 4u * pass, sorts ? groups[pass] : 0u);
+  }
+}
+
 // Whether body b is computed this substep, its info and its calm count; and, at a build that
 // keeps the still grid (`recentDue`), whether it is a recent sleeper: one the moving grid took
 // at some build since the still grid was built (`stillBuild`).
@@ -66,6 +80,10 @@ void main() {
   uint end = min(first + COLLECT_CHUNK, params.bodyCount);
   // Every workgroup reads these before the last one changes them (decideListBuild).
   uint requested = counters[COUNTER_LIST_REQUESTED];
+  // A sort needs a build of every list, if it sorts (then something is computed, and stamped
+  // below; otherwise nothing is, and any other build due is made a build of every list too).
+  bool sortRequested = counters[COUNTER_GRANULE_SORT] == SORT_REQUESTED;
+  if (sortRequested) requested = LIST_REQUEST_ALL;
   bool recentDue = requested != 0u && !stillGridDue(requested);
   uint build = counters[COUNTER_LIST_BUILDS] + 1u;  // the number of the build, if one is due
   uint stillBuild = counters[COUNTER_STILL_BUILD];
@@ -128,6 +146,14 @@ void main() {
       // Only the length: the pass is not dispatched from a command (layout.glsl).
       activeListLength(ACTIVE_PASS_LARGE) = atomicExchange(counters[COUNTER_ACTIVE_LARGE], 0u);
       counters[COUNTER_ACTIVE_GROUPS_DONE] = 0u;
+      if (sortRequested) {
+        bool sorts = particles > 0u;
+        if (sorts || counters[COUNTER_LIST_REQUESTED] != 0u) {
+          counters[COUNTER_LIST_REQUESTED] = LIST_REQUEST_ALL;
+        }
+        writeSortCommands(sorts);
+        counters[COUNTER_GRANULE_SORT] = 0u;
+      }
       // What list_check.comp does without sleep.
       // (Sleep leaves the lists' near part unmarked.)
       clearRunningCommands(decideListBuild(false, particles,

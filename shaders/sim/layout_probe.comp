@@ -35,6 +35,11 @@ layout(std430, binding = 49) readonly buffer GridCountersProbe {
   uint recountPairsProbe;
   uint beforeNearMarkingsProbe[COUNTER_NEAR_MARKINGS - COUNTER_RECOUNT_PAIRS - 1];
   uint nearMarkingsProbe;
+  uint beforeGranuleSortProbe[COUNTER_GRANULE_SORT - COUNTER_NEAR_MARKINGS - 1];
+  uint granuleSortProbe;
+  uint beforeSortDispatchProbe[COUNTER_SORT_DISPATCH - COUNTER_GRANULE_SORT - 1];
+  uint sortDispatchProbe[4 * SORT_PASSES];
+  uint countersEndProbe;
 };
 // The active passes' commands and collect_active.comp's chunk (sleep): each member starts at
 // its count.
@@ -57,6 +62,8 @@ void main() {
                  sleepProbeEnd);
   sum.w += float(beforeStillBuildsProbe[0] + stillBuildsProbe[0] + gridActiveProbe[0] + gridRecentProbe + recountPairsProbe);
   sum.w += float(beforeNearMarkingsProbe[0] + nearMarkingsProbe);
+  sum.w += float(beforeGranuleSortProbe[0] + granuleSortProbe + beforeSortDispatchProbe[0] +
+                 sortDispatchProbe[0] + countersEndProbe);
   sum += sinks[0].lo + sinks[0].hi;
   sum += vec4(statsPartials[0].counts) + statsPartials[0].sums + vec4(statsPartials[0].sleep);
   sum += contactList[0] + vec4(float(contactListCount + contactListCapacity + pad0 + pad1));

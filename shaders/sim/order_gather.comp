@@ -2,7 +2,7 @@
 // Sort of the granules by place, the moves (order_pack.comp): each body or particle in use takes
 // the words of the one whose state comes to its slot (bodyOrder.y), from the copy.
 #include "common/layout.glsl"
-#include "common/granule_order.glsl"
+#include "common/order_words.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 

@@ -3,7 +3,7 @@
 // words of each body or particle in use are copied out to the neighbour lists, which the sort
 // leaves to the next build to fill, and order_gather.comp brings them back in their new places.
 #include "common/layout.glsl"
-#include "common/granule_order.glsl"
+#include "common/order_words.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 

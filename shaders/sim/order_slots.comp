@@ -3,15 +3,19 @@
 // in ascending order. One thread per body slot marks, in cellCount, the slots of granules the sort
 // moves; the scan after it numbers them.
 #include "common/layout.glsl"
-#include "common/granule_order.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 
 BODY_INFO_TEXTURE
 CELL_COUNT(writeonly)
+#ifdef SLEEPING
+BODY_GRID_BUILD_TEXTURE
+COUNTERS(readonly)
+#endif
+#include "common/granule_order.glsl"
 
 void main() {
   uint slot = threadIndex();
   if (slot >= params.bodyCount) return;
-  if (sortsGranule(texelFetch(bodyInfoTexture, int(slot)).z)) cellCount[slot] = 1u;
+  if (sortsGranule(slot)) cellCount[slot] = 1u;
 }

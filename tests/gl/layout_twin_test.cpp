@@ -138,12 +138,16 @@ TEST(LayoutTwin, UniformBlockAndStructsMatchTheCppDeclarations) {
   EXPECT_EQ(blockSize(program, GL_SHADER_STORAGE_BLOCK, "ListDispatchProbe"),
             GLint(4 * kCounterListDispatch));
   // The counters of sleep's two grids that the CPU reads, the one it writes to have every pair
-  // counted and the near markings it reads, each member of the probe at its word.
+  // counted, the near markings it reads, the sort's request and commands (sleep), and the end,
+  // each member of the probe at its word.
   const Member gridCounters[] = {{"stillBuildsProbe[0]", 4 * kCounterStillBuilds},
                                  {"gridActiveProbe[0]", 4 * kCounterGridActive},
                                  {"gridRecentProbe", 4 * kCounterGridRecent},
                                  {"recountPairsProbe", 4 * kCounterRecountPairs},
-                                 {"nearMarkingsProbe", 4 * kCounterNearMarkings}};
+                                 {"nearMarkingsProbe", 4 * kCounterNearMarkings},
+                                 {"granuleSortProbe", 4 * kCounterGranuleSort},
+                                 {"sortDispatchProbe[0]", 4 * kCounterSortDispatch},
+                                 {"countersEndProbe", 4 * kCounterCount}};
   for (const Member& m : gridCounters) {
     EXPECT_EQ(resourceOffset(program, GL_BUFFER_VARIABLE, m.name), GLint(m.offset)) << m.name;
   }

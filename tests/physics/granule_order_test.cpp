@@ -88,6 +88,23 @@ bool sameContact(const ContactRecord& a, const ContactRecord& b) {
          sameBits(&a.rollingDisplacement, &b.rollingDisplacement, sizeof(Vec3));
 }
 
+// Every body (by id) and every contact the same, bit for bit.
+void expectSameBodiesAndContacts(const std::vector<BodyState>& before,
+                                 const std::vector<BodyState>& after,
+                                 const std::vector<ContactRecord>& contactsBefore,
+                                 const std::vector<ContactRecord>& contactsAfter) {
+  ASSERT_EQ(after.size(), before.size());
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    ASSERT_TRUE(identical(before[i], after[i])) << "body " << i;
+  }
+  ASSERT_EQ(contactsAfter.size(), contactsBefore.size());
+  for (std::size_t i = 0; i < contactsBefore.size(); ++i) {
+    ASSERT_TRUE(sameContact(contactsBefore[i], contactsAfter[i]))
+        << "contact of bodies " << contactsBefore[i].bodyA.index << " and "
+        << contactsBefore[i].bodyB.index;
+  }
+}
+
 // Mean distance in slots between the granules of each particle contact (four particles a slot).
 double meanSlotGap(const std::vector<ContactRecord>& contacts) {
   double sum = 0.0;
@@ -122,16 +139,8 @@ TEST_P(GranuleOrder, ASortMovesTheSlotsAndChangesNoBodyNorContact) {
   const std::vector<BodyState> after = w->readBodies();
   const std::vector<ContactRecord> contactsAfter = contactsByBody(*w);
 
-  ASSERT_EQ(after.size(), before.size());
-  for (std::size_t i = 0; i < before.size(); ++i) {
-    ASSERT_TRUE(identical(before[i], after[i])) << "body " << i;
-  }
-  ASSERT_EQ(contactsAfter.size(), contactsBefore.size());
-  for (std::size_t i = 0; i < contactsBefore.size(); ++i) {
-    ASSERT_TRUE(sameContact(contactsBefore[i], contactsAfter[i]))
-        << "contact of bodies " << contactsBefore[i].bodyA.index << " and "
-        << contactsBefore[i].bodyB.index;
-  }
+  ASSERT_NO_FATAL_FAILURE(
+      expectSameBodiesAndContacts(before, after, contactsBefore, contactsAfter));
   // The particles in slot order now belong to other bodies, and touching granules lie closer in
   // slots than in the shuffled order.
   const std::vector<ParticleState> particles = w->readParticles();
@@ -218,17 +227,18 @@ TEST(GranuleOrderRun, BodiesAreSetAndReadByTheirIds) {
   EXPECT_LT(w->readBody(ids[0]).position.y, 40 * d);
 }
 
-// Left at 0, the interval is kSortInterval without sleep: the shuffled pile's granules have moved
-// to other slots after two sorts. With sleep, or with kNeverSortGranules, every slot still holds
-// the body added in it.
-TEST(GranuleOrderRun, SortsEveryThousandSubstepsByDefaultButNotWithSleep) {
+// Left at 0, the interval is kSortInterval, with sleep as without (the falling pile is awake):
+// the shuffled pile's granules have moved to other slots after two sorts. With
+// kNeverSortGranules every slot still holds the body added in it.
+TEST(GranuleOrderRun, SortsEveryThousandSubstepsByDefault) {
   struct Case {
     bool sleep;
     std::uint32_t interval;
     bool sorts;
   };
   for (const Case c :
-       {Case{false, 0, true}, Case{true, 0, false}, Case{false, kNeverSortGranules, false}}) {
+       {Case{false, 0, true}, Case{true, 0, true}, Case{false, kNeverSortGranules, false},
+        Case{true, kNeverSortGranules, false}}) {
     SCOPED_TRACE(::testing::Message() << "sleep " << c.sleep << ", interval " << c.interval);
     WorldSettings s = sortingSettings(c.interval);
     s.sleep.enabled = c.sleep;
@@ -249,12 +259,112 @@ TEST(GranuleOrderRun, SortsEveryThousandSubstepsByDefaultButNotWithSleep) {
   }
 }
 
-TEST(GranuleOrderRun, IsRefusedWithSleep) {
-  WorldSettings s = sortingSettings(100);
+// testing::buildPile with sleep, caught half asleep: a snapshot taken without sorts.
+WorldSnapshot halfAsleepPile() {
+  WorldSettings s = testing::smallSettings();
   s.sleep.enabled = true;
-  const std::string message = testing::errorMessageOf([&] { World world(testing::gpu(), s); });
-  EXPECT_NE(message.find("WorldSettings.sortInterval"), std::string::npos) << message;
-  EXPECT_NE(message.find("sleep"), std::string::npos) << message;
+  s.sortInterval = kNeverSortGranules;
+  testing::TestWorld w(s);
+  testing::buildPile(*w);
+  std::uint32_t asleep = 0;
+  while (w->simulatedTime() < 1.5 && asleep < 30) {
+    w.simulate(0.05);
+    asleep = w->readStats().granulesAsleep;
+  }
+  return w->readSnapshot();
+}
+
+WorldSettings sleepingSettings(std::uint32_t interval) {
+  WorldSettings s = testing::smallSettings();
+  s.sleep.enabled = true;
+  s.sortInterval = interval;
+  return s;
+}
+
+// With sleep a sort moves only the granules the substep computes, among their own slots: every
+// sleeper that nothing touched keeps its slot. As without sleep, every body (by id), its calm
+// count, every particle's force and every contact are the same bit for bit; only the marks of
+// the sleepers that something touched are taken back, as in every substep that lists them.
+TEST(GranuleOrderRun, WithSleepOnlyTheComputedGranulesTradeSlots) {
+  const WorldSnapshot half = halfAsleepPile();
+  testing::TestWorld w(sleepingSettings(kNeverSortGranules - 1));
+  testing::buildPile(*w);
+  w->restoreSnapshot(half);
+  const std::uint32_t asleep = w->readStats().granulesAsleep;
+  ASSERT_GT(asleep, 20u);
+  ASSERT_LT(asleep, 70u);
+  const std::uint32_t sleeping = w->sleepModel().substeps;
+  const std::vector<BodyState> before = w->readBodies();
+  const std::vector<ContactRecord> contactsBefore = contactsByBody(*w);
+  testing::sortGranulesNow(*w);
+  const std::vector<BodyState> after = w->readBodies();
+  const std::vector<ContactRecord> contactsAfter = contactsByBody(*w);
+  const WorldSnapshot sorted = w->readSnapshot();
+
+  ASSERT_NO_FATAL_FAILURE(
+      expectSameBodiesAndContacts(before, after, contactsBefore, contactsAfter));
+  ASSERT_EQ(sorted.bodyIds.size(), half.bodies.size());
+  std::uint32_t moved = 0;
+  for (std::uint32_t slot = 0; slot < sorted.bodyIds.size(); ++slot) {
+    const std::uint32_t id = sorted.bodyIds[slot];
+    const StoredBody& was = half.bodies[id];
+    moved += id != slot;
+    if (was.calm == sleeping) {
+      EXPECT_EQ(id, slot) << "a sleeper nothing touched moved";
+    }
+    EXPECT_EQ(sorted.bodies[slot].calm, std::min(was.calm, sleeping)) << "body " << id;
+    for (std::uint32_t k = 0; k < 4; ++k) {
+      EXPECT_EQ(
+          std::memcmp(&sorted.forces[4 * slot + k], &half.forces[4 * id + k], sizeof(StoredForces)),
+          0)
+          << "body " << id << " particle " << k;
+    }
+  }
+  EXPECT_GT(moved, (half.bodies.size() - asleep) / 2);
+}
+
+// A run with sleep that sorts every 100 substeps, from the half sleeping pile, ends as the same
+// bits however it gets there: restored from a snapshot at any substep, or read on the way.
+TEST(GranuleOrderRun, WithSleepEndsAsTheSameBitsWhenRestoredOrReadOnTheWay) {
+  constexpr std::uint32_t kRun = 300;
+  const WorldSnapshot half = halfAsleepPile();
+  const auto fromHalf = [&](testing::TestWorld& w) {
+    testing::buildPile(*w);
+    w->restoreSnapshot(half);
+  };
+  testing::TestWorld original(sleepingSettings(100));
+  fromHalf(original);
+  original->substep(kRun);
+  EXPECT_EQ(original->readStats().granuleSorts - (half.steps - 1) / 100, 3u);
+  const std::uint64_t hash = original->readStateHash();
+  const WorldSnapshot end = original->readSnapshot();
+  std::uint32_t moved = 0;
+  for (std::uint32_t slot = 0; slot < end.bodyIds.size(); ++slot)
+    moved += end.bodyIds[slot] != slot;
+  EXPECT_GT(moved, 10u);
+
+  for (std::uint32_t at : {10u, 40u, 90u, 130u, 250u}) {
+    SCOPED_TRACE(::testing::Message() << "restored " << at << " substeps on");
+    testing::TestWorld first(sleepingSettings(100));
+    fromHalf(first);
+    first->substep(at);
+    testing::TestWorld replay(sleepingSettings(100));
+    testing::buildPile(*replay);
+    replay->restoreSnapshot(first->readSnapshot());
+    replay->substep(kRun - at);
+    const auto difference = firstDifference(end, replay->readSnapshot());
+    EXPECT_FALSE(difference.has_value()) << difference->describe();
+    EXPECT_EQ(replay->readStateHash(), hash);
+  }
+
+  SCOPED_TRACE("read on the way");
+  testing::TestWorld observed(sleepingSettings(100));
+  fromHalf(observed);
+  for (std::uint32_t done = 0; done < kRun; done += 30) {
+    observed->substep(30);
+    observed->readContacts();
+  }
+  EXPECT_EQ(observed->readStateHash(), hash);
 }
 
 }  // namespace

@@ -91,7 +91,11 @@ void sortGranulesNow(World& world) {
   gpu().makeCurrent();
   World::Impl& w = detail::WorldAccess::impl(world);
   w.buffers.bindAll();
-  w.prepareContactsAndSort();
+  if (w.sleep.enabled) {
+    w.prepareActiveAndSort();
+  } else {
+    w.prepareContactsAndSort();
+  }
 }
 
 std::vector<ContactRecord> contactsFromBothSides(World& world) {

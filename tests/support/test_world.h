@@ -53,8 +53,10 @@ std::uint32_t particlesLeftToSearch(World& world);
 /// the contacts pass loads.
 std::uint32_t particlesLeftToColliders(World& world);
 
-/// Sorts the granules of `world` by place now (World::Impl::prepareContactsAndSort), as a substep
-/// after a multiple of WorldSettings::sortInterval does before its contacts; `world` must sort.
+/// Sorts the granules of `world` by place now (World::Impl::prepareContactsAndSort, with sleep
+/// prepareActiveAndSort), as a substep after a multiple of WorldSettings::sortInterval does before
+/// its contacts; `world` must sort. With sleep that lists what the substep computes, as a
+/// substep does: the sleepers that something touched are not listed in the next one.
 void sortGranulesNow(World& world);
 
 /// Every contact of `world` from each of its particles' sides (World::readContacts gives a pair

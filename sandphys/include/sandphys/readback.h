@@ -105,7 +105,8 @@ struct WorldStats {
   std::uint64_t neighbourListOverflows = 0;
   /// Sorts of the granules by place so far (total; WorldSettings::sortInterval, 0 without): one
   /// in each substep that the World's earlier substeps number a multiple of the interval (with
-  /// 1000: the 1001st, the 2001st, ...).
+  /// 1000: the 1001st, the 2001st, ...). With sleep, such a substep that computes nothing moves
+  /// nothing, and counts.
   std::uint64_t granuleSorts = 0;
   /// WorldSettings::sleep (0 without): the builds that sorted the sleepers into a grid again
   /// (total: the CPU changed the bodies, or enough sleepers had moved since), and the particles

@@ -125,9 +125,9 @@ struct WorldSettings {
   /// 1000 steps for the same reason. A sort moves the states of the free, living granules among
   /// their slots so that slot order follows a walk through the grid; BodyIds stay the bodies' own.
   /// The sum over a particle's contacts then runs in another order, so the bits of the result
-  /// depend on it (deterministically). 0 derives it: kSortInterval without sleep, never with it
-  /// (sleeping sand is not sorted yet, and any other value is refused with sleep);
-  /// kNeverSortGranules: never.
+  /// depend on it (deterministically). With sleep only the granules a substep computes are
+  /// sorted, among their own slots, and a substep that computes nothing sorts nothing. 0 derives
+  /// it: kSortInterval; kNeverSortGranules: never.
   std::uint32_t sortInterval = 0;
   /// Substeps one call of World::step may run; > 0. Time beyond it is dropped and reported.
   std::uint32_t maxSubstepsPerFrame = 512;
@@ -172,8 +172,8 @@ inline constexpr float kMaxStepsPerContact = 1.0e4f;
 /// overlaps.
 inline constexpr float kMaxPositionSpacing = 0.01f;
 
-/// Substeps between sorts of the granules by place when WorldSettings::sortInterval is 0 and
-/// sleep is off: LAMMPS's default (`atom_modify sort 1000`).
+/// Substeps between sorts of the granules by place when WorldSettings::sortInterval is 0:
+/// LAMMPS's default (`atom_modify sort 1000`).
 inline constexpr std::uint32_t kSortInterval = 1000;
 /// WorldSettings::sortInterval of a World that never sorts its granules: the largest value the
 /// field takes.
@@ -184,7 +184,7 @@ inline constexpr std::uint32_t kNeverSortGranules = 1u << 30;
 inline std::uint32_t granuleSortInterval(const WorldSettings& settings) {
   if (settings.sortInterval == kNeverSortGranules) return 0;
   if (settings.sortInterval > 0) return settings.sortInterval;
-  return settings.sleep.enabled ? 0 : kSortInterval;
+  return kSortInterval;
 }
 
 /// The derived skin of the neighbour lists (WorldSettings::listSkin = 0): 2 · kListSkinSubsteps ·

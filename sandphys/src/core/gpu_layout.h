@@ -20,8 +20,8 @@ inline constexpr unsigned kStatsWorkgroups = 32;  // fixed: the reduction order 
 // counters[] (layout.glsl, COUNTER_*): rare events, the neighbour lists' control and, from
 // kCounterListDispatch on, the indirect commands of the list build's passes, then those of the
 // passes over lists (the active lists, with sleep; the granules due for their pair counts; the
-// particles left to the grid search). Words 5-9, 13, 15-23 and 25-27 are the GPU's alone or
-// unused (layout.glsl).
+// particles left to the grid search), then with sleep those of the sort of the granules. Words
+// 5-9, 13, 15-23, 25 and 26 are the GPU's alone (layout.glsl).
 inline constexpr std::uint32_t kCounterKilled = 0;
 inline constexpr std::uint32_t kCounterSpawnTaken = 1;
 inline constexpr std::uint32_t kCounterListRequested = 2;
@@ -67,7 +67,21 @@ enum ActivePass : std::uint32_t {
   kActivePassLarge,  // SLEEPING: the active large bodies' length only (layout.glsl)
   kActivePasses,
 };
-inline constexpr std::uint32_t kCounterCount = kCounterActiveDispatch + 4 * kActivePasses;
+/// SLEEPING: set to kSortRequested in a substep that sorts the granules by place;
+/// collect_active.comp turns it into the sort's indirect commands (layout.glsl,
+/// COUNTER_GRANULE_SORT).
+inline constexpr std::uint32_t kCounterGranuleSort = 27;
+inline constexpr std::uint32_t kSortRequested = 1;
+inline constexpr std::uint32_t kCounterSortDispatch = kCounterActiveDispatch + 4 * kActivePasses;
+/// What the sort's passes run over, each size from its own indirect command under SLEEPING.
+enum SortPass : std::uint32_t {
+  kSortOverParticles,
+  kSortOverBodies,
+  kSortOverScanBlocks,
+  kSortOverBlockSums,
+  kSortPasses,
+};
+inline constexpr std::uint32_t kCounterCount = kCounterSortDispatch + 4 * kSortPasses;
 /// Byte offset of a pass's indirect command in the counters buffer.
 inline constexpr std::uint32_t listDispatchOffset(ListBuildPass pass) {
   return 4 * (kCounterListDispatch + 4 * pass);
@@ -78,6 +92,10 @@ inline constexpr std::uint32_t kCollectChunk = 32;
 /// Byte offset of an active pass's indirect command in the counters buffer.
 inline constexpr std::uint32_t activeDispatchOffset(ActivePass pass) {
   return 4 * (kCounterActiveDispatch + 4 * pass);
+}
+/// Byte offset of a sort pass's indirect command in the counters buffer (SLEEPING).
+inline constexpr std::uint32_t sortDispatchOffset(SortPass pass) {
+  return 4 * (kCounterSortDispatch + 4 * pass);
 }
 /// Neighbour-list entries per particle (layout.glsl, NEIGHBOUR_LIST_CAPACITY).
 inline constexpr std::uint32_t kNeighbourListCapacity = 16;

@@ -18,10 +18,6 @@ SleepModel SleepModel::fromSettings(const WorldSettings& s, float timeStep) {
           double(unsigned(s.contactLaw)),
           "must be ContactLaw::HertzMindlin (0) with WorldSettings.sleep.enabled: the paper's law "
           "has no static friction, so its sand never comes to rest");
-  require(s.sortInterval == 0 || s.sortInterval == kNeverSortGranules, "WorldSettings.sortInterval",
-          s.sortInterval,
-          "must be 0 (derived) or kNeverSortGranules with WorldSettings.sleep.enabled: the sort of "
-          "the granules by place does not yet carry sleeping sand's lists");
   const double d = s.particleDiameter;
   const double g = std::sqrt(double(s.gravity.x) * s.gravity.x + double(s.gravity.y) * s.gravity.y +
                              double(s.gravity.z) * s.gravity.z);

@@ -306,7 +306,16 @@ struct World::Impl {
   /// prepareContacts with a sort of the granules by place: every list built, the granules sorted
   /// in the order of that build's grid (every particle in use is in it), the lists built again.
   void prepareContactsAndSort();
+  /// prepareActive with a sort of the granules by place: every list built, the granules the
+  /// substep computes sorted among their own slots in the order of that build's moving grid, the
+  /// lists built again; nothing more when the substep computes nothing (the GPU decides).
+  void prepareActiveAndSort();
   void sortGranules();
+  /// A pass of the sort over `over`: with sleep from its indirect command (collect_active.comp
+  /// wrote it, zero groups when there is no sort), otherwise `threads` in workgroups of
+  /// `groupSize`.
+  void dispatchSortPass(GLuint program, const char* name, detail::SortPass over,
+                        std::uint32_t threads, std::uint32_t groupSize);
   /// One buffer's words moved to their new slots: `particles` says whether an item is a particle
   /// or a body; each item has `stride` words, of which [first, first + words) move.
   void moveWords(detail::Binding buffer, bool particles, std::uint32_t stride, std::uint32_t first,
@@ -341,6 +350,9 @@ struct World::Impl {
   /// What the contacts of a substep need first: the particles the CPU changed, and the neighbour
   /// lists, built on the GPU's decision (list_check.comp) with indirect dispatches.
   void prepareContacts();
+  /// With sleep, what a substep does before its contacts: the bodies and particles it computes
+  /// listed (collect_active), and the list build if one is due.
+  void prepareActive();
   /// The contacts of the particles the contacts pass left to the grid search.
   void searchContacts();
   /// Its parts: the particles the CPU changed (and a build request when it changed bodies), and

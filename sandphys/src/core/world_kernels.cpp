@@ -180,6 +180,16 @@ void World::Impl::prepareContacts() {
   }
 }
 
+void World::Impl::prepareActive() {
+  // With sleep: the bodies and particles this substep computes, the awake ones and the sleepers
+  // something awake touched (and the list decision, in the same pass); the passes after it run
+  // over them alone, from indirect commands.
+  prepareBodies();
+  dispatch(kernels.collectActive, "collect_active", (bodyCount + kCollectChunk - 1) / kCollectChunk,
+           kWorkgroupSize);
+  buildLists();
+}
+
 void World::Impl::searchContacts() {
   // 3b. The same for the particles whose partners are not all in their lists, which the contacts
   // passes left to this one: they search the grid (none in most substeps: an empty dispatch);
@@ -193,13 +203,11 @@ void World::Impl::runSubstep() {
   bodyForcesClear = false;
   const bool sleeping = sleep.enabled && bodyCount > 0;
   if (sleeping) {
-    // With sleep: the bodies and particles this substep computes, the awake ones and the
-    // sleepers something awake touched (and the list decision, in the same pass); the passes
-    // below run over them alone, from indirect commands.
-    prepareBodies();
-    dispatch(kernels.collectActive, "collect_active",
-             (bodyCount + kCollectChunk - 1) / kCollectChunk, kWorkgroupSize);
-    buildLists();
+    if (granuleSortDue()) {
+      prepareActiveAndSort();
+    } else {
+      prepareActive();
+    }
   } else {
     if (granuleSortDue()) {
       prepareContactsAndSort();

@@ -72,21 +72,44 @@ void World::Impl::prepareContactsAndSort() {
   listsStale = true;
   prepareContacts();
   sortGranules();
-  // The lists, the particles and the pair counts of the sorted slots, before this substep's
-  // contacts.
+  // The lists and the pair counts of the sorted slots, before this substep's contacts.
+  listsStale = true;
   prepareContacts();
+}
+
+void World::Impl::prepareActiveAndSort() {
+  // As prepareContactsAndSort, from a build of every list that collect_active asks for when it
+  // sorts: its moving grid holds the computed bodies alone, so the order follows from the state.
+  // The computed granules trade slots among themselves, so the active lists still hold, and the
+  // build's commands are still in place to build again for the new slots. When the substep
+  // computes nothing, every command is of zero groups: sleeping sand is not sorted, as a frame
+  // that skips the substep would not sort it.
+  buffers[kCounters].upload(4 * kCounterGranuleSort, 4, &kSortRequested);
+  prepareActive();
+  sortGranules();
+  buildLists();
+}
+
+void World::Impl::dispatchSortPass(GLuint program, const char* name, SortPass over,
+                                   std::uint32_t threads, std::uint32_t groupSize) {
+  if (sleep.enabled) {
+    dispatchIndirect(program, name, sortDispatchOffset(over));
+  } else {
+    dispatch(program, name, threads, groupSize);
+  }
 }
 
 void World::Impl::moveWords(Binding buffer, bool particles, std::uint32_t stride,
                             std::uint32_t first, std::uint32_t words) {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOrderTarget, buffers[buffer].id());
   const std::uint32_t items = particles ? particleCount : bodyCount;
+  const SortPass over = particles ? kSortOverParticles : kSortOverBodies;
   const std::pair<GLuint, const char*> passes[] = {{kernels.orderPack, "order_pack"},
                                                    {kernels.orderGather, "order_gather"}};
   for (const auto& [program, name] : passes) {
     glUseProgram(program);
     glUniform4ui(0, particles ? 1u : 0u, stride, first, words);
-    dispatch(program, name, items, kWorkgroupSize);
+    dispatchSortPass(program, name, over, items, kWorkgroupSize);
   }
 }
 
@@ -97,34 +120,40 @@ void World::Impl::sortGranules() {
   const auto scan = [&] {
     const std::uint32_t threads = kScanBlock / 4;
     const std::uint32_t blocks = table.size / kScanBlock;
-    dispatch(kernels.scanBlocks, "order_scan", blocks * threads, threads);
-    dispatch(kernels.scanBlockSums, "order_scan", 1024, 1024);
-    dispatch(kernels.scanAdd, "order_scan", blocks * threads, threads);
+    dispatchSortPass(kernels.scanBlocks, "order_scan", kSortOverScanBlocks, blocks * threads,
+                     threads);
+    dispatchSortPass(kernels.scanBlockSums, "order_scan", kSortOverBlockSums, 1024, 1024);
+    dispatchSortPass(kernels.scanAdd, "order_scan", kSortOverScanBlocks, blocks * threads, threads);
   };
   // The granules in the order of the last build's grid, numbered; their slots, numbered; each
   // slot's source and each granule's destination (granule_order.glsl).
-  dispatch(kernels.orderSequence, "order_sequence", particleCount, kWorkgroupSize);
+  dispatchSortPass(kernels.orderSequence, "order_sequence", kSortOverParticles, particleCount,
+                   kWorkgroupSize);
   scan();
-  dispatch(kernels.orderSources, "order_sources", particleCount, kWorkgroupSize);
-  dispatch(kernels.orderSlots, "order_slots", bodyCount, kWorkgroupSize);
+  dispatchSortPass(kernels.orderSources, "order_sources", kSortOverParticles, particleCount,
+                   kWorkgroupSize);
+  dispatchSortPass(kernels.orderSlots, "order_slots", kSortOverBodies, bodyCount, kWorkgroupSize);
   scan();
-  dispatch(kernels.orderMoves, "order_moves", bodyCount, kWorkgroupSize);
-  // The states that differ from granule to granule move; what all of them share (mass, inertia,
-  // particle offsets, flags) stays. The particles' positions and velocities follow their bodies
-  // (bodies_to_particles, below); the lists and the grid are built again.
+  dispatchSortPass(kernels.orderMoves, "order_moves", kSortOverBodies, bodyCount, kWorkgroupSize);
+  // The states that differ from granule to granule move as they are, bit for bit; what all of
+  // them share (mass, inertia, particle offsets, flags, each particle's body and inverse mass)
+  // stays. The lists and the grid are built again.
   for (Binding b : {kBodyPosition, kBodyOrientation, kBodyVelocity, kBodyAngularVelocity}) {
     moveWords(b, false, 4, 0, 4);
   }
   moveWords(kBodyInfo, false, 4, 3, 1);  // the speed-guard count
   moveWords(kBodyIds, false, 1, 0, 1);
+  for (Binding b : {kParticlePosition, kParticleVelocity}) moveWords(b, true, 4, 0, 3);
   for (Binding b : {kParticleForce, kParticleStats}) moveWords(b, true, 4, 0, 4);
+  if (sleep.enabled && keepsHistory()) moveWords(kParticleSpin, true, 4, 0, 4);
   if (keepsHistory()) {
     moveWords(kParticleTorque, true, 4, 0, 4);
     moveWords(kContactPairs, true, 4, 0, 4);
     for (std::uint32_t group = 0; group < kContactSlotGroups; ++group) {
       moveWords(Binding(kContactSlots0 + group), true, 16, 0, 16);
     }
-    dispatch(kernels.orderKeys, "order_keys", particleCount, kWorkgroupSize);
+    dispatchSortPass(kernels.orderKeys, "order_keys", kSortOverParticles, particleCount,
+                     kWorkgroupSize);
   }
   if (keepsRollingHistory()) {
     // Twelve slots of four words per particle, in the neighbour lists' room of sixteen words.
@@ -132,8 +161,6 @@ void World::Impl::sortGranules() {
       moveWords(kRollingSlots, true, 48, 16 * part, 16);
   }
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOrderTarget, 0);
-  markParticlesDirty(0, particleCount);
-  listsStale = true;
   gridValid = false;
   orderStale = true;
 }

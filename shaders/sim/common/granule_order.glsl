@@ -1,24 +1,19 @@
 // The sort of the granules by place (WorldSettings::sortInterval; docs/architecture.md, "Granule
-// order"): which bodies it moves, and the one buffer its moves copy at a time.
+// order"): which bodies it moves. The includer declares BODY_INFO_TEXTURE and, under SLEEPING,
+// BODY_GRID_BUILD_TEXTURE and COUNTERS.
 
 // Every granule that moves freely and is alive: they all have the World's granule template, so
-// their slots can trade states.
-bool sortsGranule(uint flags) {
+// their slots can trade states. Under SLEEPING only those this substep computes: the build the
+// sort follows, which the CPU asked for, put exactly them in its moving grid (common/grid.glsl).
+// The sleepers keep their slots, so the computed granules trade slots among themselves and the
+// active lists (collect_active.comp) still name the slots this substep computes.
+bool sortsGranule(uint body) {
+  uint flags = texelFetch(bodyInfoTexture, int(body)).z;
   uint motion = (flags & BODY_MOTION_MASK) >> BODY_MOTION_SHIFT;
+  bool computed = true;
+#ifdef SLEEPING
+  computed = texelFetch(bodyGridBuildTexture, int(body)).x == counters[COUNTER_LIST_BUILDS];
+#endif
   return (flags & (BODY_ALIVE | BODY_GRANULE)) == (BODY_ALIVE | BODY_GRANULE) &&
-         motion == MOTION_DYNAMIC;
-}
-
-#define ORDER_BODIES 0u
-#define ORDER_PARTICLES 1u
-// x: ORDER_BODIES or ORDER_PARTICLES (what one item is); y: words per item in the buffer; z: the
-// first word of an item that moves; w: how many words from there.
-layout(location = 0) uniform uvec4 orderShape;
-
-uint orderItems() {
-  return orderShape.x == ORDER_BODIES ? params.bodyCount : params.particleCount;
-}
-
-uint orderWord(uint item, uint k) {
-  return item * orderShape.y + orderShape.z + k;
+         motion == MOTION_DYNAMIC && computed;
 }

@@ -107,6 +107,10 @@ struct SinkBox {
 #define COUNTER_ACTIVE_LARGE 25
 // The granules the last sort by place found in the grid's order (order_sources.comp).
 #define COUNTER_ORDER_SEQUENCE 26
+// SLEEPING: SORT_REQUESTED when the CPU sorts the granules by place in this substep;
+// collect_active.comp reads and clears it and writes the sort's commands (COUNTER_SORT_DISPATCH).
+#define COUNTER_GRANULE_SORT 27
+#define SORT_REQUESTED 1u
 // From this uint on: the indirect dispatch commands of the list build, one per pass below (4
 // uints each: groups x, y, z and padding), zero groups when no build is due.
 #define COUNTER_LIST_DISPATCH 28
@@ -137,6 +141,17 @@ struct SinkBox {
 #define ACTIVE_PASS_SEARCH 3u
 #define ACTIVE_PASS_COLLIDERS 4u
 #define ACTIVE_PASS_LARGE 5u
+#define ACTIVE_PASSES 6
+// SLEEPING: after those, the indirect commands of the sort of the granules by place, one per
+// size its passes run over (World::Impl::sortGranules): full in a substep that sorts and computes
+// something, zero in one that computes nothing, which sorts nothing (as a frame that skips it,
+// StepReport::idleSubsteps, does not), both written by collect_active.comp.
+#define COUNTER_SORT_DISPATCH (COUNTER_ACTIVE_DISPATCH + 4 * ACTIVE_PASSES)
+#define SORT_OVER_PARTICLES 0u
+#define SORT_OVER_BODIES 1u
+#define SORT_OVER_SCAN_BLOCKS 2u
+#define SORT_OVER_BLOCK_SUMS 3u
+#define SORT_PASSES 4
 // The length of the active list a pass runs over (the includer declares COUNTERS).
 #define activeListLength(pass) counters[COUNTER_ACTIVE_DISPATCH + 4u * (pass) + 3u]
 
