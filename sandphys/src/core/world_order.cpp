@@ -61,7 +61,8 @@ void World::Impl::setIds(std::span<const std::uint32_t> ids) {
 }
 
 bool World::Impl::granuleSortDue() const {
-  return sortsGranules() && steps > 0 && steps % sortInterval() == 0;
+  // No body, nothing to sort (and with sleep no collect_active to write the sort's commands).
+  return sortsGranules() && bodyCount > 0 && steps > 0 && steps % sortInterval() == 0;
 }
 
 void World::Impl::prepareContactsAndSort() {
