@@ -247,9 +247,9 @@ RockResult dropRock(const RockRun& run) {
   WorldSettings settings = testing::smallSettings(kBedGranules + 1);
   settings.maxParticles = 4 * kBedGranules + 64;
   settings.sleep.enabled = run.sleep;
-  // A World with sleep does not sort its granules by place; nor does the one without it that it is
-  // compared with, so that the two differ in sleep alone (a sort changes the order of the sums,
-  // and the rock's rest height follows such last bits by up to half a diameter).
+  // Neither World sorts its granules by place, so that the two differ in sleep alone: a sort
+  // changes the order of the sums (with sleep, of the computed granules' only), and the rock's
+  // rest height follows such last bits by up to half a diameter.
   settings.sortInterval = kNeverSortGranules;
   testing::TestWorld w(settings);
   if (run.oneGrid) testing::useOneGrid(*w);

@@ -80,8 +80,8 @@ const SettingField kFields[] = {
          "neighbour lists reach d + skin; 0 derives it from maxSpeed (at most d)",
          [](W& s) { return &s.listSkin; }),
     count("sortInterval", "sort_interval", "sort interval", 0, kNeverSortGranules,
-          "substeps between sorts of the granules by place; 0 derives it (never with sleep); the "
-          "largest value: never",
+          "substeps between sorts of the granules by place (with sleep, of those computed); 0 "
+          "derives it (1000); the largest value: never",
           [](W& s) { return &s.sortInterval; }),
     count("maxSubstepsPerFrame", "max_substeps_per_frame", "substeps per frame, at most", 1, kInf,
           "time beyond it is dropped and reported", [](W& s) { return &s.maxSubstepsPerFrame; }),
