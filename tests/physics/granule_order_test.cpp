@@ -259,12 +259,16 @@ TEST(GranuleOrderRun, SortsEveryThousandSubstepsByDefault) {
   }
 }
 
-// testing::buildPile with sleep, caught half asleep: a snapshot taken without sorts.
-WorldSnapshot halfAsleepPile() {
+WorldSettings sleepingSettings(std::uint32_t interval) {
   WorldSettings s = testing::smallSettings();
   s.sleep.enabled = true;
-  s.sortInterval = kNeverSortGranules;
-  testing::TestWorld w(s);
+  s.sortInterval = interval;
+  return s;
+}
+
+// testing::buildPile with sleep, caught half asleep: a snapshot taken without sorts.
+WorldSnapshot halfAsleepPile() {
+  testing::TestWorld w(sleepingSettings(kNeverSortGranules));
   testing::buildPile(*w);
   std::uint32_t asleep = 0;
   while (w->simulatedTime() < 1.5 && asleep < 30) {
@@ -272,13 +276,6 @@ WorldSnapshot halfAsleepPile() {
     asleep = w->readStats().granulesAsleep;
   }
   return w->readSnapshot();
-}
-
-WorldSettings sleepingSettings(std::uint32_t interval) {
-  WorldSettings s = testing::smallSettings();
-  s.sleep.enabled = true;
-  s.sortInterval = interval;
-  return s;
 }
 
 // With sleep a sort moves only the granules the substep computes, among their own slots: every

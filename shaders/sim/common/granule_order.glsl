@@ -3,8 +3,9 @@
 // BODY_GRID_BUILD_TEXTURE and COUNTERS.
 
 // Every granule that moves freely and is alive: they all have the World's granule template, so
-// their slots can trade states. Under SLEEPING only those this substep computes: the build the
-// sort follows, which the CPU asked for, put exactly them in its moving grid (common/grid.glsl).
+// their slots can trade states. Under SLEEPING only those this substep computes: the build of
+// every list that the sort follows (collect_active.comp asks for it) put exactly them in its
+// moving grid (common/grid.glsl).
 // The sleepers keep their slots, so the computed granules trade slots among themselves and the
 // active lists (collect_active.comp) still name the slots this substep computes.
 bool sortsGranule(uint body) {
