@@ -186,11 +186,8 @@ TEST(Determinism, PairCountsTakenWhereTheSlotsChangedAreThoseOfEverySubstep) {
 // sleeping pile, which touches sleepers whose lists the builds of its fall passed over.
 TEST(Determinism, ContactsLeftToTheGridSearchAreThoseOfEveryParticleSearched) {
   for (const bool sleep : {false, true}) {
-    WorldSettings s = testing::smallSettings();
-    s.sleep.enabled = sleep;
+    WorldSettings s = sleep ? testing::sleepingPileSettings() : testing::smallSettings();
     if (!sleep) s.listSkin = s.particleDiameter;
-    // The trajectory on which buildPile's pile sleeps whole (sleep_test.cpp, sleepySettings).
-    if (sleep) s.sortInterval = kNeverSortGranules;
     testing::TestWorld some(s), every(s);
     testing::searchEveryParticle(*every);
     for (testing::TestWorld* w : {&some, &every}) {

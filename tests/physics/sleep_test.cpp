@@ -19,20 +19,8 @@
 namespace sandphys {
 namespace {
 
-// These tests follow buildPile's pile on the one trajectory they were written for, on which it
-// falls asleep whole within the time they allow. Without rolling friction a change of last bits
-// (a sort of the granules every 1000 substeps is one) can leave a granule rocking on two contacts
-// for ever instead (docs/architecture.md, "What keeps a settled pile awake"), so the pile does
-// not sort; the comparisons of frames that do sort, and granule_order_test.cpp, test sleep with
-// sorts.
-WorldSettings sleepySettings() {
-  WorldSettings s = testing::smallSettings();
-  s.sleep.enabled = true;
-  s.sortInterval = kNeverSortGranules;
-  return s;
-}
-
 using testing::buildPile;
+using testing::sleepingPileSettings;
 // buildPile's granules.
 constexpr std::uint32_t kGranules = 96;
 
@@ -46,8 +34,15 @@ double sleepAll(testing::TestWorld& w, double limit, double chunk = 0.05) {
   return -1.0;
 }
 
+// The default settings with sleep.
+WorldSettings withSleep() {
+  WorldSettings s = testing::smallSettings();
+  s.sleep.enabled = true;
+  return s;
+}
+
 TEST(Sleep, DefaultsFollowFromDiameterAndGravity) {
-  testing::TestWorld w(sleepySettings());
+  testing::TestWorld w(withSleep());
   const SleepModel& m = w->sleepModel();
   const double d = w->settings().particleDiameter;
   const double g = 9.81;
@@ -68,22 +63,22 @@ TEST(Sleep, BadSettingsAreRefusedByName) {
     }
     return false;
   };
-  WorldSettings s = sleepySettings();
+  WorldSettings s = withSleep();
   s.sleep.linearSpeed = std::nanf("");
   EXPECT_TRUE(refused(s, "WorldSettings.sleep.linearSpeed"));
-  s = sleepySettings();
+  s = withSleep();
   s.sleep.time = -1.0f;
   EXPECT_TRUE(refused(s, "WorldSettings.sleep.time"));
-  s = sleepySettings();
+  s = withSleep();
   s.contactLaw = ContactLaw::PaperViscous;
   EXPECT_TRUE(refused(s, "WorldSettings.contactLaw"));
-  s = sleepySettings();
+  s = withSleep();
   s.gravity = {};
   EXPECT_TRUE(refused(s, "gravity"));
 }
 
 TEST(Sleep, SettledPileFallsAsleepAndThenChangesNoBit) {
-  testing::TestWorld w(sleepySettings());
+  testing::TestWorld w(sleepingPileSettings());
   buildPile(*w);
   // Settling takes well under 0.6 s here; asleep within the sleep time after that.
   const double limit = 0.6 + w->sleepModel().time + 0.2;
@@ -105,7 +100,7 @@ TEST(Sleep, SettledPileFallsAsleepAndThenChangesNoBit) {
 }
 
 TEST(Sleep, WakeWakesTheRegionAndThePileSleepsAgainWhereItWas) {
-  testing::TestWorld w(sleepySettings());
+  testing::TestWorld w(sleepingPileSettings());
   buildPile(*w);
   ASSERT_GT(sleepAll(w, 2.0), 0.0);
   const std::vector<BodyState> slept = w->readBodies();
@@ -133,7 +128,7 @@ TEST(Sleep, WakeWakesTheRegionAndThePileSleepsAgainWhereItWas) {
 }
 
 TEST(Sleep, AGranuleDroppedOnTheSleepingPileWakesItsNeighboursAndRests) {
-  WorldSettings settings = sleepySettings();
+  WorldSettings settings = sleepingPileSettings();
   std::uint64_t hashes[2] = {};
   for (std::uint64_t& hash : hashes) {
     testing::TestWorld w(settings);
@@ -368,11 +363,11 @@ TEST(Sleep, TheListsOfTouchedSleepersHoldEveryContactACpuSearchFinds) {
 }
 
 TEST(Sleep, SnapshotCarriesTheSleepState) {
-  testing::TestWorld a(sleepySettings());
+  testing::TestWorld a(sleepingPileSettings());
   buildPile(*a);
   a.simulate(0.5);
   const WorldSnapshot middle = a->readSnapshot();
-  testing::TestWorld b(sleepySettings());
+  testing::TestWorld b(sleepingPileSettings());
   buildPile(*b);
   b->restoreSnapshot(middle);
   EXPECT_FALSE(firstDifference(middle, b->readSnapshot()).has_value());
@@ -388,7 +383,7 @@ TEST(Sleep, SnapshotCarriesTheSleepState) {
 // restored World goes on bit for bit (without them its touched sleepers saw no force, only
 // gravity, and woke the whole pile).
 TEST(Sleep, ARestoredHalfSleepingPileGoesOnBitForBit) {
-  testing::TestWorld a(sleepySettings());
+  testing::TestWorld a(sleepingPileSettings());
   buildPile(*a);
   std::uint32_t asleep = 0;
   while (a->simulatedTime() < 1.5 && asleep < kGranules / 3) {
@@ -400,7 +395,7 @@ TEST(Sleep, ARestoredHalfSleepingPileGoesOnBitForBit) {
   const WorldSnapshot middle = a->readSnapshot();
   ASSERT_EQ(middle.forces.size(), middle.contacts.size());
   EXPECT_EQ(a->readStateHash(), stateHash(middle));
-  testing::TestWorld b(sleepySettings());
+  testing::TestWorld b(sleepingPileSettings());
   buildPile(*b);
   b->restoreSnapshot(middle);
   EXPECT_FALSE(firstDifference(middle, b->readSnapshot()).has_value());
@@ -421,7 +416,7 @@ TEST(Sleep, ARestoredHalfSleepingPileGoesOnBitForBit) {
 // its contacts stay frozen must not depend on that (a restored World builds every list afresh): a
 // World restored at any moment of the impact goes on bit for bit.
 TEST(Sleep, ARestoreDuringAnImpactGoesOnBitForBit) {
-  testing::TestWorld a(sleepySettings());
+  testing::TestWorld a(sleepingPileSettings());
   buildPile(*a);
   ASSERT_GT(sleepAll(a, 2.0), 0.0);
   const float d = a->settings().particleDiameter;
@@ -433,7 +428,7 @@ TEST(Sleep, ARestoreDuringAnImpactGoesOnBitForBit) {
   for (int moment = 0; moment < 5; ++moment) {
     a.simulate(0.03);
     const WorldSnapshot then = a->readSnapshot();
-    testing::TestWorld b(sleepySettings());
+    testing::TestWorld b(sleepingPileSettings());
     buildPile(*b);
     b.addGranule(dropAt, {}, {0, -0.2f, 0});
     b->restoreSnapshot(then);
@@ -453,12 +448,12 @@ TEST(Sleep, ARestoreDuringAnImpactGoesOnBitForBit) {
 // A sleeping particle is not computed, so it reports the contacts it counted last: a World that
 // restores a sleeping pile counts those its contact history holds, as the World that saved it.
 TEST(Sleep, ARestoredSleepingPileCountsTheContactsItSleepsWith) {
-  testing::TestWorld a(sleepySettings());
+  testing::TestWorld a(sleepingPileSettings());
   buildPile(*a);
   a.simulate(1.5);
   const WorldStats saved = a->readStats();
   ASSERT_EQ(saved.granulesAsleep, 96u);
-  testing::TestWorld b(sleepySettings());
+  testing::TestWorld b(sleepingPileSettings());
   buildPile(*b);
   b->restoreSnapshot(a->readSnapshot());
   EXPECT_EQ(b->readStats().contacts, saved.contacts);
@@ -574,15 +569,15 @@ void liftRestoreAndWake(const SleptPile& pile, const Compare& compare) {
 // pile, gives the bits of a World that scans every chunk in every substep (and each fails
 // without its part of the invalidation).
 TEST(Sleep, PassingOverQuietChunksChangesNoBit) {
-  const float d = sleepySettings().particleDiameter;
+  const float d = sleepingPileSettings().particleDiameter;
   SleptPile pile;
-  ASSERT_NO_FATAL_FAILURE(sleepPile(sleepySettings(), pile));
+  ASSERT_NO_FATAL_FAILURE(sleepPile(sleepingPileSettings(), pile));
   const BodyState& top = pile.top;
   // The sleeping pile, once the chunks are found quiet again: the event, done to both Worlds,
   // then `seconds` compared every 25 ms.
   const auto compare = [&](const char* event, double seconds, const auto& doTo) {
-    testing::TestWorld a(sleepySettings());
-    testing::TestWorld b(sleepySettings());
+    testing::TestWorld a(sleepingPileSettings());
+    testing::TestWorld b(sleepingPileSettings());
     testing::scanEveryChunk(*b);
     for (testing::TestWorld* w : {&a, &b}) {
       buildPile(**w);
@@ -668,7 +663,7 @@ const char* firstStatsDifference(const WorldStats& a, const WorldStats& b) {
 // sleeping pile, once a frame's first substep has found it so, runs no substep and reduces no
 // statistics.
 TEST(Sleep, FramesOfSleepingSandRunOneSubstepAndChangeNoBit) {
-  WorldSettings settings = sleepySettings();
+  WorldSettings settings = sleepingPileSettings();
   settings.statsEachFrame = true;  // the statistics compared each frame, and the idle hint
   const float d = settings.particleDiameter;
   SleptPile pile;
@@ -807,7 +802,7 @@ TEST(Sleep, AKinematicBodySetAtRestEveryFrameLeavesTheSandAsleep) {
   // setting it (as the bridge does when Bullet puts the body to sleep), the body sleeps too, and
   // the World's frames run no substep. Without statistics each frame (testing::smallSettings), as
   // a game that reads none.
-  const WorldSettings settings = sleepySettings();
+  const WorldSettings settings = sleepingPileSettings();
   ASSERT_FALSE(settings.statsEachFrame);
   Lockstep w(settings);
   const float d = settings.particleDiameter;
@@ -854,7 +849,7 @@ TEST(Sleep, AKinematicBodySetAtRestEveryFrameLeavesTheSandAsleep) {
 // second checks its first substep and skips the rest, and the frames after run none; no
 // statistics are reduced, and every frame has the bits of a World that runs every substep.
 TEST(Sleep, FramesOfSleepingSandSkipWithoutStatisticsEachFrame) {
-  const WorldSettings settings = sleepySettings();
+  const WorldSettings settings = sleepingPileSettings();
   ASSERT_FALSE(settings.statsEachFrame);
   SleptPile pile;
   ASSERT_NO_FATAL_FAILURE(sleepPile(settings, pile));
@@ -887,7 +882,7 @@ TEST(Sleep, FramesOfSleepingSandSkipWithoutStatisticsEachFrame) {
 // rock gains no force sum. A granule dropped onto it wakes it, and all sleeps again. Every frame
 // is compared bit for bit with a World that runs every substep.
 TEST(Sleep, ARockAtRestSleepsWithTheSandAndWakesWhenTouched) {
-  WorldSettings settings = sleepySettings();
+  WorldSettings settings = sleepingPileSettings();
   settings.statsEachFrame = true;  // the hint from the statistics (the post above: without)
   const float d = settings.particleDiameter;
   SleptPile pile;

@@ -122,6 +122,13 @@ void buildPile(World& w) {
                              .seed = 11});
 }
 
+WorldSettings sleepingPileSettings() {
+  WorldSettings s = smallSettings();
+  s.sleep.enabled = true;
+  s.material.rollingFriction = 0.1f;
+  return s;
+}
+
 TestWorld::TestWorld(const WorldSettings& settings) : m_world(gpu(), settings) {}
 
 ColliderId TestWorld::addFloor(float y, SurfaceMaterial material) {
