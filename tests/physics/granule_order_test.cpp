@@ -364,5 +364,112 @@ TEST(GranuleOrderRun, WithSleepEndsAsTheSameBitsWhenRestoredOrReadOnTheWay) {
   EXPECT_EQ(observed->readStateHash(), hash);
 }
 
+// The other kinds of body beside the granules: a static rough floor, a dynamic rock of many
+// particles, a kinematic bar on a move, and a sink that kills the granules that reach a corner.
+struct MixedScene {
+  BodyId floor, rock, bar;
+};
+
+MixedScene addMixedScene(World& world) {
+  const float d = world.settings().particleDiameter;
+  MixedScene scene;
+  world.addCollider(Plane{});
+  world.addCollider(
+      Box{.center = {0, 30 * d, 0}, .halfExtents = {10 * d, 30 * d, 10 * d}, .inside = true});
+  scene.floor = world.addRoughFloor(RoughFloor{.halfExtentX = 9.5f * d, .halfExtentZ = 9.5f * d});
+  world.addSink(Sink{.min = {6 * d, -d, 6 * d}, .max = {10 * d, 3 * d, 10 * d}});
+  std::vector<Vec3> cube;
+  for (int i = -1; i <= 1; ++i) {
+    for (int j = -1; j <= 1; ++j) {
+      for (int k = -1; k <= 1; ++k) cube.push_back(Vec3{float(i), float(j), float(k)} * d);
+    }
+  }
+  scene.rock = world.addBody(makeParticleTemplate(cube, d, 3000.0f),
+                             BodyDesc{.position = {-3 * d, 10 * d, 2 * d}, .velocity = {0, -1, 0}});
+  std::vector<Vec3> bar;
+  for (int k = -3; k <= 3; ++k) bar.push_back(Vec3{0, 0, float(k)} * d);
+  const Vec3 from{-8 * d, 2.5f * d, 0}, to{8 * d, 2.5f * d, 0};
+  scene.bar = world.addBody(makeParticleTemplate(bar, d, 3000.0f),
+                            BodyDesc{.position = from, .motion = Motion::Kinematic});
+  world.moveKinematic(scene.bar,
+                      KinematicMove{.from = from, .to = to, .startTime = 0.01, .duration = 0.06});
+  world.addGranules(GranuleBlock{
+      .center = {0, 6 * d, 0}, .countX = 6, .countY = 4, .countZ = 6, .velocity = {0, -0.5f, 0}});
+  return scene;
+}
+constexpr std::uint32_t kMixedGranules = 6 * 4 * 6;
+
+WorldSettings mixedSettings(bool sleep) {
+  WorldSettings s = sortingSettings(100);
+  s.maxParticles = 4096;
+  s.sleep.enabled = sleep;
+  return s;
+}
+
+// Beside bodies of every other kind, mid-move and with granules killed, a sort moves only the
+// live granules: every body (by id) and every contact is the same bit for bit and every other
+// body keeps its slot; and a run that sorts every 100 substeps ends as the same bits when
+// restored or read on the way.
+TEST(GranuleOrderRun, BesideBodiesOfEveryOtherKindASortMovesOnlyTheLiveGranules) {
+  for (const bool sleep : {false, true}) {
+    SCOPED_TRACE(sleep ? "with sleep" : "without sleep");
+    constexpr std::uint32_t kSortAt = 650;  // mid-move, with granules killed
+    testing::TestWorld w(mixedSettings(sleep));
+    const MixedScene scene = addMixedScene(*w);
+    w->substep(kSortAt);
+    const WorldSnapshot was = w->readSnapshot();
+    const std::uint32_t alive = w->readStats().granulesAlive;
+    ASSERT_LT(alive, kMixedGranules) << "no granule reached the sink";
+    const std::vector<BodyState> before = w->readBodies();
+    const std::vector<ContactRecord> contactsBefore = contactsByBody(*w);
+    for (const BodyId body : {scene.floor, scene.rock, scene.bar}) {
+      ASSERT_TRUE(
+          std::any_of(contactsBefore.begin(), contactsBefore.end(),
+                      [&](const ContactRecord& c) { return c.bodyA == body || c.bodyB == body; }))
+          << "body " << body.index << " touches no granule";
+    }
+    testing::sortGranulesNow(*w);
+    const std::vector<ContactRecord> contactsAfter = contactsByBody(*w);
+    ASSERT_NO_FATAL_FAILURE(
+        expectSameBodiesAndContacts(before, w->readBodies(), contactsBefore, contactsAfter));
+    const WorldSnapshot sorted = w->readSnapshot();
+    ASSERT_EQ(sorted.bodyIds.size(), was.bodies.size());
+    std::uint32_t moved = 0;
+    for (std::uint32_t slot = 0; slot < sorted.bodyIds.size(); ++slot) {
+      const std::uint32_t id = sorted.bodyIds[slot];
+      moved += id != slot;
+      if (!was.bodies[slot].alive || slot == scene.floor.index || slot == scene.rock.index ||
+          slot == scene.bar.index) {
+        EXPECT_EQ(id, slot) << "a body that is not a live granule moved";
+      }
+    }
+    EXPECT_GT(moved, alive / 2);
+
+    constexpr std::uint32_t kEnd = 1500;
+    testing::TestWorld original(mixedSettings(sleep));
+    addMixedScene(*original);
+    original->substep(kEnd);
+    EXPECT_EQ(original->readStats().granuleSorts, (kEnd - 1) / 100);  // at 101, 201, ...
+    for (const std::uint32_t at : {450u, 1234u}) {
+      SCOPED_TRACE(::testing::Message() << "restored at substep " << at);
+      testing::TestWorld first(mixedSettings(sleep));
+      addMixedScene(*first);
+      first->substep(at);
+      testing::TestWorld replay(mixedSettings(sleep));
+      addMixedScene(*replay);
+      replay->restoreSnapshot(first->readSnapshot());
+      replay->substep(kEnd - at);
+      EXPECT_EQ(replay->readStateHash(), original->readStateHash());
+    }
+    testing::TestWorld observed(mixedSettings(sleep));
+    addMixedScene(*observed);
+    for (std::uint32_t done = 0; done < kEnd; done += 75) {
+      observed->substep(75);
+      observed->readContacts();
+    }
+    EXPECT_EQ(observed->readStateHash(), original->readStateHash()) << "read on the way";
+  }
+}
+
 }  // namespace
 }  // namespace sandphys
