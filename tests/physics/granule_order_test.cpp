@@ -471,5 +471,34 @@ TEST(GranuleOrderRun, BesideBodiesOfEveryOtherKindASortMovesOnlyTheLiveGranules)
   }
 }
 
+// A World grown (World::reserve) after sorts keeps every body's id in its slot: set by id and run
+// on, it ends as the same bits as one that was not grown.
+TEST(GranuleOrderRun, AWorldGrownAfterSortsGoesOnAsOneThatWasNot) {
+  for (const bool sleep : {false, true}) {
+    SCOPED_TRACE(sleep ? "with sleep" : "without sleep");
+    WorldSettings settings = sortingSettings(100);
+    settings.sleep.enabled = sleep;
+    testing::TestWorld kept(settings), grown(settings);
+    for (World* world : {&*kept, &*grown}) {
+      addShuffledPile(*world);
+      world->substep(250);
+      ASSERT_EQ(world->readStats().granuleSorts, 2u);
+    }
+    grown->reserve(4 * grown->bodyCapacity(), 4 * grown->particleCapacity());
+    // The top layer's first granule, lifted by two diameters.
+    const BodyState top = kept->readBodies().back();
+    const float d = settings.particleDiameter;
+    for (World* world : {&*kept, &*grown}) {
+      world->setBodyState(top.id, BodyDesc{.position = top.position + Vec3{0, 2 * d, 0},
+                                           .orientation = top.orientation});
+      world->substep(250);
+    }
+    EXPECT_EQ(grown->readStateHash(), kept->readStateHash());
+    const std::vector<BodyState> a = kept->readBodies(), b = grown->readBodies();
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) ASSERT_TRUE(identical(a[i], b[i])) << "body " << i;
+  }
+}
+
 }  // namespace
 }  // namespace sandphys
