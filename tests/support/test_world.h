@@ -71,9 +71,9 @@ WorldSettings smallSettings(std::uint32_t maxBodies = 256);
 void buildPile(World& world);
 
 /// smallSettings with sleep and rolling friction, for tests that need buildPile's pile to fall
-/// asleep whole: with rolling friction it does so on every trajectory, which a sort of the
-/// granules or any change of last bits may take. Without, a granule can rock on two contacts for
-/// ever (docs/architecture.md, "What keeps a settled pile awake").
+/// asleep whole: with rolling friction it did so on every trajectory tried (the last bits that a
+/// sort of the granules, or any change to a kernel, moves). Without, a granule can rock on two
+/// contacts for ever (docs/architecture.md, "What keeps a settled pile awake").
 WorldSettings sleepingPileSettings();
 
 /// A world with helpers in the manner of Chrono's DEM unit tests: build the scene in a line each,
