@@ -478,7 +478,8 @@ struct CutResult {
 };
 
 CutResult cutColumn(bool sleep) {
-  WorldSettings settings = testing::smallSettings();
+  // With rolling friction, as buildPile's pile, so that the column sleeps whole on any trajectory.
+  WorldSettings settings = sleepingPileSettings();
   settings.sleep.enabled = sleep;
   testing::TestWorld w(settings);
   const float half = 0.07f;
