@@ -1,8 +1,9 @@
 // The avalanche scene: sand released down a slope onto a low block with a plank standing on it,
 // both simulated by Bullet and coupled through the bridge. While the wall holds the sand (the
 // first 0.6 s: the blocks stand on Bullet's floor, coupled, with no sand released) neither block
-// moves; once it is released the sand topples the plank and moves the low block. A block of
-// 10 x 4 x 8 = 320 granules.
+// moves; once it is released the sand topples the plank and moves the low block. The scene as it
+// ships (1008 granules): a smaller block toppled the plank on only some trajectories, which any
+// change of last bits (a sort of the granules at another interval) picks among.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -34,11 +35,7 @@ float distance(const Vec3& a, const Vec3& b) {
 // Runs the scene for `seconds` of simulated time and prints the blocks every 0.25 s.
 Outcome run(float releaseTime, double seconds) {
   BlockAvalanche scene;
-  SlopeAvalanche::Config& slope = scene.config();
-  slope.block = {10, 4, 8};
-  slope.slopeLength = 20.0f;
-  slope.runoutLength = 30.0f;
-  slope.releaseTime = releaseTime;
+  scene.config().releaseTime = releaseTime;
   World world(testing::gpu(), scene.settings());
   scene.build(world);
   const std::vector<SceneBody> start = scene.bodies(world);
