@@ -117,8 +117,9 @@ struct WorldSettings {
   /// Skin of the neighbour lists in m: a particle lists the particles closer than d + skin, and
   /// the lists are built again once some particle has moved half the skin. 0 derives it
   /// (ContactModel::listSkin: room for kListSkinSubsteps substeps at maxSpeed, within
-  /// [kMinListSkin, kMaxListSkin] · d); otherwise in (0, d]. It changes the cost only: contacts
-  /// are summed in partner order whenever the lists were built, so no bit of the result.
+  /// [kMinListSkin, kMaxListSkin] · d); otherwise in (0, d]. Contacts are summed in partner order
+  /// whenever the lists were built, so it changes no bit of the result until the first sort of
+  /// the granules (sortInterval), whose order follows the grid's cells of d + skin.
   float listSkin = 0.0f;
   /// Substeps between sorts of the granules by place. Sand that flows or is poured ends up with
   /// neighbours far apart in memory, which costs every contact pass; LAMMPS sorts its atoms every
