@@ -325,12 +325,13 @@ TEST_F(BulldozerRun, SandMovesAheadOfTheBlade) {
   EXPECT_LT(shift, kPushDistance);
   const float face = scene().bladeFaceStart() + scene().bladeTravel();
   // The blade's ends: its particles' centres and their radius. A granule whose centre lies
-  // within its bounding radius of an end reaches past it: it may have spilled round the end.
+  // within its bounding radius of an end reaches past it: it may have spilled round the end, and
+  // once round it, it may roll back in behind the blade, by up to a diameter more.
   const float halfWidth =
       (0.5f * static_cast<float>(scene().config().berm[2] - 1) * kDefaultGranuleSpacing +
        scene().config().bladeOverhang + 0.5f) *
       d();
-  const float shadow = halfWidth - tetrahedronTemplate(d(), 1.0f).boundingRadius;
+  const float shadow = halfWidth - tetrahedronTemplate(d(), 1.0f).boundingRadius - d();
   std::size_t behind = 0, ahead = 0, granules = 0;
   float front = -1e9f;
   for (const BodyState& body : scene().atPushStart()) {
