@@ -478,7 +478,8 @@ struct CutResult {
 };
 
 CutResult cutColumn(bool sleep) {
-  // With rolling friction, as buildPile's pile, so that the column sleeps whole on any trajectory.
+  // With rolling friction, as buildPile's pile, so that the column sleeps whole on every
+  // trajectory tried.
   WorldSettings settings = sleepingPileSettings();
   settings.sleep.enabled = sleep;
   testing::TestWorld w(settings);
